@@ -1,0 +1,45 @@
+# spallbar: a thin facade over CMake. `make help` lists the targets.
+#   make setup     install the Debian packages and the Python venv (needs root or sudo)
+#   make           Release build in build/release
+#   make run       build and run the seed example deck (input/$(RUN_DECK).nml)
+#   make test      Debug build (all checks on, -std=f2008) and ctest
+#   make clean     remove build/
+SHELL := /bin/bash
+BUILD_RELEASE ?= build/release
+BUILD_DEBUG   ?= build/debug
+RUN_DECK      ?= example2_elastic
+JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
+
+.PHONY: all setup build debug run test clean help
+
+all: build
+
+help:
+	@sed -n '1,8p' Makefile
+
+setup:
+	bash scripts/setup-debian.sh
+
+$(BUILD_RELEASE)/build.ninja:
+	cmake -S . -B $(BUILD_RELEASE) $(CMAKE_COMMON) -DCMAKE_BUILD_TYPE=Release -DSPALLBAR_BUILD_TESTING=OFF
+
+$(BUILD_DEBUG)/build.ninja:
+	cmake -S . -B $(BUILD_DEBUG) $(CMAKE_COMMON) -DCMAKE_BUILD_TYPE=Debug -DSPALLBAR_BUILD_TESTING=ON
+
+build: $(BUILD_RELEASE)/build.ninja
+	cmake --build $(BUILD_RELEASE) -j $(JOBS)
+
+debug: $(BUILD_DEBUG)/build.ninja
+	cmake --build $(BUILD_DEBUG) -j $(JOBS)
+
+run: build
+	mkdir -p $(BUILD_RELEASE)/runs
+	cd input && ../$(BUILD_RELEASE)/bin/spallbar $(RUN_DECK).nml --output ../$(BUILD_RELEASE)/runs/$(RUN_DECK)
+	@echo "outputs: $(BUILD_RELEASE)/runs/$(RUN_DECK).{his,prf,evt}"
+
+test: debug
+	cd $(BUILD_DEBUG) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf build

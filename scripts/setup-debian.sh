@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Install what spallbar needs on Debian/Ubuntu: compiler, build tools, HDF5 (Fortran),
+# OpenMPI, Python with a project venv for plots/. Safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends \
+  gfortran cmake ninja-build make python3 python3-venv \
+  libhdf5-dev hdf5-tools libopenmpi-dev openmpi-bin
+# Python packages for plots/ go into a project venv (PyPI), not the system Python.
+if [ ! -x .venv/bin/python ]; then
+  python3 -m venv .venv
+fi
+.venv/bin/python -m pip install -q --upgrade pip
+.venv/bin/python -m pip install -q -r requirements.txt
+echo "spallbar: set-up done (gfortran $(gfortran -dumpversion), cmake $(cmake --version | head -1 | awk '{print $3}'))"

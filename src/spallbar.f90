@@ -1,0 +1,129 @@
+!> spallbar: stress waves, spall and multiple collisions in layered elastic-brittle bars.
+!>
+!> The main program only sequences the phases of the 1988 EMC workflow: read the deck,
+!> echo it, build the mesh, initialise, step, write columns. Exit status 2: bad input;
+!> 3: a run that went wrong; 0: success.
+program spallbar
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use spb_kinds, only: wp, version, path_len
+   use spb_error, only: spb_error_t, make_error, exit_input
+   use spb_strings, only: itoa
+   use spb_deck, only: deck_t, read_deck
+   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
+   use spb_output, only: write_mesh_summary
+   use spb_sys, only: sys_exit, stderr_is_terminal
+   implicit none
+
+   type(deck_t) :: deck
+   type(sim_t) :: sim
+   type(run_summary_t) :: summary
+   type(spb_error_t), allocatable :: err
+   character(len=:), allocatable :: deck_path, prefix
+   logical :: quiet
+
+   call parse_command_line(deck_path, prefix, quiet, err)
+   if (allocated(err)) call fail(err)
+   call read_deck(deck_path, deck, err)
+   if (allocated(err)) call fail(err)
+   call sim_setup(deck, sim, err)
+   if (allocated(err)) call fail(err)
+   if (.not. quiet) then
+      write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
+      call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
+   end if
+   call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err)
+   if (allocated(err)) call fail(err)
+   if (.not. quiet) then
+      write(output_unit, '(a,i0,a,f0.3,a,es9.2,a,es9.2,a)') '  done: ', summary%steps, &
+         ' steps in ', summary%wall, ' s; energy ledger drift ', summary%ledger_drift, &
+         ' J/m^2 (', summary%ledger_drift / max(summary%energy_scale, tiny(1.0_wp)), &
+         ' of the largest energy term)'
+      write(output_unit, '(a)') '  wrote ' // prefix // '.his, ' // prefix // '.prf, ' // &
+         prefix // '.evt'
+   end if
+
+contains
+
+   subroutine fail(e)
+      type(spb_error_t), intent(in) :: e
+      write(error_unit, '(a)') 'spallbar: ' // e%message
+      flush(error_unit)
+      flush(output_unit)
+      call sys_exit(e%code)
+   end subroutine fail
+
+   subroutine usage()
+      write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet]'
+      write(output_unit, '(a)') '       spallbar --version | --help'
+      write(output_unit, '(a)') 'Reads the namelist deck, writes PREFIX.his, PREFIX.prf, ' // &
+         'PREFIX.evt (PREFIX defaults to the deck path without .nml).'
+      write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
+   end subroutine usage
+
+   subroutine parse_command_line(path, pre, q, e)
+      character(len=:), allocatable, intent(out) :: path, pre
+      logical, intent(out) :: q
+      type(spb_error_t), allocatable, intent(out) :: e
+      integer :: k, nargs, lenarg
+      character(len=path_len) :: arg
+      q = .false.
+      path = ''
+      pre = ''
+      nargs = command_argument_count()
+      k = 1
+      do while (k <= nargs)
+         call get_command_argument(k, arg, lenarg)
+         if (lenarg > path_len) then
+            call make_error(e, 'command line: argument ' // itoa(k) // ' is longer than ' // &
+                            itoa(path_len) // ' characters')
+            return
+         end if
+         select case (trim(arg))
+         case ('--help', '-h')
+            call usage()
+            call sys_exit(0)
+         case ('--version')
+            write(output_unit, '(a)') 'spallbar ' // version
+            call sys_exit(0)
+         case ('--quiet', '-q')
+            q = .true.
+         case ('--output', '-o')
+            if (k == nargs) then
+               call make_error(e, 'command line: --output needs a PREFIX')
+               return
+            end if
+            k = k + 1
+            call get_command_argument(k, arg)
+            pre = trim(arg)
+         case ('--restart', '--sweep')
+            call make_error(e, 'command line: ' // trim(arg) // ' is not available in this ' // &
+                            'version of spallbar')
+            return
+         case default
+            if (arg(1:1) == '-') then
+               call make_error(e, 'command line: unknown option ''' // trim(arg) // &
+                               ''' (see spallbar --help)')
+               return
+            end if
+            if (len(path) > 0) then
+               call make_error(e, 'command line: more than one deck given (''' // path // &
+                               ''' and ''' // trim(arg) // ''')')
+               return
+            end if
+            path = trim(arg)
+         end select
+         k = k + 1
+      end do
+      if (len(path) == 0) then
+         call make_error(e, 'command line: no deck given (usage: spallbar DECK.nml ' // &
+                         '[--output PREFIX] [--quiet])', code=exit_input)
+         return
+      end if
+      if (len(pre) == 0) then
+         pre = path
+         if (len(pre) > 4) then
+            if (pre(len(pre)-3:) == '.nml') pre = pre(:len(pre)-4)
+         end if
+      end if
+   end subroutine parse_command_line
+end program spallbar

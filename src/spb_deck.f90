@@ -1,0 +1,734 @@
+!> The namelist deck (INTERFACE.md): types with defaults, reading, validation, echo.
+!>
+!> Reading never stops the program: every problem comes back as one error naming the
+!> group and the variable. Real inputs are tested for being finite before any comparison
+!> (a NaN compared under -ffpe-trap=invalid would trap).
+module spb_deck
+   use, intrinsic :: iso_fortran_env, only: iostat_end
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len
+   use spb_error, only: spb_error_t, make_error
+   use spb_strings, only: itoa, rtoa, lower, ltoa
+   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var
+   implicit none
+   private
+   public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
+   public :: read_deck, validate_deck, write_echo, unset, is_set, known_groups
+
+   real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
+
+   character(len=16), parameter :: known_groups(8) = [character(len=16) :: 'run', 'mesh', &
+      'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep']
+
+   type :: run_cfg
+      character(len=path_len) :: title = ''             !! echoed in every output header
+      real(wp) :: t_end = unset                         !! end time [s], required
+      real(wp) :: gravity = 0.0_wp                      !! acceleration along +x [m/s^2]
+      character(len=name_len) :: timing = 'accelerate'  !! collision timing rule
+      character(len=name_len) :: shift = 'above'        !! collision shift policy
+      real(wp) :: eps_rel = 1.0e-9_wp                   !! round-off guard of the fracture test [-]
+      integer :: history_every = 1                      !! steps between history rows
+      real(wp) :: profile_times(max_profiles) = unset   !! profile snapshot times [s]
+      integer :: n_profiles = 0                         !! how many profile_times were given
+      logical :: hdf5 = .false.                         !! also write PREFIX.h5
+   end type run_cfg
+
+   type :: mesh_cfg
+      integer :: cells = 0                              !! cells in the reference segment
+      integer :: ref_segment = 1                        !! segment that sets dt from cells
+      real(wp) :: dt = 0.0_wp                           !! time step [s] when > 0
+      character(len=name_len) :: fit = 'strict'         !! 'strict' | 'stretch'
+   end type mesh_cfg
+
+   type :: segments_cfg
+      integer :: n = 1                                  !! number of segments
+      real(wp) :: length(max_segments) = unset          !! [m]
+      real(wp) :: young(max_segments) = unset           !! [Pa]
+      real(wp) :: density(max_segments) = unset         !! [kg/m^3]
+      real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
+      character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
+      real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]
+   end type segments_cfg
+
+   type :: ends_cfg
+      character(len=name_len) :: top = 'free'          !! 'free' | 'fixed' | 'transmit'
+      character(len=name_len) :: bottom = 'free'       !! 'free' | 'fixed' | 'base' | 'transmit'
+      real(wp) :: base_gap = 0.0_wp                    !! gap to the base [m]
+   end type ends_cfg
+
+   type :: load_cfg
+      character(len=name_len) :: kind = 'none'         !! 'none' | 'power' | 'table'
+      character(len=name_len) :: face = 'top'          !! 'top' | 'bottom'
+      real(wp) :: p0 = 0.0_wp                          !! pressure scale [Pa]
+      real(wp) :: t_k = unset                          !! decay time [s]
+      real(wp) :: exponent = 0.0_wp                    !! power-law exponent [-]
+      real(wp) :: t_cut = unset                        !! p = 0 after t_cut [s]
+      character(len=path_len) :: table = ''            !! two-column file t [s], p [Pa]
+   end type load_cfg
+
+   type :: initial_cfg
+      character(len=name_len) :: state = 'unstressed'  !! 'unstressed' | 'static'
+   end type initial_cfg
+
+   type :: deck_t
+      character(len=path_len) :: path = '(built in memory)'   !! where the deck came from
+      type(run_cfg) :: run
+      type(mesh_cfg) :: mesh
+      type(segments_cfg) :: seg
+      type(ends_cfg) :: ends
+      type(load_cfg) :: load
+      type(initial_cfg) :: init
+      type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
+   end type deck_t
+
+contains
+
+   logical elemental function is_set(x)
+      real(wp), intent(in) :: x
+      is_set = .true.
+      if (ieee_is_finite(x)) is_set = x > 0.5_wp * unset
+   end function is_set
+
+   !> Read and validate a deck file.
+   subroutine read_deck(path, deck, err)
+      character(len=*), intent(in) :: path       !! deck file
+      type(deck_t), intent(out) :: deck
+      type(spb_error_t), allocatable, intent(out) :: err
+      integer :: u, ios
+      character(len=256) :: msg
+
+      call scan_deck(path, known_groups, deck%scan, err)
+      if (allocated(err)) return
+      deck%path = path
+      if (.not. has_group(deck%scan, 'run')) then
+         call make_error(err, '&run: required group is missing (it must give t_end)')
+         return
+      end if
+      if (has_group(deck%scan, 'strength_field')) then
+         call make_error(err, '&strength_field: random strength fields are not available in '&
+                         // 'this version of spallbar')
+         return
+      end if
+      if (has_group(deck%scan, 'sweep')) then
+         call make_error(err, '&sweep: sweeps are run with --sweep, which this version of '&
+                         // 'spallbar does not have yet')
+         return
+      end if
+      open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call make_error(err, 'deck: cannot open ''' // trim(path) // ''': ' // trim(msg))
+         return
+      end if
+      call read_run(u, deck, err)
+      if (.not. allocated(err)) call read_mesh(u, deck, err)
+      if (.not. allocated(err)) call read_segments(u, deck, err)
+      if (.not. allocated(err)) call read_ends(u, deck, err)
+      if (.not. allocated(err)) call read_load(u, deck, err)
+      if (.not. allocated(err)) call read_initial(u, deck, err)
+      close(u)
+      if (allocated(err)) return
+      call validate_deck(deck, err)
+   end subroutine read_deck
+
+   !> Turn a namelist read status into an error naming the group (and the variable).
+   subroutine read_status(deck, group, ios, msg, err)
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: group, msg
+      integer, intent(in) :: ios
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
+      character(len=:), allocatable :: name
+      integer :: k
+      if (ios == 0) return
+      if (ios == iostat_end) then
+         if (has_group(deck%scan, group)) call make_error(err, '&' // group // &
+            ': the group could not be read to its end (unbalanced quotes or a missing ''/''?)')
+         return
+      end if
+      k = index(msg, nomatch)
+      if (k > 0) then
+         name = lower(trim(adjustl(msg(k + len(nomatch):))))
+         if (len(name) >= 2) then
+            if (scan(name(1:1), '''"') > 0 .and. name(len(name):len(name)) == name(1:1)) &
+               name = name(2:len(name)-1)
+         end if
+         k = scan(name, '(')
+         if (k > 1) name = name(:k-1)
+         if (has_var(deck%scan, group, name)) then
+            call make_error(err, '&' // group // ': ' // name // ': unknown variable in this group')
+         else
+            call make_error(err, '&' // group // ': cannot read the value ''' // name // &
+                            ''' (wrong type, unquoted text or too many values?)')
+         end if
+      else
+         call make_error(err, '&' // group // ': cannot read the group: ' // trim(msg))
+      end if
+   end subroutine read_status
+
+   subroutine read_run(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=path_len) :: title
+      real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
+      character(len=name_len) :: timing, shift
+      integer :: history_every, ios
+      logical :: hdf5
+      character(len=256) :: msg
+      namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
+         profile_times, hdf5
+      title = deck%run%title
+      t_end = deck%run%t_end
+      gravity = deck%run%gravity
+      timing = deck%run%timing
+      shift = deck%run%shift
+      eps_rel = deck%run%eps_rel
+      history_every = deck%run%history_every
+      profile_times = deck%run%profile_times
+      hdf5 = deck%run%hdf5
+      rewind(u)
+      read(u, nml=run, iostat=ios, iomsg=msg)
+      call read_status(deck, 'run', ios, msg, err)
+      if (allocated(err)) return
+      deck%run%title = title
+      deck%run%t_end = t_end
+      deck%run%gravity = gravity
+      deck%run%timing = lower(timing)
+      deck%run%shift = lower(shift)
+      deck%run%eps_rel = eps_rel
+      deck%run%history_every = history_every
+      deck%run%profile_times = profile_times
+      deck%run%hdf5 = hdf5
+   end subroutine read_run
+
+   subroutine read_mesh(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      integer :: cells, ref_segment, ios
+      real(wp) :: dt
+      character(len=name_len) :: fit
+      character(len=256) :: msg
+      namelist /mesh/ cells, ref_segment, dt, fit
+      cells = deck%mesh%cells
+      ref_segment = deck%mesh%ref_segment
+      dt = deck%mesh%dt
+      fit = deck%mesh%fit
+      rewind(u)
+      read(u, nml=mesh, iostat=ios, iomsg=msg)
+      call read_status(deck, 'mesh', ios, msg, err)
+      if (allocated(err)) return
+      deck%mesh%cells = cells
+      deck%mesh%ref_segment = ref_segment
+      deck%mesh%dt = dt
+      deck%mesh%fit = lower(fit)
+   end subroutine read_mesh
+
+   subroutine read_segments(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      integer :: n, ios, j
+      real(wp), dimension(max_segments) :: length, young, density, strength, velocity
+      character(len=name_len) :: interface(max_segments)
+      character(len=256) :: msg
+      namelist /segments/ n, length, young, density, strength, interface, velocity
+      n = deck%seg%n
+      length = deck%seg%length
+      young = deck%seg%young
+      density = deck%seg%density
+      strength = deck%seg%strength
+      interface = deck%seg%interface
+      velocity = deck%seg%velocity
+      rewind(u)
+      read(u, nml=segments, iostat=ios, iomsg=msg)
+      call read_status(deck, 'segments', ios, msg, err)
+      if (allocated(err)) return
+      deck%seg%n = n
+      deck%seg%length = length
+      deck%seg%young = young
+      deck%seg%density = density
+      deck%seg%strength = strength
+      do j = 1, max_segments
+         deck%seg%interface(j) = lower(interface(j))
+      end do
+      deck%seg%velocity = velocity
+   end subroutine read_segments
+
+   subroutine read_ends(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=name_len) :: top, bottom
+      real(wp) :: base_gap
+      integer :: ios
+      character(len=256) :: msg
+      namelist /ends/ top, bottom, base_gap
+      top = deck%ends%top
+      bottom = deck%ends%bottom
+      base_gap = deck%ends%base_gap
+      rewind(u)
+      read(u, nml=ends, iostat=ios, iomsg=msg)
+      call read_status(deck, 'ends', ios, msg, err)
+      if (allocated(err)) return
+      deck%ends%top = lower(top)
+      deck%ends%bottom = lower(bottom)
+      deck%ends%base_gap = base_gap
+   end subroutine read_ends
+
+   subroutine read_load(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=name_len) :: kind, face
+      real(wp) :: p0, t_k, exponent, t_cut
+      character(len=path_len) :: table
+      integer :: ios
+      character(len=256) :: msg
+      namelist /load/ kind, face, p0, t_k, exponent, t_cut, table
+      kind = deck%load%kind
+      face = deck%load%face
+      p0 = deck%load%p0
+      t_k = deck%load%t_k
+      exponent = deck%load%exponent
+      t_cut = deck%load%t_cut
+      table = deck%load%table
+      rewind(u)
+      read(u, nml=load, iostat=ios, iomsg=msg)
+      call read_status(deck, 'load', ios, msg, err)
+      if (allocated(err)) return
+      deck%load%kind = lower(kind)
+      deck%load%face = lower(face)
+      deck%load%p0 = p0
+      deck%load%t_k = t_k
+      deck%load%exponent = exponent
+      deck%load%t_cut = t_cut
+      deck%load%table = table
+   end subroutine read_load
+
+   subroutine read_initial(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=name_len) :: state
+      integer :: ios
+      character(len=256) :: msg
+      namelist /initial/ state
+      state = deck%init%state
+      rewind(u)
+      read(u, nml=initial, iostat=ios, iomsg=msg)
+      call read_status(deck, 'initial', ios, msg, err)
+      if (allocated(err)) return
+      deck%init%state = lower(state)
+   end subroutine read_initial
+
+   ! ---------------------------------------------------------------- validation
+
+   !> Check every value; the first violation becomes the error. Fills derived counts.
+   subroutine validate_deck(deck, err)
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(out) :: err
+      call validate_run(deck%run, err)
+      if (.not. allocated(err)) call validate_segments(deck%seg, err)
+      if (.not. allocated(err)) call validate_mesh(deck%mesh, deck%seg%n, err)
+      if (.not. allocated(err)) call validate_ends(deck%ends, err)
+      if (.not. allocated(err)) call validate_load(deck%load, deck%ends, err)
+      if (.not. allocated(err)) call validate_initial(deck, err)
+   end subroutine validate_deck
+
+   !> Error unless x is a finite number; name is the variable as the user writes it.
+   subroutine need_finite(err, group, name, x)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: group, name
+      real(wp), intent(in) :: x
+      if (allocated(err)) return
+      if (.not. ieee_is_finite(x)) call make_error(err, '&' // group // ': ' // name // &
+         ' must be a finite number, got ' // rtoa(x))
+   end subroutine need_finite
+
+   !> Error unless x was given, is finite and > 0 (or >= 0 when zero_ok).
+   subroutine need_positive(err, group, name, x, zero_ok)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: group, name
+      real(wp), intent(in) :: x
+      logical, intent(in), optional :: zero_ok
+      logical :: zok
+      if (allocated(err)) return
+      zok = .false.
+      if (present(zero_ok)) zok = zero_ok
+      if (.not. is_set(x)) then
+         call make_error(err, '&' // group // ': ' // name // ' is required')
+         return
+      end if
+      call need_finite(err, group, name, x)
+      if (allocated(err)) return
+      if (zok) then
+         if (x < 0.0_wp) call make_error(err, '&' // group // ': ' // name // &
+            ' must be >= 0, got ' // rtoa(x))
+      else
+         if (x <= 0.0_wp) call make_error(err, '&' // group // ': ' // name // &
+            ' must be > 0, got ' // rtoa(x))
+      end if
+   end subroutine need_positive
+
+   !> Error unless value is one of choices.
+   subroutine need_choice(err, group, name, value, choices)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: group, name, value
+      character(len=*), intent(in) :: choices(:)
+      character(len=:), allocatable :: list
+      integer :: k
+      if (allocated(err)) return
+      if (any(choices == value)) return
+      list = ''
+      do k = 1, size(choices)
+         if (k > 1) list = list // ' | '
+         list = list // '''' // trim(choices(k)) // ''''
+      end do
+      call make_error(err, '&' // group // ': ' // name // ' must be ' // list // ', got ''' &
+                      // trim(value) // '''')
+   end subroutine need_choice
+
+   subroutine not_in_version(err, group, name, what)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: group, name, what
+      if (allocated(err)) return
+      call make_error(err, '&' // group // ': ' // name // ': ' // what // &
+                      ' is not available in this version of spallbar')
+   end subroutine not_in_version
+
+   subroutine validate_run(run, err)
+      type(run_cfg), intent(inout) :: run
+      type(spb_error_t), allocatable, intent(inout) :: err
+      integer :: k
+      call need_positive(err, 'run', 't_end', run%t_end)
+      call need_finite(err, 'run', 'gravity', run%gravity)
+      call need_choice(err, 'run', 'timing', run%timing, [character(len=10) :: 'accelerate', &
+                       'delay', 'min'])
+      call need_choice(err, 'run', 'shift', run%shift, [character(len=8) :: 'above', 'fragment'])
+      call need_finite(err, 'run', 'eps_rel', run%eps_rel)
+      if (allocated(err)) return
+      if (run%eps_rel < 0.0_wp .or. run%eps_rel > 1.0e-3_wp) then
+         call make_error(err, '&run: eps_rel must be in [0, 1e-3], got ' // rtoa(run%eps_rel))
+         return
+      end if
+      if (run%history_every < 1) then
+         call make_error(err, '&run: history_every must be >= 1, got ' // itoa(run%history_every))
+         return
+      end if
+      run%n_profiles = 0
+      do k = 1, max_profiles
+         if (.not. is_set(run%profile_times(k))) exit
+         run%n_profiles = k
+      end do
+      do k = 1, max_profiles
+         associate (name => 'profile_times(' // itoa(k) // ')')
+            if (k > run%n_profiles) then
+               if (is_set(run%profile_times(k))) call make_error(err, '&run: ' // name // &
+                  ' is given but profile_times(' // itoa(run%n_profiles + 1) // ') is not')
+            else
+               call need_positive(err, 'run', name, run%profile_times(k), zero_ok=.true.)
+               if (allocated(err)) return
+               if (run%profile_times(k) > run%t_end) call make_error(err, '&run: ' // name // &
+                  ' = ' // rtoa(run%profile_times(k)) // ' is after t_end = ' // rtoa(run%t_end))
+               if (k > 1 .and. .not. allocated(err)) call need_order(k)
+            end if
+         end associate
+         if (allocated(err)) return
+      end do
+      if (run%hdf5) call not_in_version(err, 'run', 'hdf5', 'HDF5 output')
+   contains
+      subroutine need_order(k)
+         integer, intent(in) :: k
+         if (run%profile_times(k) < run%profile_times(k - 1)) call make_error(err, &
+            '&run: profile_times(' // itoa(k) // ') must not be earlier than profile_times(' &
+            // itoa(k - 1) // ')')
+      end subroutine need_order
+   end subroutine validate_run
+
+   subroutine validate_mesh(mesh, nseg, err)
+      type(mesh_cfg), intent(in) :: mesh
+      integer, intent(in) :: nseg
+      type(spb_error_t), allocatable, intent(inout) :: err
+      if (allocated(err)) return
+      call need_finite(err, 'mesh', 'dt', mesh%dt)
+      if (allocated(err)) return
+      if (mesh%dt < 0.0_wp) then
+         call make_error(err, '&mesh: dt must be >= 0 (0: set by cells), got ' // rtoa(mesh%dt))
+      else if (mesh%cells < 0) then
+         call make_error(err, '&mesh: cells must be >= 0, got ' // itoa(mesh%cells))
+      else if (mesh%dt > 0.0_wp .and. mesh%cells > 0) then
+         call make_error(err, '&mesh: cells: give either cells or dt, not both')
+      else if (mesh%dt <= 0.0_wp .and. mesh%cells == 0) then
+         call make_error(err, '&mesh: cells is required (cells in segment ref_segment), or give dt > 0')
+      else if (mesh%ref_segment < 1 .or. mesh%ref_segment > nseg) then
+         call make_error(err, '&mesh: ref_segment must be in 1..' // itoa(nseg) // ', got ' // &
+                         itoa(mesh%ref_segment))
+      end if
+      call need_choice(err, 'mesh', 'fit', mesh%fit, [character(len=8) :: 'strict', 'stretch'])
+   end subroutine validate_mesh
+
+   subroutine validate_segments(seg, err)
+      type(segments_cfg), intent(inout) :: seg
+      type(spb_error_t), allocatable, intent(inout) :: err
+      integer :: j
+      character(len=:), allocatable :: sj
+      if (allocated(err)) return
+      if (seg%n < 1 .or. seg%n > max_segments) then
+         call make_error(err, '&segments: n must be in 1..' // itoa(max_segments) // ', got ' &
+                         // itoa(seg%n))
+         return
+      end if
+      do j = 1, max_segments
+         sj = '(' // itoa(j) // ')'
+         if (j <= seg%n) then
+            call need_positive(err, 'segments', 'length' // sj, seg%length(j))
+            call need_positive(err, 'segments', 'young' // sj, seg%young(j))
+            call need_positive(err, 'segments', 'density' // sj, seg%density(j))
+            if (is_set(seg%strength(j))) then
+               call need_finite(err, 'segments', 'strength' // sj, seg%strength(j))
+               if (allocated(err)) return
+               if (seg%strength(j) >= 0.0_wp) call not_in_version(err, 'segments', &
+                  'strength' // sj, 'fracture (strength >= 0)')
+            else
+               seg%strength(j) = -1.0_wp
+            end if
+            if (is_set(seg%velocity(j))) then
+               call need_finite(err, 'segments', 'velocity' // sj, seg%velocity(j))
+            else
+               seg%velocity(j) = 0.0_wp
+            end if
+            if (j < seg%n) then
+               if (len_trim(seg%interface(j)) == 0) seg%interface(j) = 'bonded'
+               call need_choice(err, 'segments', 'interface' // sj, seg%interface(j), &
+                                [character(len=8) :: 'bonded', 'dry'])
+               if (seg%interface(j) == 'dry') call not_in_version(err, 'segments', &
+                  'interface' // sj, 'a dry interface (contact)')
+            else if (len_trim(seg%interface(j)) > 0) then
+               call make_error(err, '&segments: interface' // sj // ' is given but there are only ' &
+                               // itoa(seg%n - 1) // ' interfaces (n = ' // itoa(seg%n) // ')')
+            end if
+         else
+            call beyond_n('length', seg%length(j))
+            call beyond_n('young', seg%young(j))
+            call beyond_n('density', seg%density(j))
+            call beyond_n('strength', seg%strength(j))
+            call beyond_n('velocity', seg%velocity(j))
+            if (len_trim(seg%interface(j)) > 0 .and. .not. allocated(err)) &
+               call make_error(err, '&segments: interface' // sj // ' is given but n = ' // itoa(seg%n))
+         end if
+         if (allocated(err)) return
+      end do
+   contains
+      subroutine beyond_n(name, x)
+         character(len=*), intent(in) :: name
+         real(wp), intent(in) :: x
+         if (allocated(err)) return
+         if (is_set(x)) call make_error(err, '&segments: ' // name // sj // ' is given but n = ' &
+                                        // itoa(seg%n) // ' (set n to the number of segments)')
+      end subroutine beyond_n
+   end subroutine validate_segments
+
+   subroutine validate_ends(ends, err)
+      type(ends_cfg), intent(in) :: ends
+      type(spb_error_t), allocatable, intent(inout) :: err
+      call need_choice(err, 'ends', 'top', ends%top, [character(len=8) :: 'free', 'fixed', 'transmit'])
+      call need_choice(err, 'ends', 'bottom', ends%bottom, [character(len=8) :: 'free', 'fixed', &
+                       'base', 'transmit'])
+      if (allocated(err)) return
+      if (ends%bottom == 'base') call not_in_version(err, 'ends', 'bottom', &
+         'the rigid unilateral base (''base'')')
+      call need_finite(err, 'ends', 'base_gap', ends%base_gap)
+      if (allocated(err)) return
+      if (ends%base_gap < 0.0_wp) then
+         call make_error(err, '&ends: base_gap must be >= 0, got ' // rtoa(ends%base_gap))
+      else if (ends%base_gap > 0.0_wp .and. ends%bottom /= 'base') then
+         call make_error(err, '&ends: base_gap is given but bottom = ''' // trim(ends%bottom) // '''')
+      end if
+   end subroutine validate_ends
+
+   subroutine validate_load(load, ends, err)
+      type(load_cfg), intent(in) :: load
+      type(ends_cfg), intent(in) :: ends
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=name_len) :: face_end
+      call need_choice(err, 'load', 'kind', load%kind, [character(len=8) :: 'none', 'power', 'table'])
+      call need_choice(err, 'load', 'face', load%face, [character(len=8) :: 'top', 'bottom'])
+      if (allocated(err) .or. load%kind == 'none') return
+      if (load%face == 'top') then
+         face_end = ends%top
+      else
+         face_end = ends%bottom
+      end if
+      if (face_end /= 'free') then
+         call make_error(err, '&load: face = ''' // trim(load%face) // ''' is a ''' // &
+                         trim(face_end) // ''' end (&ends); a load acts on a free face')
+         return
+      end if
+      if (load%kind == 'power') then
+         call need_finite(err, 'load', 'p0', load%p0)
+         call need_finite(err, 'load', 'exponent', load%exponent)
+         if (allocated(err)) return
+         if (load%exponent < 0.0_wp) then
+            call make_error(err, '&load: exponent must be >= 0, got ' // rtoa(load%exponent))
+            return
+         end if
+         if (is_set(load%t_k)) then
+            call need_positive(err, 'load', 't_k', load%t_k)
+         else if (load%exponent > 0.0_wp) then
+            call make_error(err, '&load: t_k is required when exponent > 0')
+         end if
+         if (allocated(err)) return
+         if (is_set(load%t_cut)) then
+            call need_positive(err, 'load', 't_cut', load%t_cut)
+            if (allocated(err)) return
+            if (is_set(load%t_k)) then
+               if (load%t_cut > load%t_k) call make_error(err, '&load: t_cut = ' // &
+                  rtoa(load%t_cut) // ' is after t_k = ' // rtoa(load%t_k) // &
+                  ' (p = p0 (1 - t/t_k)**exponent is defined up to t_k)')
+            end if
+         end if
+      else if (load%kind == 'table') then
+         if (len_trim(load%table) == 0) call make_error(err, &
+            '&load: table (file of two columns t p) is required for kind = ''table''')
+      end if
+   end subroutine validate_load
+
+   subroutine validate_initial(deck, err)
+      type(deck_t), intent(in) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      call need_choice(err, 'initial', 'state', deck%init%state, [character(len=10) :: &
+                       'unstressed', 'static'])
+      if (allocated(err)) return
+      if (deck%init%state == 'static' .and. abs(deck%run%gravity) > 0.0_wp) then
+         if (deck%ends%top == 'free' .and. deck%ends%bottom == 'free') call make_error(err, &
+            '&initial: state = ''static'' with gravity needs a supported end (&ends top or ' &
+            // 'bottom = ''fixed'' or ''transmit''); both ends are free')
+      end if
+   end subroutine validate_initial
+
+   ! ---------------------------------------------------------------------- echo
+
+   !> Write every deck value, defaults included, as namelist text behind prefix.
+   subroutine write_echo(u, deck, prefix)
+      integer, intent(in) :: u                    !! open formatted unit
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: prefix      !! e.g. '# '
+      integer :: j, n
+      character(len=:), allocatable :: v
+
+      write(u, '(a)') prefix // 'deck: ' // trim(deck%path) // &
+         '   (every value; "input" = given in the deck, "default" = not given)'
+      call open_group('run')
+      call item('run', 'title', quote(deck%run%title), '')
+      call item('run', 't_end', rtoa(deck%run%t_end), 's')
+      call item('run', 'gravity', rtoa(deck%run%gravity), 'm/s^2')
+      call item('run', 'timing', quote(deck%run%timing), '')
+      call item('run', 'shift', quote(deck%run%shift), '')
+      call item('run', 'eps_rel', rtoa(deck%run%eps_rel), '-')
+      call item('run', 'history_every', itoa(deck%run%history_every), 'steps')
+      v = ''
+      do j = 1, deck%run%n_profiles
+         if (j > 1) v = v // ', '
+         v = v // rtoa(deck%run%profile_times(j))
+      end do
+      call item('run', 'profile_times', v, 's')
+      call item('run', 'hdf5', ltoa(deck%run%hdf5), '')
+      call close_group()
+
+      call open_group('mesh')
+      call item('mesh', 'cells', itoa(deck%mesh%cells), '')
+      call item('mesh', 'ref_segment', itoa(deck%mesh%ref_segment), '')
+      call item('mesh', 'dt', rtoa(deck%mesh%dt), 's')
+      call item('mesh', 'fit', quote(deck%mesh%fit), '')
+      call close_group()
+
+      n = deck%seg%n
+      call open_group('segments')
+      call item('segments', 'n', itoa(n), '')
+      call item('segments', 'length', rlist(deck%seg%length(1:n)), 'm')
+      call item('segments', 'young', rlist(deck%seg%young(1:n)), 'Pa')
+      call item('segments', 'density', rlist(deck%seg%density(1:n)), 'kg/m^3')
+      call item('segments', 'strength', rlist(deck%seg%strength(1:n)), 'Pa (< 0: unbreakable)')
+      v = ''
+      do j = 1, n - 1
+         if (j > 1) v = v // ', '
+         v = v // quote(deck%seg%interface(j))
+      end do
+      call item('segments', 'interface', v, '')
+      call item('segments', 'velocity', rlist(deck%seg%velocity(1:n)), 'm/s')
+      call close_group()
+
+      call open_group('ends')
+      call item('ends', 'top', quote(deck%ends%top), '')
+      call item('ends', 'bottom', quote(deck%ends%bottom), '')
+      call item('ends', 'base_gap', rtoa(deck%ends%base_gap), 'm')
+      call close_group()
+
+      call open_group('load')
+      call item('load', 'kind', quote(deck%load%kind), '')
+      call item('load', 'face', quote(deck%load%face), '')
+      call item('load', 'p0', rtoa(deck%load%p0), 'Pa')
+      call item('load', 't_k', opt(deck%load%t_k), 's')
+      call item('load', 'exponent', rtoa(deck%load%exponent), '-')
+      call item('load', 't_cut', opt(deck%load%t_cut), 's')
+      call item('load', 'table', quote(deck%load%table), '')
+      call close_group()
+
+      call open_group('initial')
+      call item('initial', 'state', quote(deck%init%state), '')
+      call close_group()
+   contains
+      subroutine open_group(g)
+         character(len=*), intent(in) :: g
+         write(u, '(a)') prefix // '&' // g
+      end subroutine open_group
+      subroutine close_group()
+         write(u, '(a)') prefix // '/'
+      end subroutine close_group
+      subroutine item(g, name, value, unit)
+         character(len=*), intent(in) :: g, name, value, unit
+         character(len=40) :: lhs
+         character(len=:), allocatable :: note
+         lhs = '   ' // name
+         note = 'default'
+         if (has_var(deck%scan, g, name)) note = 'input'
+         if (len_trim(unit) > 0) note = '[' // unit // '] ' // note
+         write(u, '(a)') prefix // lhs(1:18) // '= ' // pad(value, 30) // ' ! ' // note
+      end subroutine item
+   end subroutine write_echo
+
+   pure function pad(s, n) result(r)
+      character(len=*), intent(in) :: s
+      integer, intent(in) :: n
+      character(len=max(len(s), n)) :: r
+      r = s
+   end function pad
+
+   pure function quote(s) result(r)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: r
+      r = '''' // trim(s) // ''''
+   end function quote
+
+   function opt(x) result(r)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: r
+      if (is_set(x)) then
+         r = rtoa(x)
+      else
+         r = '(not set)'
+      end if
+   end function opt
+
+   function rlist(x) result(r)
+      real(wp), intent(in) :: x(:)
+      character(len=:), allocatable :: r
+      integer :: k
+      r = ''
+      do k = 1, size(x)
+         if (k > 1) r = r // ', '
+         r = r // rtoa(x(k))
+      end do
+   end function rlist
+end module spb_deck

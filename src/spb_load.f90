@@ -1,0 +1,244 @@
+!> End loads in the "stepwise form" (METHOD.md §3): the pressure applied at t^n is the
+!> mean of p(t) over the two steps around t^n, integrated analytically.
+module spb_load
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use spb_kinds, only: wp
+   use spb_error, only: spb_error_t, make_error
+   use spb_strings, only: itoa, rtoa
+   use spb_deck, only: load_cfg, is_set
+   implicit none
+   private
+   public :: load_t, load_none, load_power, load_table, face_top, face_bottom
+   public :: build_load, read_table, load_integral, step_load, log1p_acc, expm1_acc
+
+   integer, parameter :: load_none = 0, load_power = 1, load_table = 2
+   integer, parameter :: face_top = 1, face_bottom = 2
+   integer, parameter :: max_table_rows = 1000000
+
+   type :: load_t
+      integer :: kind = load_none         !! load_none | load_power | load_table
+      integer :: face = face_top          !! face_top | face_bottom
+      real(wp) :: p0 = 0.0_wp             !! [Pa]
+      real(wp) :: t_k = 0.0_wp            !! [s]; 0: constant pressure (exponent 0)
+      real(wp) :: exponent = 0.0_wp       !! [-]
+      real(wp) :: t_cut = huge(1.0_wp)    !! [s] p = 0 after
+      real(wp), allocatable :: t(:)       !! table times [s], non-decreasing
+      real(wp), allocatable :: p(:)       !! table pressures [Pa]
+   end type load_t
+
+contains
+
+   !> Load from the validated deck (reads the table file for kind = 'table').
+   subroutine build_load(cfg, load, err)
+      type(load_cfg), intent(in) :: cfg
+      type(load_t), intent(out) :: load
+      type(spb_error_t), allocatable, intent(out) :: err
+      load%face = face_top
+      if (cfg%face == 'bottom') load%face = face_bottom
+      select case (cfg%kind)
+      case ('power')
+         load%kind = load_power
+         load%p0 = cfg%p0
+         load%exponent = cfg%exponent
+         if (is_set(cfg%t_k)) load%t_k = cfg%t_k
+         if (is_set(cfg%t_cut)) then
+            load%t_cut = cfg%t_cut
+         else if (is_set(cfg%t_k)) then
+            load%t_cut = cfg%t_k
+         end if
+      case ('table')
+         load%kind = load_table
+         call read_table(cfg%table, load%t, load%p, err)
+      case default
+         load%kind = load_none
+      end select
+   end subroutine build_load
+
+   !> Read a two-column table t [s], p [Pa]; '#' and '!' start comments.
+   subroutine read_table(path, t, p, err)
+      character(len=*), intent(in) :: path
+      real(wp), allocatable, intent(out) :: t(:), p(:)
+      type(spb_error_t), allocatable, intent(out) :: err
+      integer :: u, ios, nrow, line, k
+      character(len=1024) :: buf
+      character(len=256) :: msg
+      real(wp) :: tt, pp
+      real(wp), allocatable :: tw(:), pw(:)
+
+      open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call make_error(err, '&load: table = ''' // trim(path) // ''': cannot open: ' // trim(msg))
+         return
+      end if
+      allocate(tw(64), pw(64))
+      nrow = 0
+      line = 0
+      do
+         read(u, '(a)', iostat=ios) buf
+         if (ios /= 0) exit
+         line = line + 1
+         k = scan(buf, '#!')
+         if (k > 0) buf(k:) = ' '
+         if (len_trim(buf) == 0) cycle
+         read(buf, *, iostat=ios) tt, pp
+         if (ios /= 0) then
+            call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // itoa(line) &
+                            // ': expected two numbers t p')
+            exit
+         end if
+         if (.not. (ieee_is_finite(tt) .and. ieee_is_finite(pp))) then
+            call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // itoa(line) &
+                            // ': values must be finite')
+            exit
+         end if
+         if (tt < 0.0_wp) then
+            call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // itoa(line) &
+                            // ': time must be >= 0, got ' // rtoa(tt))
+            exit
+         end if
+         if (nrow >= 1) then
+            if (tt < tw(nrow)) then
+               call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // &
+                  itoa(line) // ': times must not decrease (' // rtoa(tt) // ' after ' // &
+                  rtoa(tw(nrow)) // ')')
+               exit
+            end if
+         end if
+         if (nrow >= 2) then
+            if (.not. (tt > tw(nrow - 1))) then
+               call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // &
+                  itoa(line) // ': a time may repeat once (a jump), not three times')
+               exit
+            end if
+         end if
+         if (nrow >= max_table_rows) then
+            call make_error(err, '&load: table = ''' // trim(path) // ''' has more than ' // &
+                            itoa(max_table_rows) // ' rows')
+            exit
+         end if
+         if (nrow == size(tw)) then
+            tw = [tw, tw]
+            pw = [pw, pw]
+         end if
+         nrow = nrow + 1
+         tw(nrow) = tt
+         pw(nrow) = pp
+      end do
+      close(u)
+      if (allocated(err)) return
+      if (nrow < 2) then
+         call make_error(err, '&load: table = ''' // trim(path) // ''' needs at least two rows')
+         return
+      end if
+      t = tw(1:nrow)
+      p = pw(1:nrow)
+   end subroutine read_table
+
+   !> log(1 + x) accurate for small x (Goldberg's correction; F2008 has no log1p).
+   pure elemental real(wp) function log1p_acc(x) result(r)
+      real(wp), intent(in) :: x
+      real(wp) :: w, d
+      w = 1.0_wp + x
+      d = w - 1.0_wp
+      if (.not. (abs(d) > 0.0_wp)) then
+         r = x
+      else
+         r = log(w) * (x / d)
+      end if
+   end function log1p_acc
+
+   !> exp(x) - 1 accurate for small x (Kahan's correction; F2008 has no expm1).
+   pure elemental real(wp) function expm1_acc(x) result(r)
+      real(wp), intent(in) :: x
+      real(wp) :: w, d
+      w = exp(x)
+      d = w - 1.0_wp
+      if (.not. (abs(d) > 0.0_wp)) then
+         r = x
+      else if (.not. (d > -1.0_wp)) then
+         r = -1.0_wp
+      else
+         r = d * (x / log(w))
+      end if
+   end function expm1_acc
+
+   !> Integral of p(t) over [a, b] (b >= a), exact for both load forms.
+   pure real(wp) function load_integral(load, a, b) result(q)
+      type(load_t), intent(in) :: load
+      real(wp), intent(in) :: a, b   !! window [s]
+      select case (load%kind)
+      case (load_power)
+         q = power_integral(load, a, b)
+      case (load_table)
+         q = table_integral(load%t, load%p, a, b)
+      case default
+         q = 0.0_wp
+      end select
+   end function load_integral
+
+   pure real(wp) function power_integral(load, a, b) result(q)
+      type(load_t), intent(in) :: load
+      real(wp), intent(in) :: a, b
+      real(wp) :: lo, hi, ca, cb, k
+      lo = max(a, 0.0_wp)
+      hi = min(b, load%t_cut)
+      q = 0.0_wp
+      if (.not. (hi > lo)) return
+      if (load%t_k <= 0.0_wp .or. .not. (load%exponent > 0.0_wp)) then
+         q = load%p0 * (hi - lo)
+         return
+      end if
+      ! p0 t_k/(k) [(1 - lo/t_k)**k - (1 - hi/t_k)**k], k = exponent + 1, written as
+      ! ca**k * (1 - (cb/ca)**k) with expm1/log1p so that short windows keep all digits.
+      k = load%exponent + 1.0_wp
+      ca = 1.0_wp - lo / load%t_k
+      cb = 1.0_wp - hi / load%t_k
+      if (ca <= 0.0_wp) return
+      if (cb <= 0.0_wp) then
+         q = load%p0 * load%t_k / k * ca**k
+      else
+         q = -load%p0 * load%t_k / k * ca**k * expm1_acc(k * log1p_acc(-(hi - lo) / (load%t_k * ca)))
+      end if
+   end function power_integral
+
+   !> Integral of the piecewise-linear table over [a, b]; p = 0 outside the table.
+   pure real(wp) function table_integral(t, p, a, b) result(q)
+      real(wp), intent(in) :: t(:), p(:)
+      real(wp), intent(in) :: a, b
+      integer :: i, lo_i, hi_i, mid
+      real(wp) :: x0, x1, slope, p_at0, p_at1
+      q = 0.0_wp
+      if (.not. (b > a)) return
+      if (b <= t(1) .or. a >= t(size(t))) return
+      ! first interval i with t(i+1) > a
+      lo_i = 1
+      hi_i = size(t) - 1
+      do while (lo_i < hi_i)
+         mid = (lo_i + hi_i) / 2
+         if (t(mid + 1) > a) then
+            hi_i = mid
+         else
+            lo_i = mid + 1
+         end if
+      end do
+      do i = lo_i, size(t) - 1
+         if (t(i) >= b) exit
+         if (.not. (t(i + 1) > t(i))) cycle       ! a jump: no width
+         x0 = max(a, t(i))
+         x1 = min(b, t(i + 1))
+         if (.not. (x1 > x0)) cycle
+         slope = (p(i + 1) - p(i)) / (t(i + 1) - t(i))
+         p_at0 = p(i) + slope * (x0 - t(i))
+         p_at1 = p(i) + slope * (x1 - t(i))
+         q = q + 0.5_wp * (p_at0 + p_at1) * (x1 - x0)
+      end do
+   end function table_integral
+
+   !> The stepwise load P^n = (1/(2 dt)) * integral of p from t^(n-1) to t^(n+1)  (ref [5]).
+   pure real(wp) function step_load(load, n, dt) result(pn)
+      type(load_t), intent(in) :: load
+      integer, intent(in) :: n         !! step index
+      real(wp), intent(in) :: dt       !! time step [s]
+      pn = load_integral(load, real(n - 1, wp) * dt, real(n + 1, wp) * dt) / (2.0_wp * dt)
+   end function step_load
+end module spb_load

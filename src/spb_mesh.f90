@@ -1,0 +1,172 @@
+!> The lumped-mass mesh (METHOD.md §2): one dt, dx_j = a_j dt, half-node masses.
+module spb_mesh
+   use spb_kinds, only: wp
+   use spb_error, only: spb_error_t, make_error
+   use spb_strings, only: itoa, rtoa
+   use spb_deck, only: deck_t
+   implicit none
+   private
+   public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base, end_code
+   public :: max_cells, max_steps, fit_tolerance
+
+   integer, parameter :: end_free = 1, end_fixed = 2, end_transmit = 3, end_base = 4
+   integer, parameter :: max_cells = 50000000   !! refuse meshes larger than this
+   integer, parameter :: max_steps = 2000000000 !! refuse runs longer than this
+   !> 'strict' accepts a segment when L_j/(a_j dt) is within this relative distance of a
+   !> whole number: the representable-length noise of a user's decimal inputs, far below
+   !> any physical length change.
+   real(wp), parameter :: fit_tolerance = 1.0e-9_wp
+
+   type :: mesh_t
+      integer :: nseg = 0                    !! segments
+      integer :: n = 0                       !! cells; nodes are 0..n
+      real(wp) :: dt = 0.0_wp                !! time step [s]
+      integer :: nsteps = 0                  !! steps to reach t_end
+      integer :: top = end_free              !! end condition at node 0
+      integer :: bottom = end_free           !! end condition at node n
+      ! per segment
+      integer, allocatable :: first(:), last(:)        !! cell range of each segment
+      real(wp), allocatable :: length_req(:)           !! length asked for [m]
+      real(wp), allocatable :: length(:)               !! length modelled = cells a dt [m]
+      real(wp), allocatable :: wave_speed(:)           !! a_j [m/s]
+      real(wp), allocatable :: impedance(:)            !! Z_j = rho_j a_j [kg/(m^2 s)]
+      ! per cell k = 1..n
+      integer, allocatable :: seg(:)         !! segment of the cell
+      real(wp), allocatable :: dx(:)         !! a_j dt [m]
+      real(wp), allocatable :: dm(:)         !! rho_j dx_j = Z_j dt [kg/m^2]
+      real(wp), allocatable :: z(:)          !! impedance [kg/(m^2 s)]
+      real(wp), allocatable :: stiff(:)      !! E_j / dx_j [Pa/m]
+      ! per node i = 0..n
+      real(wp), allocatable :: x(:)          !! reference position [m]
+      real(wp), allocatable :: ma(:)         !! upper half mass (cell above) [kg/m^2]
+      real(wp), allocatable :: mb(:)         !! lower half mass (cell below) [kg/m^2]
+      real(wp), allocatable :: inv_m(:)      !! 1/(ma + mb) [m^2/kg]
+   end type mesh_t
+
+contains
+
+   integer function end_code(name)
+      character(len=*), intent(in) :: name
+      select case (name)
+      case ('fixed')
+         end_code = end_fixed
+      case ('transmit')
+         end_code = end_transmit
+      case ('base')
+         end_code = end_base
+      case default
+         end_code = end_free
+      end select
+   end function end_code
+
+   !> Build the mesh from a validated deck; report holds one line per stretched segment.
+   subroutine build_mesh(deck, mesh, report, err)
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(out) :: mesh
+      character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
+      type(spb_error_t), allocatable, intent(out) :: err
+      integer :: j, nseg, k, i, r
+      integer, allocatable :: cells(:)
+      real(wp), allocatable :: a(:), zz(:), ncont(:)
+      real(wp) :: dt, steps_real
+
+      nseg = deck%seg%n
+      mesh%nseg = nseg
+      allocate(report(0), a(nseg), zz(nseg), ncont(nseg))
+      a = sqrt(deck%seg%young(1:nseg) / deck%seg%density(1:nseg))
+      zz = deck%seg%density(1:nseg) * a
+      r = deck%mesh%ref_segment
+      if (deck%mesh%dt > 0.0_wp) then
+         dt = deck%mesh%dt
+      else
+         dt = deck%seg%length(r) / (a(r) * real(deck%mesh%cells, wp))
+      end if
+      ncont = deck%seg%length(1:nseg) / (a * dt)
+      allocate(cells(nseg))
+      do j = 1, nseg
+         if (ncont(j) > real(max_cells, wp)) then
+            call make_error(err, '&segments: length(' // itoa(j) // ') would need ' // &
+               rtoa(ncont(j)) // ' cells; the limit is ' // itoa(max_cells))
+            return
+         end if
+         cells(j) = nint(ncont(j))
+         if (deck%mesh%fit == 'strict') then
+            if (cells(j) < 1 .or. abs(ncont(j) - real(cells(j), wp)) > &
+                fit_tolerance * max(1.0_wp, ncont(j))) then
+               call make_error(err, '&segments: length(' // itoa(j) // ') = ' // &
+                  rtoa(deck%seg%length(j)) // ' m is ' // rtoa(ncont(j)) // &
+                  ' cells of dx = a dt = ' // rtoa(a(j) * dt) // ' m, not a whole number ' // &
+                  '(&mesh fit = ''strict''; use fit = ''stretch'' or change the length)')
+               return
+            end if
+         else
+            cells(j) = max(1, cells(j))
+         end if
+      end do
+      if (sum(int(cells, kind=8)) > max_cells) then
+         call make_error(err, '&mesh: cells: the mesh would have ' // rtoa(sum(real(cells, wp))) &
+                         // ' cells; the limit is ' // itoa(max_cells))
+         return
+      end if
+      steps_real = deck%run%t_end / dt
+      if (steps_real > real(max_steps, wp)) then
+         call make_error(err, '&run: t_end = ' // rtoa(deck%run%t_end) // ' s needs ' // &
+            rtoa(steps_real) // ' steps of dt = ' // rtoa(dt) // ' s; the limit is ' // itoa(max_steps))
+         return
+      end if
+      mesh%dt = dt
+      ! a t_end within round-off of a grid time is that grid time
+      mesh%nsteps = max(1, ceiling(steps_real - 1.0e-9_wp))
+      mesh%top = end_code(deck%ends%top)
+      mesh%bottom = end_code(deck%ends%bottom)
+      mesh%n = sum(cells)
+      mesh%wave_speed = a
+      mesh%impedance = zz
+      mesh%length_req = deck%seg%length(1:nseg)
+      allocate(mesh%first(nseg), mesh%last(nseg), mesh%length(nseg))
+      k = 0
+      do j = 1, nseg
+         mesh%first(j) = k + 1
+         k = k + cells(j)
+         mesh%last(j) = k
+         mesh%length(j) = real(cells(j), wp) * (a(j) * dt)
+         if (deck%mesh%fit == 'stretch') then
+            report = [character(len=200) :: report, 'segment ' // itoa(j) // ': ' // &
+               itoa(cells(j)) // ' cells, length ' // rtoa(mesh%length_req(j)) // ' -> ' // &
+               rtoa(mesh%length(j)) // ' m (relative change ' // &
+               rtoa(mesh%length(j) / mesh%length_req(j) - 1.0_wp) // ')']
+         end if
+      end do
+      associate (n => mesh%n)
+         allocate(mesh%seg(n), mesh%dx(n), mesh%dm(n), mesh%z(n), mesh%stiff(n))
+         allocate(mesh%x(0:n), mesh%ma(0:n), mesh%mb(0:n), mesh%inv_m(0:n))
+         do j = 1, nseg
+            do k = mesh%first(j), mesh%last(j)
+               mesh%seg(k) = j
+               mesh%dx(k) = a(j) * dt
+               mesh%dm(k) = zz(j) * dt
+               mesh%z(k) = zz(j)
+               mesh%stiff(k) = deck%seg%young(j) / mesh%dx(k)
+            end do
+         end do
+         mesh%x(0) = 0.0_wp
+         do j = 1, nseg
+            do k = mesh%first(j), mesh%last(j)
+               ! positions from the segment start, so each interface sits at its sum of lengths
+               mesh%x(k) = mesh%x(mesh%first(j) - 1) + real(k - mesh%first(j) + 1, wp) * mesh%dx(k)
+            end do
+         end do
+         mesh%ma(0) = 0.0_wp
+         mesh%mb(n) = 0.0_wp
+         do i = 1, n
+            mesh%ma(i) = 0.5_wp * mesh%dm(i)
+            mesh%mb(i - 1) = 0.5_wp * mesh%dm(i)
+         end do
+         ! a transmitting end continues the bar: its node carries the half mass of the
+         ! virtual cell beyond, so that it moves like an interior node
+         if (mesh%top == end_transmit) mesh%ma(0) = 0.5_wp * mesh%dm(1)
+         if (mesh%bottom == end_transmit) mesh%mb(n) = 0.5_wp * mesh%dm(n)
+         mesh%inv_m = 1.0_wp / (mesh%ma + mesh%mb)
+      end associate
+   end subroutine build_mesh
+end module spb_mesh

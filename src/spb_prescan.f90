@@ -1,0 +1,253 @@
+!> A lexical pass over a namelist deck before Fortran reads it.
+!>
+!> gfortran's namelist reader skips unknown groups silently and reports an unterminated
+!> string as a missing group; this pass finds the groups and the variable names the user
+!> wrote, so that such decks get a precise error and the echo can mark values as input.
+module spb_prescan
+   use spb_error, only: spb_error_t, make_error
+   use spb_strings, only: itoa, lower
+   implicit none
+   private
+   public :: deck_scan_t, scan_deck, scan_text, has_group, has_var
+
+   integer, parameter :: key_len = 64
+
+   type :: deck_scan_t
+      character(len=key_len), allocatable :: groups(:)   !! group names in order of appearance
+      character(len=key_len), allocatable :: keys(:)     !! 'group:variable' for every assignment
+   end type deck_scan_t
+
+contains
+
+   !> Read the file at path and scan it.
+   subroutine scan_deck(path, known_groups, scan, err)
+      character(len=*), intent(in) :: path               !! deck file
+      character(len=*), intent(in) :: known_groups(:)    !! accepted group names
+      type(deck_scan_t), intent(out) :: scan             !! groups and variables found
+      type(spb_error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: text
+      integer :: u, ios, fsize
+      character(len=256) :: msg
+
+      open(newunit=u, file=path, status='old', action='read', access='stream', &
+           form='unformatted', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call make_error(err, 'deck: cannot open ''' // trim(path) // ''': ' // trim(msg))
+         return
+      end if
+      inquire(unit=u, size=fsize)
+      if (fsize > 10 * 1024 * 1024) then
+         close(u)
+         call make_error(err, 'deck: ''' // trim(path) // ''' is larger than 10 MiB')
+         return
+      end if
+      allocate(character(len=max(fsize, 0)) :: text)
+      if (fsize > 0) read(u, iostat=ios, iomsg=msg) text
+      close(u)
+      if (ios /= 0) then
+         call make_error(err, 'deck: cannot read ''' // trim(path) // ''': ' // trim(msg))
+         return
+      end if
+      call scan_text(text, known_groups, scan, err)
+   end subroutine scan_deck
+
+   !> Scan deck text: groups (each known, at most once, terminated) and assignments.
+   subroutine scan_text(text, known_groups, scan, err)
+      character(len=*), intent(in) :: text               !! whole deck
+      character(len=*), intent(in) :: known_groups(:)    !! accepted group names
+      type(deck_scan_t), intent(out) :: scan
+      type(spb_error_t), allocatable, intent(out) :: err
+      integer :: i, n, line, j, group_line, depth, string_line
+      character :: c, quote
+      character(len=:), allocatable :: group, word
+      logical :: in_group
+
+      allocate(scan%groups(0), scan%keys(0))
+      n = len(text)
+      i = 1
+      line = 1
+      group_line = 0
+      in_group = .false.
+      group = ''
+      do while (i <= n)
+         c = text(i:i)
+         if (c == achar(10)) then
+            line = line + 1
+            i = i + 1
+         else if (c == '!') then
+            do while (i <= n)
+               if (text(i:i) == achar(10)) exit
+               i = i + 1
+            end do
+         else if (c == '''' .or. c == '"') then
+            if (.not. in_group) then
+               call make_error(err, 'deck: line ' // itoa(line) // ': text outside any &group')
+               return
+            end if
+            quote = c
+            string_line = line
+            i = i + 1
+            do
+               if (i > n) then
+                  call make_error(err, '&' // group // ': unterminated string starting at line ' &
+                                  // itoa(string_line))
+                  return
+               end if
+               if (text(i:i) == quote) then
+                  if (i < n) then
+                     if (text(i+1:i+1) == quote) then
+                        i = i + 2
+                        cycle
+                     end if
+                  end if
+                  i = i + 1
+                  exit
+               end if
+               if (text(i:i) == achar(10)) line = line + 1
+               i = i + 1
+            end do
+         else if (c == '&' .or. c == '$') then
+            j = i + 1
+            call read_word(text, j, word)
+            if (len(word) == 0) then
+               call make_error(err, 'deck: line ' // itoa(line) // ': ''' // c // ''' without a group name')
+               return
+            end if
+            if (word == 'end') then
+               if (.not. in_group) then
+                  call make_error(err, 'deck: line ' // itoa(line) // ': &end outside any group')
+                  return
+               end if
+               in_group = .false.
+            else
+               if (in_group) then
+                  call make_error(err, '&' // group // ': not terminated by ''/'' before &' // word &
+                                  // ' at line ' // itoa(line))
+                  return
+               end if
+               if (.not. any(known_groups == word)) then
+                  call make_error(err, '&' // word // ': unknown group at line ' // itoa(line) &
+                                  // ' (known: ' // join_groups(known_groups) // ')')
+                  return
+               end if
+               if (any(scan%groups == word)) then
+                  call make_error(err, '&' // word // ': group given twice (again at line ' &
+                                  // itoa(line) // ')')
+                  return
+               end if
+               scan%groups = [character(len=key_len) :: scan%groups, word]
+               group = word
+               group_line = line
+               in_group = .true.
+            end if
+            i = j
+         else if (c == '/') then
+            if (.not. in_group) then
+               call make_error(err, 'deck: line ' // itoa(line) // ': ''/'' outside any group')
+               return
+            end if
+            in_group = .false.
+            i = i + 1
+         else if (is_letter(c)) then
+            j = i
+            call read_word(text, j, word)
+            if (.not. in_group) then
+               call make_error(err, 'deck: line ' // itoa(line) // ': text outside any &group ('''&
+                               // word // '''); comments start with !')
+               return
+            end if
+            ! An assignment is a name, an optional subscript, then '='.
+            i = j
+            do while (i <= n)
+               if (text(i:i) /= ' ' .and. text(i:i) /= achar(9)) exit
+               i = i + 1
+            end do
+            if (i <= n) then
+               if (text(i:i) == '(') then
+                  depth = 0
+                  do while (i <= n)
+                     if (text(i:i) == '(') depth = depth + 1
+                     if (text(i:i) == ')') depth = depth - 1
+                     if (text(i:i) == achar(10)) line = line + 1
+                     i = i + 1
+                     if (depth == 0) exit
+                  end do
+                  do while (i <= n)
+                     if (text(i:i) /= ' ' .and. text(i:i) /= achar(9)) exit
+                     i = i + 1
+                  end do
+               end if
+            end if
+            if (i <= n) then
+               if (text(i:i) == '=') then
+                  scan%keys = [character(len=key_len) :: scan%keys, group // ':' // word]
+                  i = i + 1
+               end if
+            end if
+         else if (c == achar(13) .or. c == achar(9) .or. c == ' ') then
+            i = i + 1
+         else
+            if (.not. in_group) then
+               call make_error(err, 'deck: line ' // itoa(line) // ': text outside any &group')
+               return
+            end if
+            if (iachar(c) < 32 .or. iachar(c) > 126) then
+               call make_error(err, '&' // group // ': line ' // itoa(line) &
+                               // ': character code ' // itoa(iachar(c)) // ' is not deck text')
+               return
+            end if
+            i = i + 1
+         end if
+      end do
+      if (in_group) then
+         call make_error(err, '&' // group // ': group opened at line ' // itoa(group_line) &
+                         // ' is not terminated by ''/''')
+      end if
+   end subroutine scan_text
+
+   !> True when the group appears in the deck.
+   logical function has_group(scan, group)
+      type(deck_scan_t), intent(in) :: scan
+      character(len=*), intent(in) :: group
+      has_group = any(scan%groups == group)
+   end function has_group
+
+   !> True when the deck assigns the variable (any element of it) in the group.
+   logical function has_var(scan, group, var)
+      type(deck_scan_t), intent(in) :: scan
+      character(len=*), intent(in) :: group, var
+      has_var = any(scan%keys == group // ':' // var)
+   end function has_var
+
+   pure logical function is_letter(c)
+      character, intent(in) :: c
+      is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
+   end function is_letter
+
+   !> Read an identifier starting at text(j:), lower-cased; j ends after it.
+   subroutine read_word(text, j, word)
+      character(len=*), intent(in) :: text
+      integer, intent(inout) :: j
+      character(len=:), allocatable, intent(out) :: word
+      integer :: j0
+      character :: c
+      j0 = j
+      do while (j <= len(text))
+         c = text(j:j)
+         if (.not. (is_letter(c) .or. (c >= '0' .and. c <= '9') .or. c == '_' .or. c == '%')) exit
+         j = j + 1
+      end do
+      word = lower(text(j0:j-1))
+   end subroutine read_word
+
+   pure function join_groups(names) result(s)
+      character(len=*), intent(in) :: names(:)
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      do k = 1, size(names)
+         if (k > 1) s = s // ', '
+         s = s // '&' // trim(names(k))
+      end do
+   end function join_groups
+end module spb_prescan

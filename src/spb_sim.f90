@@ -1,0 +1,145 @@
+!> A simulation: deck -> mesh, load, state; the stepping loop with its outputs.
+!>
+!> sim_setup works on an in-memory deck (tests use it without files); sim_run writes the
+!> column outputs and reports progress.
+module spb_sim
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use spb_kinds, only: wp
+   use spb_error, only: spb_error_t, make_error, exit_runtime
+   use spb_strings, only: itoa, rtoa
+   use spb_deck, only: deck_t
+   use spb_mesh, only: mesh_t, build_mesh
+   use spb_load, only: load_t, build_load
+   use spb_state, only: state_t, init_state, fragment_count
+   use spb_step, only: advance, end_stresses
+   use spb_diag, only: energies_t, energies
+   use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
+   implicit none
+   private
+   public :: sim_t, sim_setup, sim_run, run_summary_t
+
+   type :: sim_t
+      type(deck_t) :: deck
+      type(mesh_t) :: mesh
+      type(load_t) :: load
+      type(state_t) :: st
+      character(len=200), allocatable :: report(:)   !! mesh fit report
+   end type sim_t
+
+   type :: run_summary_t
+      integer :: steps = 0
+      real(wp) :: wall = 0.0_wp            !! [s]
+      real(wp) :: ledger0 = 0.0_wp         !! ledger at t = 0 [J/m^2]
+      real(wp) :: ledger_drift = 0.0_wp    !! largest |ledger - ledger0| over rows [J/m^2]
+      real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
+   end type run_summary_t
+
+contains
+
+   !> Build mesh, load and initial state from a validated deck.
+   subroutine sim_setup(deck, sim, err)
+      type(deck_t), intent(in) :: deck
+      type(sim_t), intent(out) :: sim
+      type(spb_error_t), allocatable, intent(out) :: err
+      sim%deck = deck
+      call build_mesh(deck, sim%mesh, sim%report, err)
+      if (allocated(err)) return
+      call build_load(deck%load, sim%load, err)
+      if (allocated(err)) return
+      call init_state(deck, sim%mesh, sim%st)
+   end subroutine sim_setup
+
+   !> Run to t_end writing PREFIX.his, .prf, .evt.
+   subroutine sim_run(sim, prefix, progress, summary, err)
+      type(sim_t), intent(inout) :: sim
+      character(len=*), intent(in) :: prefix
+      logical, intent(in) :: progress          !! show a progress line on stderr
+      type(run_summary_t), intent(out) :: summary
+      type(spb_error_t), allocatable, intent(out) :: err
+      type(outputs_t) :: out
+      integer :: ip, nprof, every, n
+      integer, allocatable :: prof_step(:)
+      integer(int64) :: c0, c_last, c_now, rate
+      real(wp) :: g
+
+      call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
+      if (allocated(err)) return
+      g = sim%deck%run%gravity
+      every = sim%deck%run%history_every
+      nprof = sim%deck%run%n_profiles
+      allocate(prof_step(nprof))
+      prof_step = nint(sim%deck%run%profile_times(1:nprof) / sim%mesh%dt)
+      ip = 1
+      call system_clock(c0, rate)
+      c_last = c0
+      call row()
+      call profiles()
+      do n = 1, sim%mesh%nsteps
+         call advance(sim%mesh, sim%load, g, sim%st)
+         if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
+            call row()
+            if (allocated(err)) exit
+         end if
+         call profiles()
+         if (mod(n, 1024) == 0) then
+            call system_clock(c_now)
+            if (real(c_now - c_last, wp) > 0.5_wp * real(rate, wp)) then
+               c_last = c_now
+               flush(out%his)
+               if (progress) call show_progress(n, real(c_now - c0, wp) / real(rate, wp))
+            end if
+         end if
+      end do
+      call system_clock(c_now)
+      if (progress) write(error_unit, '(a)') ''
+      call close_outputs(out)
+      summary%steps = sim%st%n
+      summary%wall = real(c_now - c0, wp) / real(max(rate, 1_int64), wp)
+   contains
+      subroutine row()
+         type(energies_t) :: e
+         real(wp) :: s_top, s_bot
+         integer :: i
+         e = energies(sim%mesh, sim%st, g)
+         call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
+         if (.not. ieee_is_finite(e%ledger)) then
+            do i = 0, sim%mesh%n
+               if (.not. (ieee_is_finite(sim%st%ua(i)) .and. ieee_is_finite(sim%st%ub(i)))) exit
+            end do
+            call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
+               ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &
+               itoa(min(i, sim%mesh%n)), code=exit_runtime)
+            flush(out%his)
+            return
+         end if
+         call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec_bot, &
+            sim%st%sec_top, fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
+            e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
+            e%ledger)
+         if (sim%st%n == 0) summary%ledger0 = e%ledger
+         summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
+         summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
+                                    abs(e%e_pot), abs(e%w_ext))
+      end subroutine row
+      subroutine profiles()
+         do while (ip <= nprof)
+            if (prof_step(ip) /= sim%st%n) exit
+            call write_profile(out, sim%mesh, sim%st, sim%deck%run%profile_times(ip))
+            ip = ip + 1
+         end do
+      end subroutine profiles
+      subroutine show_progress(n_done, elapsed)
+         integer, intent(in) :: n_done
+         real(wp), intent(in) :: elapsed
+         real(wp) :: frac, speed
+         character(len=120) :: line
+         frac = real(n_done, wp) / real(sim%mesh%nsteps, wp)
+         speed = real(n_done, wp) / max(elapsed, 1.0e-9_wp)
+         write(line, '(a,f6.1,a,es9.2,a,f9.1,a)') 'spallbar: ', 100.0_wp * frac, '%  ', speed, &
+            ' steps/s  ETA ', real(sim%mesh%nsteps - n_done, wp) / speed, ' s'
+         write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+         flush(error_unit)
+      end subroutine show_progress
+   end subroutine sim_run
+end module spb_sim

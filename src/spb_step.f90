@@ -1,0 +1,132 @@
+!> The compact update (2.3) of the half-node model (METHOD.md §3) for one step.
+module spb_step
+   use spb_kinds, only: wp
+   use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit
+   use spb_load, only: load_t, load_none, face_top, step_load
+   use spb_state, only: state_t
+   use spb_section, only: section_stress_a, section_stress_b
+   implicit none
+   private
+   public :: advance, end_stresses
+
+contains
+
+   !> Stresses acting on the end faces at t^n: the stepwise load on a loaded free face, the
+   !> static plus radiation stress of a transmitting end, 0 otherwise. s_top pushes node 0
+   !> like a cell above it; s_bot pushes node n like a cell below it.
+   pure subroutine end_stresses(mesh, load, st, s_top, s_bot)
+      type(mesh_t), intent(in) :: mesh
+      type(load_t), intent(in) :: load
+      type(state_t), intent(in) :: st
+      real(wp), intent(out) :: s_top, s_bot   !! [Pa]
+      real(wp) :: p
+      p = 0.0_wp
+      if (load%kind /= load_none) p = step_load(load, st%n, mesh%dt)
+      s_top = 0.0_wp
+      s_bot = 0.0_wp
+      select case (mesh%top)
+      case (end_free)
+         if (load%face == face_top) s_top = p
+      case (end_transmit)
+         ! outgoing wave at Courant 1: u_{-1}^n = u_0^{n-1}, so s_0 = -(E/dx) du_0^n
+         s_top = st%s_static_top - mesh%stiff(1) * st%dub(0)
+      end select
+      select case (mesh%bottom)
+      case (end_free)
+         if (load%face /= face_top) s_bot = p
+      case (end_transmit)
+         s_bot = st%s_static_bot + mesh%stiff(mesh%n) * st%dua(mesh%n)
+      end select
+   end subroutine end_stresses
+
+   !> Advance the state from t^n to t^{n+1}.
+   pure subroutine advance(mesh, load, g, st)
+      type(mesh_t), intent(in) :: mesh
+      type(load_t), intent(in) :: load
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st
+      real(wp), allocatable :: swap(:)
+      real(wp) :: dt, dt2, fa, fb, d, du_top_old, du_bot_old, s_top, s_bot
+      integer :: i, n
+
+      n = mesh%n
+      dt = mesh%dt
+      dt2 = dt * dt
+      call end_stresses(mesh, load, st, s_top, s_bot)
+      st%s(0) = s_top
+      st%s(n + 1) = s_bot
+      du_top_old = st%dub(0)
+      du_bot_old = st%dua(n)
+
+      ! (2.3)1-2: a joined node takes the forces on both halves over both masses
+      do i = 0, n
+         fa = st%s(i) + mesh%ma(i) * g
+         fb = mesh%mb(i) * g - st%s(i + 1)
+         if (st%joined(i)) then
+            d = st%dua(i) + (fa + fb) * mesh%inv_m(i) * dt2
+            st%dua(i) = d
+            st%dub(i) = d
+         else
+            st%dua(i) = st%dua(i) + fa / mesh%ma(i) * dt2
+            st%dub(i) = st%dub(i) + fb / mesh%mb(i) * dt2
+         end if
+      end do
+      if (mesh%top == end_fixed) then
+         st%dua(0) = 0.0_wp
+         st%dub(0) = 0.0_wp
+      end if
+      if (mesh%bottom == end_fixed) then
+         st%dua(n) = 0.0_wp
+         st%dub(n) = 0.0_wp
+      end if
+      ! (2.3)3
+      st%ua = st%ua + st%dua
+      st%ub = st%ub + st%dub
+
+      ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
+      ! the discrete energy ledger exact
+      associate (w_top => st%s(0) * 0.5_wp * (st%dub(0) + du_top_old), &
+                 w_bot => -st%s(n + 1) * 0.5_wp * (st%dua(n) + du_bot_old))
+         if (mesh%top == end_transmit) then
+            st%w_transmit = st%w_transmit + w_top
+         else
+            st%w_load = st%w_load + w_top
+         end if
+         if (mesh%bottom == end_transmit) then
+            st%w_transmit = st%w_transmit + w_bot
+         else
+            st%w_load = st%w_load + w_bot
+         end if
+      end associate
+
+      ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
+      select case (mesh%top)
+      case (end_fixed)
+         st%sec_top = section_stress_b(st%s(1), st%sec_top, 0.0_wp, 0.0_wp, mesh%z(1), &
+                                       mesh%dm(1), g)
+      case (end_transmit)
+         st%sec_top = section_stress_b(st%s(1), st%sec_top, du_top_old / dt, st%dub(0) / dt, &
+                                       mesh%z(1), mesh%dm(1), g)
+      end select
+      select case (mesh%bottom)
+      case (end_fixed)
+         st%sec_bot = section_stress_a(st%s(n), st%sec_bot, 0.0_wp, 0.0_wp, mesh%z(n), &
+                                       mesh%dm(n), g)
+      case (end_transmit)
+         st%sec_bot = section_stress_a(st%s(n), st%sec_bot, du_bot_old / dt, st%dua(n) / dt, &
+                                       mesh%z(n), mesh%dm(n), g)
+      end select
+
+      ! (2.3)4: s^{n+1} = E (u_{k-1} - u_k)/dx, advanced by the increments of this step:
+      ! algebraically the same, but it never subtracts two large displacements, so a bar
+      ! that has moved far (or hangs in its static state) keeps all digits of its strains.
+      ! s^n moves to s_old (buffers swapped, not copied).
+      call move_alloc(st%s_old, swap)
+      call move_alloc(st%s, st%s_old)
+      call move_alloc(swap, st%s)
+      st%s(0) = st%s_old(0)
+      st%s(n + 1) = st%s_old(n + 1)
+      st%s(1:n) = st%s_old(1:n) + mesh%stiff * (st%dub(0:n-1) - st%dua(1:n))
+      st%n = st%n + 1
+   end subroutine advance
+end module spb_step

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Command-line contract for bad input (INTERFACE.md): exit status 2, exactly one line on
+stderr naming the group and variable, and no output file written or touched.
+
+usage: cli_deck_errors.py SPALLBAR WORKDIR
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+GOOD = """&run t_end = 1.0e-5, title = 'cli' /
+&mesh cells = 10 /
+&segments n = 1, length = 0.05, young = 200e9, density = 8000 /
+&load kind = 'power', p0 = 1e6 /
+"""
+
+# (name, deck text, text the single stderr line must contain)
+BAD = [
+    ("no_run", "&mesh cells = 10 /\n", "spallbar: &run: required group is missing"),
+    ("neg_length", GOOD.replace("length = 0.05", "length = -0.5"),
+     "spallbar: &segments: length(1) must be > 0, got -0.5"),
+    ("unknown_var", GOOD.replace("cells = 10", "cells = 10, celz = 3"),
+     "spallbar: &mesh: celz: unknown variable"),
+    ("unknown_group", GOOD + "&gizmo a = 1 /\n", "spallbar: &gizmo: unknown group"),
+    ("nan", GOOD.replace("t_end = 1.0e-5", "t_end = NaN"), "spallbar: &run: t_end must be a finite"),
+    ("inf", GOOD.replace("young = 200e9", "young = Inf"), "spallbar: &segments: young(1) must be a finite"),
+    ("bad_choice", GOOD + "&ends top = 'glued' /\n", "spallbar: &ends: top must be"),
+    ("strict_fit", GOOD.replace("n = 1, length = 0.05, young = 200e9, density = 8000",
+                                "n = 2, length = 0.05, 0.0512, young = 2*200e9, density = 2*8000"),
+     "spallbar: &segments: length(2)"),
+    ("unterminated", GOOD.replace("title = 'cli'", "title = 'cli"), "spallbar: &run: unterminated string"),
+    ("missing_table", GOOD.replace("kind = 'power', p0 = 1e6", "kind = 'table', table = 'nope.txt'"),
+     "spallbar: &load: table = 'nope.txt': cannot open"),
+    ("binary", "&run t_end = 1 \x01\x02 /\n", "spallbar: &run: line 1: character code 1"),
+    ("wrong_type", GOOD.replace("cells = 10", "cells = 'ten'"), "spallbar: &mesh: cannot read"),
+]
+
+
+def run(exe, args, cwd):
+    return subprocess.run([exe] + args, cwd=cwd, capture_output=True, text=True,
+                          errors="replace", timeout=60)
+
+
+def main():
+    exe, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    failures = 0
+    checks = 0
+
+    def check(cond, what):
+        nonlocal failures, checks
+        checks += 1
+        if not cond:
+            failures += 1
+            print("FAIL:", what)
+
+    for name, text, expect in BAD:
+        deck = os.path.join(work, name + ".nml")
+        with open(deck, "w", encoding="latin-1") as f:
+            f.write(text)
+        # an older result with the same prefix must survive a rejected deck untouched
+        old = os.path.join(work, name + ".his")
+        with open(old, "w") as f:
+            f.write("old result\n")
+        r = run(exe, [name + ".nml"], work)
+        lines = r.stderr.splitlines()
+        check(r.returncode == 2, f"{name}: exit status {r.returncode}, expected 2")
+        check(len(lines) == 1, f"{name}: {len(lines)} stderr lines: {r.stderr!r}")
+        check(len(lines) >= 1 and expect in lines[0], f"{name}: stderr {r.stderr!r} lacks {expect!r}")
+        check(open(old).read() == "old result\n", f"{name}: an existing output was touched")
+        for ext in (".prf", ".evt", ".h5"):
+            check(not os.path.exists(os.path.join(work, name + ext)), f"{name}: left {name}{ext}")
+        print(f"ok   {name}: {lines[0] if lines else ''}")
+
+    # command line itself
+    for args, expect in ((["missing.nml"], "spallbar: deck: cannot open"),
+                         ([], "spallbar: command line: no deck given"),
+                         (["--frobnicate", "x.nml"], "unknown option"),
+                         (["a.nml", "b.nml"], "more than one deck"),
+                         (["--output"], "--output needs a PREFIX")):
+        r = run(exe, args, work)
+        check(r.returncode == 2, f"{args}: exit {r.returncode}")
+        check(expect in r.stderr and len(r.stderr.splitlines()) == 1, f"{args}: stderr {r.stderr!r}")
+    r = run(exe, ["--help"], work)
+    check(r.returncode == 0 and "usage" in r.stdout, "--help")
+
+    # a good deck runs, writes the three files, and --output chooses the prefix
+    with open(os.path.join(work, "good.nml"), "w") as f:
+        f.write(GOOD)
+    r = run(exe, ["good.nml", "--output", "out/run1", "--quiet"], work)
+    check(r.returncode == 2 and "--output: cannot write" in r.stderr,
+          f"output into a missing folder: {r.returncode} {r.stderr!r}")
+    os.makedirs(os.path.join(work, "out"))
+    r = run(exe, ["good.nml", "--output", "out/run1", "--quiet"], work)
+    check(r.returncode == 0, f"good deck: exit {r.returncode}: {r.stderr}")
+    check(r.stdout == "" and r.stderr == "", "--quiet prints nothing")
+    for ext in (".his", ".prf", ".evt"):
+        check(os.path.exists(os.path.join(work, "out", "run1" + ext)), f"good deck wrote {ext}")
+    r = run(exe, ["good.nml"], work)
+    check(r.returncode == 0 and os.path.exists(os.path.join(work, "good.his")), "default prefix")
+
+    print(f"{checks - failures} passed, {failures} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""Every deck in input/ runs (exit 0) and its outputs keep the INTERFACE.md contract:
+the history's last header line names the required columns, rows are numbers, the energy
+ledger is constant, profiles come in '# t = ' blocks of 2N rows.
+
+usage: cli_input_decks.py SPALLBAR INPUT_DIR WORKDIR
+"""
+import glob
+import os
+import shutil
+import subprocess
+import sys
+
+REQUIRED = ["t", "reaction_bottom", "reaction_top", "fragments", "e_kin", "e_strain",
+            "e_pot", "w_ext", "e_lost", "momentum"]
+
+
+def read_table(path):
+    header, rows = [], []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                header.append(line)
+            elif line.strip():
+                rows.append([float(x) for x in line.split()])
+    return header, rows
+
+
+def main():
+    exe, indir, work = sys.argv[1:4]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    failures = checks = 0
+
+    def check(cond, what):
+        nonlocal failures, checks
+        checks += 1
+        if not cond:
+            failures += 1
+            print("FAIL:", what)
+
+    decks = sorted(glob.glob(os.path.join(indir, "*.nml")))
+    check(len(decks) > 0, "input/ has decks")
+    for deck in decks:
+        name = os.path.splitext(os.path.basename(deck))[0]
+        prefix = os.path.join(work, name)
+        r = subprocess.run([exe, os.path.basename(deck), "--output", prefix], cwd=indir,
+                           capture_output=True, text=True, timeout=600)
+        check(r.returncode == 0, f"{name}: exit {r.returncode}: {r.stderr}")
+        if r.returncode != 0:
+            continue
+        header, rows = read_table(prefix + ".his")
+        cols = header[-1][1:].split()
+        check(cols[:len(REQUIRED)] == REQUIRED, f"{name}: columns {cols}")
+        check(len(rows) > 1 and all(len(x) == len(cols) for x in rows), f"{name}: row widths")
+        ledger = [x[cols.index("ledger")] for x in rows]
+        scale = max(max(abs(x[cols.index(c)]) for x in rows)
+                    for c in ("e_kin", "e_strain", "e_pot", "w_ext"))
+        drift = max(abs(v - ledger[0]) for v in ledger) / scale
+        check(drift < 1e-9, f"{name}: ledger drift {drift:.3e} of the largest energy term")
+        check(any("&segments" in h for h in header), f"{name}: deck echoed in header")
+        # profiles: blocks of 2N rows
+        nodes = None
+        for h in header:
+            if h.startswith("# mesh:"):
+                nodes = int(h.split(",")[1].split()[0])
+        with open(prefix + ".prf") as f:
+            lines = f.read().splitlines()
+        starts = [i for i, l in enumerate(lines) if l.startswith("# t = ")]
+        for i in starts:
+            block = []
+            for l in lines[i + 1:]:
+                if l.startswith("# t = "):
+                    break
+                if not l.startswith("#"):
+                    block.append(l)
+            check(len(block) == 2 * nodes, f"{name}: profile block of {len(block)} rows, expected {2 * nodes}")
+        print(f"ok   {name}: {len(rows)} history rows, {len(starts)} profiles, ledger drift {drift:.2e}")
+    print(f"{checks - failures} passed, {failures} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
