@@ -34,7 +34,7 @@ program spallbar
    call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err)
    if (allocated(err)) call fail(err)
    if (.not. quiet) then
-      write(output_unit, '(a,i0,a,f0.3,a,es9.2,a,es9.2,a)') '  done: ', summary%steps, &
+      write(output_unit, '(a,i0,a,es9.2,a,es9.2,a,es9.2,a)') '  done: ', summary%steps, &
          ' steps in ', summary%wall, ' s; energy ledger drift ', summary%ledger_drift, &
          ' J/m^2 (', summary%ledger_drift / max(summary%energy_scale, tiny(1.0_wp)), &
          ' of the largest energy term)'
