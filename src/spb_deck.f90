@@ -487,9 +487,6 @@ contains
             call need_positive(err, 'segments', 'density' // sj, seg%density(j))
             if (is_set(seg%strength(j))) then
                call need_finite(err, 'segments', 'strength' // sj, seg%strength(j))
-               if (allocated(err)) return
-               if (seg%strength(j) >= 0.0_wp) call not_in_version(err, 'segments', &
-                  'strength' // sj, 'fracture (strength >= 0)')
             else
                seg%strength(j) = -1.0_wp
             end if
@@ -560,9 +557,10 @@ contains
       else
          face_end = ends%bottom
       end if
-      if (face_end /= 'free') then
+      if (face_end /= 'free' .and. face_end /= 'transmit') then
          call make_error(err, '&load: face = ''' // trim(load%face) // ''' is a ''' // &
-                         trim(face_end) // ''' end (&ends); a load acts on a free face')
+                         trim(face_end) // ''' end (&ends); a load acts on a free face ' // &
+                         '(or enters as an incident wave through a transmitting one)')
          return
       end if
       if (load%kind == 'power') then

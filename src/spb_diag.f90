@@ -12,7 +12,7 @@ module spb_diag
    use spb_state, only: state_t
    implicit none
    private
-   public :: energies_t, energies
+   public :: energies_t, energies, frag_info_t, fragment_list
 
    type :: energies_t
       real(wp) :: e_kin = 0.0_wp      !! [J/m^2]
@@ -23,6 +23,17 @@ module spb_diag
       real(wp) :: ledger = 0.0_wp     !! e_kin + e_strain + e_pot - w_ext + e_lost [J/m^2]
       real(wp) :: momentum = 0.0_wp   !! [kg/(m s)]
    end type energies_t
+
+   type :: frag_info_t
+      integer :: id = 0, parent = 0, birth_step = 0
+      integer :: top = 0, bot = 0          !! end nodes: B_top .. A_bot
+      real(wp) :: x_top = 0.0_wp           !! current position of the top face x + u [m]
+      real(wp) :: x_bot = 0.0_wp           !! current position of the bottom face [m]
+      real(wp) :: mass = 0.0_wp            !! [kg/m^2]
+      real(wp) :: velocity = 0.0_wp        !! mean velocity, momentum / mass [m/s]
+      real(wp) :: e_vib = 0.0_wp           !! kinetic energy relative to the mean motion plus
+                                           !! strain energy [J/m^2]
+   end type frag_info_t
 
 contains
 
@@ -39,8 +50,56 @@ contains
       e%e_strain = 0.5_wp * sum(st%s_old(1:n) * st%s(1:n) / mesh%stiff)
       e%e_pot = 0.0_wp - g * sum(mesh%ma * (st%ua - 0.5_wp * st%dua) + mesh%mb * (st%ub - 0.5_wp * st%dub))
       e%w_ext = st%w_load + st%w_transmit
-      e%e_lost = st%e_lost
+      e%e_lost = st%e_fracture
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost
       e%momentum = sum(mesh%ma * st%dua + mesh%mb * st%dub) / dt
    end function energies
+
+   !> Every fragment, top to bottom, with its mass, mean velocity and vibration energy.
+   pure subroutine fragment_list(mesh, st, list)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      type(frag_info_t), allocatable, intent(out) :: list(:)
+      integer :: nf, top, bot, i, f
+      real(wp) :: mom, ekin, estr, dt
+      dt = mesh%dt
+      nf = 1
+      if (mesh%n >= 2) nf = 1 + count(.not. st%joined(1:mesh%n-1))
+      allocate(list(nf))
+      top = 0
+      do f = 1, nf
+         bot = top + 1
+         do while (bot < mesh%n)
+            if (.not. st%joined(bot)) exit
+            bot = bot + 1
+         end do
+         list(f)%id = st%frag_id(top)
+         list(f)%parent = st%frag_parent(list(f)%id)
+         list(f)%birth_step = st%frag_birth(list(f)%id)
+         list(f)%top = top
+         list(f)%bot = bot
+         list(f)%x_top = mesh%x(top) + st%ub(top)
+         list(f)%x_bot = mesh%x(bot) + st%ua(bot)
+         list(f)%mass = 0.0_wp
+         mom = 0.0_wp
+         ekin = 0.0_wp
+         estr = 0.0_wp
+         do i = top, bot
+            if (i > top .or. top == 0) then
+               list(f)%mass = list(f)%mass + mesh%ma(i)
+               mom = mom + mesh%ma(i) * st%dua(i) / dt
+               ekin = ekin + 0.5_wp * mesh%ma(i) * (st%dua(i) / dt)**2
+            end if
+            if (i < bot .or. bot == mesh%n) then
+               list(f)%mass = list(f)%mass + mesh%mb(i)
+               mom = mom + mesh%mb(i) * st%dub(i) / dt
+               ekin = ekin + 0.5_wp * mesh%mb(i) * (st%dub(i) / dt)**2
+            end if
+            if (i > top) estr = estr + 0.5_wp * st%s_old(i) * st%s(i) / mesh%stiff(i)
+         end do
+         list(f)%velocity = mom / list(f)%mass
+         list(f)%e_vib = ekin - 0.5_wp * mom**2 / list(f)%mass + estr
+         top = bot
+      end do
+   end subroutine fragment_list
 end module spb_diag

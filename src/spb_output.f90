@@ -9,24 +9,33 @@ module spb_output
    use spb_deck, only: deck_t, write_echo
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
+   use spb_events, only: event_list_t, event_kind_name
+   use spb_diag, only: frag_info_t
    implicit none
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
-   public :: history_columns, write_mesh_summary
+   public :: history_columns, write_mesh_summary, write_events, write_fragments
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
-      // 'w_transmit ledger'
+      // 'w_transmit ledger e_fracture'
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum [kg/(m s)]'
+   character(len=*), parameter :: event_columns = 't step kind node x stress dt_bound ' &
+      // 'dx_bound opening frag_above frag_below'
+   character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
+      // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
    character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
-      fmt_real // '),1x,i20,5(1x,' // fmt_real // '))'
+      fmt_real // '),1x,i20,6(1x,' // fmt_real // '))'
+   character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
+      '6(1x,' // fmt_real // '),2(1x,i12))'
+   character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
    character(len=*), parameter :: fmt_prf = '(4(1x,' // fmt_real // '))'
 
    type :: outputs_t
       character(len=:), allocatable :: prefix
-      integer :: his = -1, prf = -1, evt = -1   !! units; -1 when closed
+      integer :: his = -1, prf = -1, evt = -1, frg = -1   !! units; -1 when closed
    end type outputs_t
 
 contains
@@ -43,6 +52,7 @@ contains
       call open_one('.his', out%his)
       if (.not. allocated(err)) call open_one('.prf', out%prf)
       if (.not. allocated(err)) call open_one('.evt', out%evt)
+      if (.not. allocated(err)) call open_one('.frg', out%frg)
       if (allocated(err)) then
          call close_outputs(out)
          return
@@ -51,7 +61,7 @@ contains
       write(out%his, '(a)') '# energies at row time t^{n+1}: e_kin from v^{n+1}, e_strain from' &
          // ' s^n s^{n+1}, e_pot from (u^n+u^{n+1})/2 (the scheme''s invariant, METHOD.md 3)'
       write(out%his, '(a)') '# ledger = e_kin + e_strain + e_pot - w_ext + e_lost is constant; ' &
-         // 'w_ext = w_load + w_transmit'
+         // 'w_ext = w_load + w_transmit; e_lost = e_fracture'
       write(out%his, '(a)') '# units: ' // history_units
       write(out%his, '(a)') '# ' // history_columns
       call header(out%prf, 'stress profiles: one block per profile time')
@@ -63,8 +73,19 @@ contains
          // '(compression > 0)'
       write(out%prf, '(a)') '# x u v stress'
       call header(out%evt, 'events: one row per fracture, collision, separation')
-      write(out%evt, '(a)') '# units: t [s], step [-], node [-], x [m] (reference), stress [Pa]'
-      write(out%evt, '(a)') '# t step kind node x stress'
+      write(out%evt, '(a)') '# t is the grid time the event takes effect; the true time lies in ' &
+         // '[t - dt_bound, t] (4.1), the true place within dx_bound of x (4.2)'
+      write(out%evt, '(a)') '# frag_above, frag_below: fragment ids on either side after the event'
+      write(out%evt, '(a)') '# units: t, dt_bound [s]; step, node, frag_* [-]; x, dx_bound, ' &
+         // 'opening [m] (x reference); stress [Pa] (compression > 0)'
+      write(out%evt, '(a)') '# ' // event_columns
+      call header(out%frg, 'fragments: one block per profile time')
+      write(out%frg, '(a)') '# x_top, x_bottom: current positions x + u of the faces; e_vib: ' &
+         // 'kinetic energy about the mean motion + strain energy; birth_t: time of the ' &
+         // 'fracture that made it'
+      write(out%frg, '(a)') '# units: birth_t [s]; x_* [m]; mass [kg/m^2]; velocity [m/s]; ' &
+         // 'e_vib [J/m^2]; ids and nodes [-]'
+      write(out%frg, '(a)') '# ' // fragment_columns
    contains
       subroutine open_one(ext, u)
          character(len=*), intent(in) :: ext
@@ -115,6 +136,8 @@ contains
       if (out%his >= 0) close(out%his)
       if (out%prf >= 0) close(out%prf)
       if (out%evt >= 0) close(out%evt)
+      if (out%frg >= 0) close(out%frg)
+      out%frg = -1
       out%his = -1
       out%prf = -1
       out%evt = -1
@@ -123,14 +146,43 @@ contains
    !> One history row; values in the order of history_columns.
    subroutine write_history_row(out, t, reaction_bottom, reaction_top, fragments, e_kin, &
                                 e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
-                                s_end_bottom, w_load, w_transmit, ledger)
+                                s_end_bottom, w_load, w_transmit, ledger, e_fracture)
       type(outputs_t), intent(in) :: out
       real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
       real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
+      real(wp), intent(in) :: e_fracture
       integer, intent(in) :: fragments, step
       write(out%his, fmt_his) t, reaction_bottom, reaction_top, fragments, e_kin, e_strain, &
-         e_pot, w_ext, e_lost, momentum, step, s_end_top, s_end_bottom, w_load, w_transmit, ledger
+         e_pot, w_ext, e_lost, momentum, step, s_end_top, s_end_bottom, w_load, w_transmit, &
+         ledger, e_fracture
    end subroutine write_history_row
+
+   !> Rows for the events of the list.
+   subroutine write_events(out, events)
+      type(outputs_t), intent(in) :: out
+      type(event_list_t), intent(in) :: events
+      integer :: k
+      do k = 1, events%n
+         associate (e => events%e(k))
+            write(out%evt, fmt_evt) e%t, e%step, event_kind_name(e%kind), e%node, e%x, &
+               e%stress, e%dt_bound, e%dx_bound, e%opening, e%frag_above, e%frag_below
+         end associate
+      end do
+   end subroutine write_events
+
+   !> One block of fragments at time t.
+   subroutine write_fragments(out, t, dt, list)
+      type(outputs_t), intent(in) :: out
+      real(wp), intent(in) :: t, dt
+      type(frag_info_t), intent(in) :: list(:)
+      integer :: f
+      write(out%frg, '(a)') '# t = ' // rtoa(t)
+      do f = 1, size(list)
+         write(out%frg, fmt_frg) list(f)%id, list(f)%parent, real(list(f)%birth_step, wp) * dt, &
+            list(f)%x_top, list(f)%x_bot, list(f)%mass, list(f)%velocity, list(f)%e_vib, &
+            list(f)%top, list(f)%bot
+      end do
+   end subroutine write_fragments
 
    !> One profile block at the state's time.
    subroutine write_profile(out, mesh, st, t_requested)

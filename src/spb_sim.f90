@@ -13,11 +13,14 @@ module spb_sim
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, end_stresses
-   use spb_diag, only: energies_t, energies
-   use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
+   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
+   use spb_events, only: event_list_t
+   use spb_fracture, only: fracture_step
+   use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
+      write_events, write_fragments
    implicit none
    private
-   public :: sim_t, sim_setup, sim_run, run_summary_t
+   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step
 
    type :: sim_t
       type(deck_t) :: deck
@@ -29,6 +32,7 @@ module spb_sim
 
    type :: run_summary_t
       integer :: steps = 0
+      integer :: events = 0                !! events written
       real(wp) :: wall = 0.0_wp            !! [s]
       real(wp) :: ledger0 = 0.0_wp         !! ledger at t = 0 [J/m^2]
       real(wp) :: ledger_drift = 0.0_wp    !! largest |ledger - ledger0| over rows [J/m^2]
@@ -50,7 +54,15 @@ contains
       call init_state(deck, sim%mesh, sim%st)
    end subroutine sim_setup
 
-   !> Run to t_end writing PREFIX.his, .prf, .evt.
+   !> One step of the whole method: the compact update, then fracture at t^{n+1}.
+   pure subroutine sim_step(sim, events)
+      type(sim_t), intent(inout) :: sim
+      type(event_list_t), intent(inout) :: events   !! events of this step are appended
+      call advance(sim%mesh, sim%load, sim%deck%run%gravity, sim%st)
+      call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events)
+   end subroutine sim_step
+
+   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg.
    subroutine sim_run(sim, prefix, progress, summary, err)
       type(sim_t), intent(inout) :: sim
       character(len=*), intent(in) :: prefix
@@ -58,6 +70,7 @@ contains
       type(run_summary_t), intent(out) :: summary
       type(spb_error_t), allocatable, intent(out) :: err
       type(outputs_t) :: out
+      type(event_list_t) :: events
       integer :: ip, nprof, every, n
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
@@ -76,7 +89,12 @@ contains
       call row()
       call profiles()
       do n = 1, sim%mesh%nsteps
-         call advance(sim%mesh, sim%load, g, sim%st)
+         events%n = 0
+         call sim_step(sim, events)
+         if (events%n > 0) then
+            call write_events(out, events)
+            summary%events = summary%events + events%n
+         end if
          if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
             call row()
             if (allocated(err)) exit
@@ -113,19 +131,22 @@ contains
             flush(out%his)
             return
          end if
-         call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec_bot, &
-            sim%st%sec_top, fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
+         call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
+            sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
-            e%ledger)
+            e%ledger, sim%st%e_fracture)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
          summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
                                     abs(e%e_pot), abs(e%w_ext))
       end subroutine row
       subroutine profiles()
+         type(frag_info_t), allocatable :: list(:)
          do while (ip <= nprof)
             if (prof_step(ip) /= sim%st%n) exit
             call write_profile(out, sim%mesh, sim%st, sim%deck%run%profile_times(ip))
+            call fragment_list(sim%mesh, sim%st, list)
+            call write_fragments(out, real(sim%st%n, wp) * sim%mesh%dt, sim%mesh%dt, list)
             ip = ip + 1
          end do
       end subroutine profiles

@@ -21,13 +21,22 @@ module spb_state
                                               !! end stresses (load, transmitting end) [Pa]
       real(wp), allocatable :: s_old(:)       !! s^{n-1}, same layout [Pa]
       logical, allocatable :: joined(:)       !! node halves move together (0:n)
-      real(wp) :: sec_top = 0.0_wp            !! section stress at the top support S^{n-1/2} [Pa]
-      real(wp) :: sec_bot = 0.0_wp            !! section stress at the bottom support [Pa]
+      real(wp), allocatable :: sec(:)         !! section stress S^{n-1/2} at each node (0:n); at
+                                              !! nodes 0 and n the support's [Pa]; 0 when split
+      real(wp), allocatable :: strength(:)    !! tensile strength R_i of each node's section
+                                              !! (0:n) [Pa]; < 0 unbreakable, 0 once broken
+      integer :: n_breakable = 0              !! joined interior nodes with strength >= 0
+      real(wp) :: s_scale = 0.0_wp            !! largest stress magnitude so far [Pa]
+      integer, allocatable :: frag_id(:)      !! (0:n) id of the fragment whose top node is i,
+                                              !! 0 at joined interior nodes
+      integer, allocatable :: frag_parent(:)  !! parent id of each fragment id (0: none)
+      integer, allocatable :: frag_birth(:)   !! step at which each fragment id was born
+      integer :: n_frag_ids = 0               !! fragment ids issued
       real(wp) :: s_static_top = 0.0_wp       !! static stress a transmitting top carries [Pa]
       real(wp) :: s_static_bot = 0.0_wp       !! static stress a transmitting bottom carries [Pa]
       real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
       real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
-      real(wp) :: e_lost = 0.0_wp             !! energy removed by events so far [J/m^2]
+      real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
    end type state_t
 
 contains
@@ -44,8 +53,15 @@ contains
       g = deck%run%gravity
       dt = mesh%dt
       allocate(st%ua(0:n), st%ub(0:n), st%dua(0:n), st%dub(0:n))
-      allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n))
+      allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%sec(0:n), st%strength(0:n))
       st%joined = .true.
+      call init_strength(deck, mesh, st)
+      allocate(st%frag_id(0:n), st%frag_parent(16), st%frag_birth(16))
+      st%frag_id = 0
+      st%frag_id(0) = 1
+      st%n_frag_ids = 1
+      st%frag_parent(1) = 0
+      st%frag_birth(1) = 0
       if (deck%init%state == 'static') then
          call static_state(mesh, g, u, s, st%s_static_top, st%s_static_bot)
       else
@@ -76,12 +92,40 @@ contains
       ! s^{-1} = s^0 - E (du_{k-1} - du_k)/dx, for the strain-energy product at the first row
       st%s_old = 0.0_wp
       st%s_old(1:n) = st%s(1:n) - mesh%stiff * (st%dub(0:n-1) - st%dua(1:n))
-      ! section stresses at supports start at their fixed point for the initial stresses
-      st%sec_top = 0.0_wp
-      st%sec_bot = 0.0_wp
-      if (mesh%top /= end_free) st%sec_top = s(1) - 0.5_wp * mesh%dm(1) * g
-      if (mesh%bottom /= end_free) st%sec_bot = s(n) + 0.5_wp * mesh%dm(n) * g
+      ! section stresses start at the fixed point of (3.1)-(3.2) for the initial stresses:
+      ! S = s_above + dm_above g / 2 (equal to s_below - dm_below g / 2 in equilibrium)
+      st%sec = 0.0_wp
+      do i = 1, n - 1
+         st%sec(i) = s(i) + 0.5_wp * mesh%dm(i) * g
+      end do
+      if (mesh%top /= end_free) st%sec(0) = s(1) - 0.5_wp * mesh%dm(1) * g
+      if (mesh%bottom /= end_free) st%sec(n) = s(n) + 0.5_wp * mesh%dm(n) * g
+      st%s_scale = maxval(abs(s))
    end subroutine init_state
+
+   !> Node strengths: a segment's strength inside it; the weaker one at a bonded interface
+   !> (seed section 2); ends never break.
+   subroutine init_strength(deck, mesh, st)
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      integer :: i, j
+      real(wp) :: ra, rb
+      st%strength = -1.0_wp
+      do i = 1, mesh%n - 1
+         j = mesh%seg(i)
+         ra = deck%seg%strength(j)
+         rb = deck%seg%strength(mesh%seg(i + 1))
+         if (ra >= 0.0_wp .and. rb >= 0.0_wp) then
+            st%strength(i) = min(ra, rb)
+         else if (ra >= 0.0_wp) then
+            st%strength(i) = ra
+         else if (rb >= 0.0_wp) then
+            st%strength(i) = rb
+         end if
+      end do
+      st%n_breakable = count(st%strength(1:mesh%n-1) >= 0.0_wp)
+   end subroutine init_strength
 
    !> Number of fragments: pieces between split interior nodes.
    pure integer function fragment_count(st) result(nf)

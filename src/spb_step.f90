@@ -11,9 +11,11 @@ module spb_step
 
 contains
 
-   !> Stresses acting on the end faces at t^n: the stepwise load on a loaded free face, the
-   !> static plus radiation stress of a transmitting end, 0 otherwise. s_top pushes node 0
-   !> like a cell above it; s_bot pushes node n like a cell below it.
+   !> Stresses acting on the end faces at t^n: the stepwise load P^n on a loaded free face;
+   !> at a transmitting end the static stress it carries, the radiation stress of the
+   !> outgoing wave and, when the load acts on that end, 2 P^n for the incident wave of
+   !> stress p(t) arriving through it; 0 otherwise. s_top pushes node 0 like a cell above
+   !> it; s_bot pushes node n like a cell below it.
    pure subroutine end_stresses(mesh, load, st, s_top, s_bot)
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
@@ -28,14 +30,17 @@ contains
       case (end_free)
          if (load%face == face_top) s_top = p
       case (end_transmit)
-         ! outgoing wave at Courant 1: u_{-1}^n = u_0^{n-1}, so s_0 = -(E/dx) du_0^n
+         ! u = F(t - x/a) + G(t + x/a) at Courant 1: the virtual cell above node 0 has
+         ! s_0 = -(E/dx) du_0^n (outgoing G) + (E/dx) [F(n+1) - F(n-1)] = 2 P^n (incident F)
          s_top = st%s_static_top - mesh%stiff(1) * st%dub(0)
+         if (load%face == face_top) s_top = s_top + 2.0_wp * p
       end select
       select case (mesh%bottom)
       case (end_free)
          if (load%face /= face_top) s_bot = p
       case (end_transmit)
          s_bot = st%s_static_bot + mesh%stiff(mesh%n) * st%dua(mesh%n)
+         if (load%face /= face_top) s_bot = s_bot + 2.0_wp * p
       end select
    end subroutine end_stresses
 
@@ -64,6 +69,9 @@ contains
          fb = mesh%mb(i) * g - st%s(i + 1)
          if (st%joined(i)) then
             d = st%dua(i) + (fa + fb) * mesh%inv_m(i) * dt2
+            ! (3.1)-(3.2): the section stress S^{n+1/2} of a joined interior node
+            if (i > 0 .and. i < n) st%sec(i) = section_stress_a(st%s(i), st%sec(i), &
+               st%dua(i) / dt, d / dt, mesh%z(i), mesh%dm(i), g)
             st%dua(i) = d
             st%dub(i) = d
          else
@@ -102,18 +110,18 @@ contains
       ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
       select case (mesh%top)
       case (end_fixed)
-         st%sec_top = section_stress_b(st%s(1), st%sec_top, 0.0_wp, 0.0_wp, mesh%z(1), &
+         st%sec(0) = section_stress_b(st%s(1), st%sec(0), 0.0_wp, 0.0_wp, mesh%z(1), &
                                        mesh%dm(1), g)
       case (end_transmit)
-         st%sec_top = section_stress_b(st%s(1), st%sec_top, du_top_old / dt, st%dub(0) / dt, &
+         st%sec(0) = section_stress_b(st%s(1), st%sec(0), du_top_old / dt, st%dub(0) / dt, &
                                        mesh%z(1), mesh%dm(1), g)
       end select
       select case (mesh%bottom)
       case (end_fixed)
-         st%sec_bot = section_stress_a(st%s(n), st%sec_bot, 0.0_wp, 0.0_wp, mesh%z(n), &
+         st%sec(n) = section_stress_a(st%s(n), st%sec(n), 0.0_wp, 0.0_wp, mesh%z(n), &
                                        mesh%dm(n), g)
       case (end_transmit)
-         st%sec_bot = section_stress_a(st%s(n), st%sec_bot, du_bot_old / dt, st%dua(n) / dt, &
+         st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, st%dua(n) / dt, &
                                        mesh%z(n), mesh%dm(n), g)
       end select
 

@@ -1,0 +1,62 @@
+!> Events (fracture, collision, separation) as data: produced by the physics modules,
+!> written by the output module, inspected by tests.
+module spb_events
+   use spb_kinds, only: wp
+   implicit none
+   private
+   public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
+   public :: ev_base_collision, event_kind_name
+
+   integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
+   integer, parameter :: ev_base_collision = 4
+
+   type :: event_t
+      integer :: kind = ev_fracture     !! ev_* constant
+      integer :: step = 0               !! the event holds from t^step on
+      integer :: node = 0               !! node whose section the event concerns
+      real(wp) :: t = 0.0_wp            !! [s]
+      real(wp) :: x = 0.0_wp            !! reference position of the section [m]
+      real(wp) :: stress = 0.0_wp       !! section stress that caused it [Pa]
+      real(wp) :: dt_bound = 0.0_wp     !! (4.1): the true time is at most this earlier [s]
+      real(wp) :: dx_bound = 0.0_wp     !! (4.2): the true place is at most this far [m]
+      real(wp) :: opening = 0.0_wp      !! initial opening of the faces (fracture) [m]
+      integer :: frag_above = 0         !! fragment ids on either side after the event
+      integer :: frag_below = 0
+   end type event_t
+
+   type :: event_list_t
+      type(event_t), allocatable :: e(:)
+      integer :: n = 0
+   end type event_list_t
+
+contains
+
+   pure subroutine push_event(list, ev)
+      type(event_list_t), intent(inout) :: list
+      type(event_t), intent(in) :: ev
+      type(event_t), allocatable :: grown(:)
+      if (.not. allocated(list%e)) allocate(list%e(8))
+      if (list%n == size(list%e)) then
+         allocate(grown(2 * size(list%e)))
+         grown(1:list%n) = list%e(1:list%n)
+         call move_alloc(grown, list%e)
+      end if
+      list%n = list%n + 1
+      list%e(list%n) = ev
+   end subroutine push_event
+
+   pure function event_kind_name(kind) result(name)
+      integer, intent(in) :: kind
+      character(len=:), allocatable :: name
+      select case (kind)
+      case (ev_fracture)
+         name = 'fracture'
+      case (ev_collision)
+         name = 'collision'
+      case (ev_separation)
+         name = 'separation'
+      case default
+         name = 'base-collision'
+      end select
+   end function event_kind_name
+end module spb_events

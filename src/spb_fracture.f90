@@ -1,0 +1,195 @@
+!> Spall: fracture of a section (3.3)-(3.6) with the two-stage correction (METHOD.md §5).
+!>
+!> After each step, a joined interior node breaks at t^{n+1} when its section stress
+!> S^{n+1/2} < -R_i - eps, eps = eps_rel * (largest stress magnitude so far). Stage 1
+!> releases S into the two adjacent cells (the halves receive opposite impulses -/+ S dt/2:
+!> momentum conserved); stage 2 shifts the two new fragments rigidly so that the faces
+!> open by (dA + dB)/2, the distance each half really moves under its impulse. Every
+!> energy change is booked in e_fracture, so the ledger stays closed.
+module spb_fracture
+   use spb_kinds, only: wp
+   use spb_mesh, only: mesh_t, end_fixed
+   use spb_state, only: state_t
+   use spb_events, only: event_t, event_list_t, push_event, ev_fracture
+   implicit none
+   private
+   public :: fracture_step, node_energy, fragment_span, shift_span, new_fragment_id
+
+contains
+
+   !> Energy terms that live at node i: kinetic and potential energy of its two halves and
+   !> the strain energy of the cells on either side (the scheme's own forms, spb_diag).
+   pure real(wp) function node_energy(mesh, st, g, i) result(e)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: i
+      real(wp) :: dt
+      dt = mesh%dt
+      e = 0.5_wp * (mesh%ma(i) * st%dua(i)**2 + mesh%mb(i) * st%dub(i)**2) / dt**2 &
+          - g * (mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i)) + mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i)))
+      if (i >= 1) e = e + 0.5_wp * st%s_old(i) * st%s(i) / mesh%stiff(i)
+      if (i <= mesh%n - 1) e = e + 0.5_wp * st%s_old(i + 1) * st%s(i + 1) / mesh%stiff(i + 1)
+   end function node_energy
+
+   !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
+   pure subroutine fragment_span(mesh, st, i, j, k)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: i
+      integer, intent(out) :: j   !! top node of the fragment ending at A_i (0 or a split node)
+      integer, intent(out) :: k   !! bottom node of the fragment starting at B_i (n or split)
+      j = i - 1
+      do while (j > 0)
+         if (.not. st%joined(j)) exit
+         j = j - 1
+      end do
+      k = i + 1
+      do while (k < mesh%n)
+         if (.not. st%joined(k)) exit
+         k = k + 1
+      end do
+   end subroutine fragment_span
+
+   !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
+   !> rigidly by delta; returns the change of gravity potential energy.
+   pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g, delta
+      integer, intent(in) :: top, bot      !! end nodes; an end node of the bar moves whole
+      real(wp), intent(out) :: de_pot      !! [J/m^2]
+      real(wp) :: mass
+      integer :: i
+      mass = 0.0_wp
+      do i = top, bot
+         if (i > top .or. top == 0) then
+            st%ua(i) = st%ua(i) + delta
+            mass = mass + mesh%ma(i)
+         end if
+         if (i < bot .or. bot == mesh%n) then
+            st%ub(i) = st%ub(i) + delta
+            mass = mass + mesh%mb(i)
+         end if
+      end do
+      de_pot = -g * mass * delta
+   end subroutine shift_span
+
+   !> Issue a new fragment id with its parent and birth step.
+   pure subroutine new_fragment_id(st, parent, id)
+      type(state_t), intent(inout) :: st
+      integer, intent(in) :: parent
+      integer, intent(out) :: id
+      integer, allocatable :: grown(:)
+      if (st%n_frag_ids == size(st%frag_parent)) then
+         allocate(grown(2 * size(st%frag_parent)))
+         grown(1:st%n_frag_ids) = st%frag_parent(1:st%n_frag_ids)
+         call move_alloc(grown, st%frag_parent)
+         allocate(grown(2 * size(st%frag_birth)))
+         grown(1:st%n_frag_ids) = st%frag_birth(1:st%n_frag_ids)
+         call move_alloc(grown, st%frag_birth)
+      end if
+      st%n_frag_ids = st%n_frag_ids + 1
+      id = st%n_frag_ids
+      st%frag_parent(id) = parent
+      st%frag_birth(id) = st%n
+   end subroutine new_fragment_id
+
+   !> Test every joined interior node at t^{n+1} = st%n dt and break those in tension
+   !> beyond their strength; append one event per fracture.
+   pure subroutine fracture_step(mesh, st, g, eps_rel, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g          !! gravity [m/s^2]
+      real(wp), intent(in) :: eps_rel    !! round-off guard, relative to the stress scale
+      type(event_list_t), intent(inout) :: events
+      integer, allocatable :: brk(:)
+      real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
+      real(wp) :: eps, dt2, e0, de, shift_up, shift_dn
+      integer :: i, m, nb, j, k, parent
+      logical :: anchored_up, anchored_dn
+      type(event_t) :: ev
+
+      if (st%n_breakable == 0) return
+      st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))))
+      eps = eps_rel * st%s_scale
+      ! (3.3): all sections that break at this step, tested on the uncorrected step
+      nb = 0
+      do i = 1, mesh%n - 1
+         if (.not. st%joined(i)) cycle
+         if (st%strength(i) < 0.0_wp) cycle
+         if (st%sec(i) < -st%strength(i) - eps) nb = nb + 1
+      end do
+      if (nb == 0) return
+      allocate(brk(nb), d_a(nb), d_b(nb), s_brk(nb))
+      nb = 0
+      do i = 1, mesh%n - 1
+         if (.not. st%joined(i)) cycle
+         if (st%strength(i) < 0.0_wp) cycle
+         if (st%sec(i) < -st%strength(i) - eps) then
+            nb = nb + 1
+            brk(nb) = i
+         end if
+      end do
+      dt2 = mesh%dt**2
+      ! stage 1, (3.4)-(3.6): each adjacent cell loses exactly S; the new faces are free
+      do m = 1, nb
+         i = brk(m)
+         s_brk(m) = st%sec(i)
+         d_a(m) = -s_brk(m) * dt2 / mesh%dm(i)
+         d_b(m) = -s_brk(m) * dt2 / mesh%dm(i + 1)
+         e0 = node_energy(mesh, st, g, i)
+         st%ua(i) = st%ua(i) - d_a(m)
+         st%dua(i) = st%dua(i) - d_a(m)
+         st%ub(i) = st%ub(i) + d_b(m)
+         st%dub(i) = st%dub(i) + d_b(m)
+         st%s(i) = st%s(i) - s_brk(m)
+         st%s(i + 1) = st%s(i + 1) - s_brk(m)
+         st%joined(i) = .false.
+         st%strength(i) = 0.0_wp
+         st%sec(i) = 0.0_wp
+         st%n_breakable = st%n_breakable - 1
+         st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
+      end do
+      ! stage 2: the opening becomes (dA + dB)/2; an anchored fragment (holding a fixed
+      ! end) does not move and the other one takes the whole correction
+      do m = 1, nb
+         i = brk(m)
+         call fragment_span(mesh, st, i, j, k)
+         anchored_up = j == 0 .and. mesh%top == end_fixed
+         anchored_dn = k == mesh%n .and. mesh%bottom == end_fixed
+         shift_up = 0.5_wp * d_a(m)
+         shift_dn = -0.5_wp * d_b(m)
+         if (anchored_up .and. .not. anchored_dn) then
+            shift_dn = shift_dn - shift_up
+            shift_up = 0.0_wp
+         else if (anchored_dn .and. .not. anchored_up) then
+            shift_up = shift_up - shift_dn
+            shift_dn = 0.0_wp
+         else if (anchored_up .and. anchored_dn) then
+            shift_up = 0.0_wp
+            shift_dn = 0.0_wp
+         end if
+         call shift_span(mesh, st, g, j, i, shift_up, de)
+         st%e_fracture = st%e_fracture - de
+         call shift_span(mesh, st, g, i, k, shift_dn, de)
+         st%e_fracture = st%e_fracture - de
+         ! genealogy: both pieces are new fragments born of the one that broke
+         parent = st%frag_id(j)
+         call new_fragment_id(st, parent, st%frag_id(j))
+         call new_fragment_id(st, parent, st%frag_id(i))
+         ev%kind = ev_fracture
+         ev%step = st%n
+         ev%node = i
+         ev%t = real(st%n, wp) * mesh%dt
+         ev%x = mesh%x(i)
+         ev%stress = s_brk(m)
+         ev%dt_bound = mesh%dt
+         ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
+         ev%opening = (st%ub(i) - st%ua(i))
+         ev%frag_above = st%frag_id(j)
+         ev%frag_below = st%frag_id(i)
+         call push_event(events, ev)
+      end do
+   end subroutine fracture_step
+end module spb_fracture
