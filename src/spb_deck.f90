@@ -57,7 +57,7 @@ module spb_deck
    end type ends_cfg
 
    type :: load_cfg
-      character(len=name_len) :: kind = 'none'         !! 'none' | 'power' | 'table'
+      character(len=name_len) :: kind = 'none'         !! 'none' | 'power' | 'exponential' | 'table'
       character(len=name_len) :: face = 'top'          !! 'top' | 'bottom'
       real(wp) :: p0 = 0.0_wp                          !! pressure scale [Pa]
       real(wp) :: t_k = unset                          !! decay time [s]
@@ -549,7 +549,8 @@ contains
       type(ends_cfg), intent(in) :: ends
       type(spb_error_t), allocatable, intent(inout) :: err
       character(len=name_len) :: face_end
-      call need_choice(err, 'load', 'kind', load%kind, [character(len=8) :: 'none', 'power', 'table'])
+      call need_choice(err, 'load', 'kind', load%kind, [character(len=11) :: 'none', 'power', &
+                       'exponential', 'table'])
       call need_choice(err, 'load', 'face', load%face, [character(len=8) :: 'top', 'bottom'])
       if (allocated(err) .or. load%kind == 'none') return
       if (load%face == 'top') then
@@ -586,6 +587,14 @@ contains
                   ' (p = p0 (1 - t/t_k)**exponent is defined up to t_k)')
             end if
          end if
+      else if (load%kind == 'exponential') then
+         call need_finite(err, 'load', 'p0', load%p0)
+         if (.not. is_set(load%t_k) .and. .not. allocated(err)) then
+            call make_error(err, '&load: t_k (decay time) is required for kind = ''exponential''')
+            return
+         end if
+         call need_positive(err, 'load', 't_k', load%t_k)
+         if (is_set(load%t_cut)) call need_positive(err, 'load', 't_cut', load%t_cut)
       else if (load%kind == 'table') then
          if (len_trim(load%table) == 0) call make_error(err, &
             '&load: table (file of two columns t p) is required for kind = ''table''')

@@ -8,10 +8,10 @@ module spb_load
    use spb_deck, only: load_cfg, is_set
    implicit none
    private
-   public :: load_t, load_none, load_power, load_table, face_top, face_bottom
+   public :: load_t, load_none, load_power, load_table, load_exponential, face_top, face_bottom
    public :: build_load, read_table, load_integral, step_load, log1p_acc, expm1_acc
 
-   integer, parameter :: load_none = 0, load_power = 1, load_table = 2
+   integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
    integer, parameter :: face_top = 1, face_bottom = 2
    integer, parameter :: max_table_rows = 1000000
 
@@ -46,6 +46,11 @@ contains
          else if (is_set(cfg%t_k)) then
             load%t_cut = cfg%t_k
          end if
+      case ('exponential')
+         load%kind = load_exponential
+         load%p0 = cfg%p0
+         load%t_k = cfg%t_k
+         if (is_set(cfg%t_cut)) load%t_cut = cfg%t_cut
       case ('table')
          load%kind = load_table
          call read_table(cfg%table, load%t, load%p, err)
@@ -171,6 +176,8 @@ contains
          q = power_integral(load, a, b)
       case (load_table)
          q = table_integral(load%t, load%p, a, b)
+      case (load_exponential)
+         q = exponential_integral(load, a, b)
       case default
          q = 0.0_wp
       end select
@@ -200,6 +207,18 @@ contains
          q = -load%p0 * load%t_k / k * ca**k * expm1_acc(k * log1p_acc(-(hi - lo) / (load%t_k * ca)))
       end if
    end function power_integral
+
+   !> p0 exp(-t/t_k) on [0, t_cut]: p0 t_k exp(-lo/t_k) (1 - exp(-(hi - lo)/t_k)).
+   pure real(wp) function exponential_integral(load, a, b) result(q)
+      type(load_t), intent(in) :: load
+      real(wp), intent(in) :: a, b
+      real(wp) :: lo, hi
+      lo = max(a, 0.0_wp)
+      hi = min(b, load%t_cut)
+      q = 0.0_wp
+      if (.not. (hi > lo)) return
+      q = -load%p0 * load%t_k * exp(-lo / load%t_k) * expm1_acc(-(hi - lo) / load%t_k)
+   end function exponential_integral
 
    !> Integral of the piecewise-linear table over [a, b]; p = 0 outside the table.
    pure real(wp) function table_integral(t, p, a, b) result(q)
