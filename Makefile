@@ -7,7 +7,7 @@
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
 BUILD_DEBUG   ?= build/debug
-RUN_DECK      ?= example2_elastic
+RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 

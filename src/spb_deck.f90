@@ -31,6 +31,7 @@ module spb_deck
       real(wp) :: profile_times(max_profiles) = unset   !! profile snapshot times [s]
       integer :: n_profiles = 0                         !! how many profile_times were given
       logical :: hdf5 = .false.                         !! also write PREFIX.h5
+      character(len=name_len) :: model = 'half-mass'    !! 'half-mass' | 'full-mass' (naive)
    end type run_cfg
 
    type :: mesh_cfg
@@ -171,12 +172,12 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err
       character(len=path_len) :: title
       real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
-      character(len=name_len) :: timing, shift
+      character(len=name_len) :: timing, shift, model
       integer :: history_every, ios
       logical :: hdf5
       character(len=256) :: msg
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
-         profile_times, hdf5
+         profile_times, hdf5, model
       title = deck%run%title
       t_end = deck%run%t_end
       gravity = deck%run%gravity
@@ -186,6 +187,7 @@ contains
       history_every = deck%run%history_every
       profile_times = deck%run%profile_times
       hdf5 = deck%run%hdf5
+      model = deck%run%model
       rewind(u)
       read(u, nml=run, iostat=ios, iomsg=msg)
       call read_status(deck, 'run', ios, msg, err)
@@ -199,6 +201,7 @@ contains
       deck%run%history_every = history_every
       deck%run%profile_times = profile_times
       deck%run%hdf5 = hdf5
+      deck%run%model = lower(model)
    end subroutine read_run
 
    subroutine read_mesh(u, deck, err)
@@ -406,6 +409,7 @@ contains
       call need_choice(err, 'run', 'timing', run%timing, [character(len=10) :: 'accelerate', &
                        'delay', 'min'])
       call need_choice(err, 'run', 'shift', run%shift, [character(len=8) :: 'above', 'fragment'])
+      call need_choice(err, 'run', 'model', run%model, [character(len=9) :: 'half-mass', 'full-mass'])
       call need_finite(err, 'run', 'eps_rel', run%eps_rel)
       if (allocated(err)) return
       if (run%eps_rel < 0.0_wp .or. run%eps_rel > 1.0e-3_wp) then
@@ -641,6 +645,7 @@ contains
       end do
       call item('run', 'profile_times', v, 's')
       call item('run', 'hdf5', ltoa(deck%run%hdf5), '')
+      call item('run', 'model', quote(deck%run%model), '')
       call close_group()
 
       call open_group('mesh')

@@ -50,29 +50,36 @@ contains
       e%e_strain = 0.5_wp * sum(st%s_old(1:n) * st%s(1:n) / mesh%stiff)
       e%e_pot = 0.0_wp - g * sum(mesh%ma * (st%ua - 0.5_wp * st%dua) + mesh%mb * (st%ub - 0.5_wp * st%dub))
       e%w_ext = st%w_load + st%w_transmit
-      e%e_lost = st%e_fracture
+      e%e_lost = st%e_fracture + st%e_contact
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost
       e%momentum = sum(mesh%ma * st%dua + mesh%mb * st%dub) / dt
    end function energies
 
    !> Every fragment, top to bottom, with its mass, mean velocity and vibration energy.
+   !> Fragments end at a split node (half-node model) or before a cut cell (full-mass model).
    pure subroutine fragment_list(mesh, st, list)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
       type(frag_info_t), allocatable, intent(out) :: list(:)
       integer :: nf, top, bot, i, f
+      logical :: whole_top, whole_bot
       real(wp) :: mom, ekin, estr, dt
       dt = mesh%dt
-      nf = 1
-      if (mesh%n >= 2) nf = 1 + count(.not. st%joined(1:mesh%n-1))
+      nf = 1 + st%n_cut
+      if (mesh%n >= 2) nf = nf + count(.not. st%joined(1:mesh%n-1))
       allocate(list(nf))
       top = 0
+      whole_top = .true.
       do f = 1, nf
-         bot = top + 1
-         do while (bot < mesh%n)
-            if (.not. st%joined(bot)) exit
+         bot = top
+         do
+            if (bot == mesh%n) exit
+            if (st%is_cut(bot + 1)) exit
             bot = bot + 1
+            if (bot == mesh%n) exit
+            if (.not. st%joined(bot)) exit
          end do
+         whole_bot = bot == mesh%n .or. st%joined(bot)
          list(f)%id = st%frag_id(top)
          list(f)%parent = st%frag_parent(list(f)%id)
          list(f)%birth_step = st%frag_birth(list(f)%id)
@@ -85,12 +92,12 @@ contains
          ekin = 0.0_wp
          estr = 0.0_wp
          do i = top, bot
-            if (i > top .or. top == 0) then
+            if (i > top .or. whole_top) then
                list(f)%mass = list(f)%mass + mesh%ma(i)
                mom = mom + mesh%ma(i) * st%dua(i) / dt
                ekin = ekin + 0.5_wp * mesh%ma(i) * (st%dua(i) / dt)**2
             end if
-            if (i < bot .or. bot == mesh%n) then
+            if (i < bot .or. whole_bot) then
                list(f)%mass = list(f)%mass + mesh%mb(i)
                mom = mom + mesh%mb(i) * st%dub(i) / dt
                ekin = ekin + 0.5_wp * mesh%mb(i) * (st%dub(i) / dt)**2
@@ -99,7 +106,13 @@ contains
          end do
          list(f)%velocity = mom / list(f)%mass
          list(f)%e_vib = ekin - 0.5_wp * mom**2 / list(f)%mass + estr
-         top = bot
+         if (whole_bot) then
+            top = bot + 1
+            whole_top = .true.
+         else
+            top = bot
+            whole_top = .false.
+         end if
       end do
    end subroutine fragment_list
 end module spb_diag

@@ -13,7 +13,7 @@ module spb_fracture
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture
    implicit none
    private
-   public :: fracture_step, node_energy, fragment_span, shift_span, new_fragment_id
+   public :: fracture_step, node_energy, fragment_span, shift_span, new_fragment_id, first_overlap
 
 contains
 
@@ -113,6 +113,10 @@ contains
       if (st%n_breakable == 0) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))))
       eps = eps_rel * st%s_scale
+      if (mesh%full_mass) then
+         call cut_springs(mesh, st, eps, events)
+         return
+      end if
       ! (3.3): all sections that break at this step, tested on the uncorrected step
       nb = 0
       do i = 1, mesh%n - 1
@@ -192,4 +196,69 @@ contains
          call push_event(events, ev)
       end do
    end subroutine fracture_step
+
+   !> The naive full-mass model (the paper's Fig. 12 comparison): a spring whose own stress
+   !> falls below -R - eps is cut; from then on it carries compression only. No half masses,
+   !> no corrections; the strain energy it held is booked in e_fracture.
+   pure subroutine cut_springs(mesh, st, eps, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: eps
+      type(event_list_t), intent(inout) :: events
+      integer, allocatable :: grown(:)
+      integer :: k, j, parent
+      type(event_t) :: ev
+      do k = 1, mesh%n
+         if (st%is_cut(k) .or. st%cell_strength(k) < 0.0_wp) cycle
+         if (.not. (st%s(k) < -st%cell_strength(k) - eps)) cycle
+         ev%stress = st%s(k)
+         st%e_fracture = st%e_fracture + 0.5_wp * st%s_old(k) * st%s(k) / mesh%stiff(k)
+         st%s(k) = 0.0_wp
+         st%is_cut(k) = .true.
+         st%cell_strength(k) = 0.0_wp
+         st%n_breakable = st%n_breakable - 1
+         if (st%n_cut == size(st%cut)) then
+            allocate(grown(2 * size(st%cut)))
+            grown(1:st%n_cut) = st%cut(1:st%n_cut)
+            call move_alloc(grown, st%cut)
+         end if
+         st%n_cut = st%n_cut + 1
+         st%cut(st%n_cut) = k
+         ! the fragment that held cell k starts at node j (0 or just below a cut cell)
+         j = k - 1
+         do while (j > 0)
+            if (st%is_cut(j)) exit
+            j = j - 1
+         end do
+         parent = st%frag_id(j)
+         call new_fragment_id(st, parent, st%frag_id(j))
+         call new_fragment_id(st, parent, st%frag_id(k))
+         ev%kind = ev_fracture
+         ev%step = st%n
+         ev%node = k - 1
+         ev%t = real(st%n, wp) * mesh%dt
+         ev%x = mesh%x(k) - 0.5_wp * mesh%dx(k)
+         ev%dt_bound = mesh%dt
+         ev%dx_bound = mesh%dx(k)
+         ev%opening = 0.0_wp
+         ev%frag_above = st%frag_id(j)
+         ev%frag_below = st%frag_id(k)
+         call push_event(events, ev)
+      end do
+   end subroutine cut_springs
+
+   !> First split node whose faces have passed each other, u(A_i) - u(B_i) > tol (0: none).
+   pure integer function first_overlap(mesh, st) result(node)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer :: i
+      node = 0
+      do i = 1, mesh%n - 1
+         if (st%joined(i)) cycle
+         if (st%ua(i) - st%ub(i) > 1.0e-9_wp * mesh%dx(i)) then
+            node = i
+            return
+         end if
+      end do
+   end function first_overlap
 end module spb_fracture

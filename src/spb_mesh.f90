@@ -24,6 +24,7 @@ module spb_mesh
       integer :: nsteps = 0                  !! steps to reach t_end
       integer :: top = end_free              !! end condition at node 0
       integer :: bottom = end_free           !! end condition at node n
+      logical :: full_mass = .false.         !! the paper's naive comparison model (Fig. 12)
       ! per segment
       integer, allocatable :: first(:), last(:)        !! cell range of each segment
       real(wp), allocatable :: length_req(:)           !! length asked for [m]
@@ -166,6 +167,10 @@ contains
          ! virtual cell beyond, so that it moves like an interior node
          if (mesh%top == end_transmit) mesh%ma(0) = 0.5_wp * mesh%dm(1)
          if (mesh%bottom == end_transmit) mesh%mb(n) = 0.5_wp * mesh%dm(n)
+         ! the naive model has no half masses at free faces: a free end node is a full mass
+         mesh%full_mass = deck%run%model == 'full-mass'
+         if (mesh%full_mass .and. mesh%top == end_free) mesh%ma(0) = 0.5_wp * mesh%dm(1)
+         if (mesh%full_mass .and. mesh%bottom == end_free) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          mesh%inv_m = 1.0_wp / (mesh%ma + mesh%mb)
       end associate
    end subroutine build_mesh

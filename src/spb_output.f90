@@ -29,7 +29,7 @@ module spb_output
    character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
       fmt_real // '),1x,i20,6(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
-      '6(1x,' // fmt_real // '),2(1x,i12))'
+      '5(1x,' // fmt_real // '),2(1x,i12))'
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
    character(len=*), parameter :: fmt_prf = '(4(1x,' // fmt_real // '))'
 

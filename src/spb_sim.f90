@@ -15,7 +15,7 @@ module spb_sim
    use spb_step, only: advance, end_stresses
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
    use spb_events, only: event_list_t
-   use spb_fracture, only: fracture_step
+   use spb_fracture, only: fracture_step, first_overlap
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       write_events, write_fragments
    implicit none
@@ -71,7 +71,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err
       type(outputs_t) :: out
       type(event_list_t) :: events
-      integer :: ip, nprof, every, n
+      integer :: ip, nprof, every, n, i_overlap
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
       real(wp) :: g
@@ -94,6 +94,17 @@ contains
          if (events%n > 0) then
             call write_events(out, events)
             summary%events = summary%events + events%n
+         end if
+         if (sim%st%n_frag_ids > 1 .and. .not. sim%mesh%full_mass) then
+            i_overlap = first_overlap(sim%mesh, sim%st)
+            if (i_overlap > 0) then
+               call row()
+               call make_error(err, 'run: fragments meet at node ' // itoa(i_overlap) // &
+                  ' (x = ' // rtoa(sim%mesh%x(i_overlap)) // ' m) at t = ' // &
+                  rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s; collisions are not ' // &
+                  'available in this version (outputs up to here are written)', code=exit_runtime)
+               exit
+            end if
          end if
          if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
             call row()

@@ -32,6 +32,15 @@ module spb_state
       integer, allocatable :: frag_parent(:)  !! parent id of each fragment id (0: none)
       integer, allocatable :: frag_birth(:)   !! step at which each fragment id was born
       integer :: n_frag_ids = 0               !! fragment ids issued
+      ! full-mass (naive) model: springs break instead of nodes; a cut spring carries
+      ! compression only
+      real(wp), allocatable :: cell_strength(:) !! (1:n) [Pa]; < 0 unbreakable, 0 once cut
+      integer, allocatable :: cut(:)          !! indices of cut cells, first n_cut used
+      logical, allocatable :: is_cut(:)       !! (1:n)
+      integer :: n_cut = 0
+      real(wp) :: strain_cut = 0.0_wp         !! strain energy measure of cut cells [J/m^2]
+      real(wp) :: e_contact = 0.0_wp          !! energy the cut springs' non-linear force
+                                              !! removed from the scheme's invariant [J/m^2]
       real(wp) :: s_static_top = 0.0_wp       !! static stress a transmitting top carries [Pa]
       real(wp) :: s_static_bot = 0.0_wp       !! static stress a transmitting bottom carries [Pa]
       real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
@@ -56,6 +65,14 @@ contains
       allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%sec(0:n), st%strength(0:n))
       st%joined = .true.
       call init_strength(deck, mesh, st)
+      allocate(st%cell_strength(n), st%cut(16), st%is_cut(n))
+      st%is_cut = .false.
+      st%cell_strength = deck%seg%strength(mesh%seg)
+      if (mesh%full_mass) then
+         ! breaking happens in springs: no node ever splits
+         st%n_breakable = count(st%cell_strength >= 0.0_wp)
+         st%strength = -1.0_wp
+      end if
       allocate(st%frag_id(0:n), st%frag_parent(16), st%frag_birth(16))
       st%frag_id = 0
       st%frag_id(0) = 1
@@ -132,7 +149,7 @@ contains
       type(state_t), intent(in) :: st
       integer :: n
       n = size(st%joined) - 1
-      nf = 1
-      if (n >= 2) nf = 1 + count(.not. st%joined(1:n-1))
+      nf = 1 + st%n_cut
+      if (n >= 2) nf = nf + count(.not. st%joined(1:n-1))
    end function fragment_count
 end module spb_state

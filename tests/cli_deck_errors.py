@@ -70,7 +70,7 @@ def main():
         check(len(lines) == 1, f"{name}: {len(lines)} stderr lines: {r.stderr!r}")
         check(len(lines) >= 1 and expect in lines[0], f"{name}: stderr {r.stderr!r} lacks {expect!r}")
         check(open(old).read() == "old result\n", f"{name}: an existing output was touched")
-        for ext in (".prf", ".evt", ".h5"):
+        for ext in (".prf", ".evt", ".frg", ".h5"):
             check(not os.path.exists(os.path.join(work, name + ext)), f"{name}: left {name}{ext}")
         print(f"ok   {name}: {lines[0] if lines else ''}")
 
@@ -96,7 +96,7 @@ def main():
     r = run(exe, ["good.nml", "--output", "out/run1", "--quiet"], work)
     check(r.returncode == 0, f"good deck: exit {r.returncode}: {r.stderr}")
     check(r.stdout == "" and r.stderr == "", "--quiet prints nothing")
-    for ext in (".his", ".prf", ".evt"):
+    for ext in (".his", ".prf", ".evt", ".frg"):
         check(os.path.exists(os.path.join(work, "out", "run1" + ext)), f"good deck wrote {ext}")
     r = run(exe, ["good.nml"], work)
     check(r.returncode == 0 and os.path.exists(os.path.join(work, "good.his")), "default prefix")

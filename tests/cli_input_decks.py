@@ -75,7 +75,32 @@ def main():
                 if not l.startswith("#"):
                     block.append(l)
             check(len(block) == 2 * nodes, f"{name}: profile block of {len(block)} rows, expected {2 * nodes}")
-        print(f"ok   {name}: {len(rows)} history rows, {len(starts)} profiles, ledger drift {drift:.2e}")
+        # fragments: one block per profile; each block lists as many fragments as the
+        # history's 'fragments' column says at that time; masses add up to the bar's
+        fh, frows = read_table(prefix + ".frg")
+        fcols = [h for h in fh if h.startswith("# id ")][0][1:].split()
+        with open(prefix + ".frg") as f:
+            blocks = [l for l in f if l.startswith("# t = ")]
+        check(len(blocks) == len(starts), f"{name}: {len(blocks)} fragment blocks, {len(starts)} profiles")
+        masses = {}
+        with open(prefix + ".frg") as f:
+            t = None
+            for l in f:
+                if l.startswith("# t = "):
+                    t = l
+                    masses[t] = 0.0
+                elif not l.startswith("#") and l.strip():
+                    masses[t] += float(l.split()[fcols.index("mass")])
+        check(len(set(round(m, 9) for m in masses.values())) <= 1, f"{name}: fragment mass changes {masses}")
+        with open(prefix + ".evt") as f:
+            ev = [l.split() for l in f if not l.startswith("#") and l.strip()]
+        ecols = [l for l in open(prefix + ".evt") if l.startswith("#")][-1][1:].split()
+        check(ecols[:6] == ["t", "step", "kind", "node", "x", "stress"], f"{name}: event columns {ecols}")
+        check(all(len(e) == len(ecols) for e in ev), f"{name}: event row widths")
+        frag_col = [x[cols.index("fragments")] for x in rows]
+        check(frag_col[-1] == 1 + len(ev), f"{name}: {frag_col[-1]} fragments after {len(ev)} fractures")
+        print(f"ok   {name}: {len(rows)} history rows, {len(starts)} profiles, {len(ev)} events, "
+              f"ledger drift {drift:.2e}")
     print(f"{checks - failures} passed, {failures} failed")
     return 1 if failures else 0
 
