@@ -49,6 +49,7 @@ module spb_deck
       real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
       character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
       real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]
+      real(wp) :: gap(max_segments) = unset             !! initial gap at a dry interface [m]
    end type segments_cfg
 
    type :: ends_cfg
@@ -232,10 +233,10 @@ contains
       type(deck_t), intent(inout) :: deck
       type(spb_error_t), allocatable, intent(inout) :: err
       integer :: n, ios, j
-      real(wp), dimension(max_segments) :: length, young, density, strength, velocity
+      real(wp), dimension(max_segments) :: length, young, density, strength, velocity, gap
       character(len=name_len) :: interface(max_segments)
       character(len=256) :: msg
-      namelist /segments/ n, length, young, density, strength, interface, velocity
+      namelist /segments/ n, length, young, density, strength, interface, velocity, gap
       n = deck%seg%n
       length = deck%seg%length
       young = deck%seg%young
@@ -243,6 +244,7 @@ contains
       strength = deck%seg%strength
       interface = deck%seg%interface
       velocity = deck%seg%velocity
+      gap = deck%seg%gap
       rewind(u)
       read(u, nml=segments, iostat=ios, iomsg=msg)
       call read_status(deck, 'segments', ios, msg, err)
@@ -256,6 +258,7 @@ contains
          deck%seg%interface(j) = lower(interface(j))
       end do
       deck%seg%velocity = velocity
+      deck%seg%gap = gap
    end subroutine read_segments
 
    subroutine read_ends(u, deck, err)
@@ -503,11 +506,21 @@ contains
                if (len_trim(seg%interface(j)) == 0) seg%interface(j) = 'bonded'
                call need_choice(err, 'segments', 'interface' // sj, seg%interface(j), &
                                 [character(len=8) :: 'bonded', 'dry'])
-               if (seg%interface(j) == 'dry') call not_in_version(err, 'segments', &
-                  'interface' // sj, 'a dry interface (contact)')
-            else if (len_trim(seg%interface(j)) > 0) then
-               call make_error(err, '&segments: interface' // sj // ' is given but there are only ' &
-                               // itoa(seg%n - 1) // ' interfaces (n = ' // itoa(seg%n) // ')')
+               if (is_set(seg%gap(j))) then
+                  call need_positive(err, 'segments', 'gap' // sj, seg%gap(j), zero_ok=.true.)
+                  if (.not. allocated(err) .and. seg%gap(j) > 0.0_wp .and. &
+                      seg%interface(j) /= 'dry') call make_error(err, '&segments: gap' // sj // &
+                      ' > 0 needs interface' // sj // ' = ''dry''')
+               else
+                  seg%gap(j) = 0.0_wp
+               end if
+            else
+               if (len_trim(seg%interface(j)) > 0) call make_error(err, '&segments: interface' // &
+                  sj // ' is given but there are only ' // itoa(seg%n - 1) // ' interfaces (n = ' &
+                  // itoa(seg%n) // ')')
+               if (is_set(seg%gap(j)) .and. .not. allocated(err)) call make_error(err, &
+                  '&segments: gap' // sj // ' is given but there are only ' // itoa(seg%n - 1) &
+                  // ' interfaces (n = ' // itoa(seg%n) // ')')
             end if
          else
             call beyond_n('length', seg%length(j))
@@ -515,6 +528,7 @@ contains
             call beyond_n('density', seg%density(j))
             call beyond_n('strength', seg%strength(j))
             call beyond_n('velocity', seg%velocity(j))
+            if (j >= seg%n) call beyond_n('gap', seg%gap(j))
             if (len_trim(seg%interface(j)) > 0 .and. .not. allocated(err)) &
                call make_error(err, '&segments: interface' // sj // ' is given but n = ' // itoa(seg%n))
          end if
@@ -536,9 +550,6 @@ contains
       call need_choice(err, 'ends', 'top', ends%top, [character(len=8) :: 'free', 'fixed', 'transmit'])
       call need_choice(err, 'ends', 'bottom', ends%bottom, [character(len=8) :: 'free', 'fixed', &
                        'base', 'transmit'])
-      if (allocated(err)) return
-      if (ends%bottom == 'base') call not_in_version(err, 'ends', 'bottom', &
-         'the rigid unilateral base (''base'')')
       call need_finite(err, 'ends', 'base_gap', ends%base_gap)
       if (allocated(err)) return
       if (ends%base_gap < 0.0_wp) then
@@ -608,13 +619,28 @@ contains
    subroutine validate_initial(deck, err)
       type(deck_t), intent(in) :: deck
       type(spb_error_t), allocatable, intent(inout) :: err
+      if (deck%run%model == 'full-mass' .and. any(deck%seg%interface(1:deck%seg%n - 1) == 'dry')) then
+         call make_error(err, '&segments: interface = ''dry'' needs &run model = ''half-mass'' ' &
+                         // '(the full-mass model breaks springs, not nodes)')
+         return
+      end if
       call need_choice(err, 'initial', 'state', deck%init%state, [character(len=10) :: &
                        'unstressed', 'static'])
       if (allocated(err)) return
       if (deck%init%state == 'static' .and. abs(deck%run%gravity) > 0.0_wp) then
+         if (any(deck%seg%gap(1:deck%seg%n - 1) > 0.0_wp)) then
+            call make_error(err, '&initial: state = ''static'' with a gap in &segments gap: ' &
+                            // 'separated pieces are not in equilibrium')
+            return
+         end if
+         if (deck%ends%bottom == 'base' .and. deck%ends%base_gap > 0.0_wp) then
+            call make_error(err, '&initial: state = ''static'' with &ends base_gap > 0: a bar ' &
+                            // 'above the base is not in equilibrium')
+            return
+         end if
          if (deck%ends%top == 'free' .and. deck%ends%bottom == 'free') call make_error(err, &
             '&initial: state = ''static'' with gravity needs a supported end (&ends top or ' &
-            // 'bottom = ''fixed'' or ''transmit''); both ends are free')
+            // 'bottom = ''fixed'', ''transmit'' or ''base''); both ends are free')
       end if
    end subroutine validate_initial
 
@@ -669,6 +695,7 @@ contains
       end do
       call item('segments', 'interface', v, '')
       call item('segments', 'velocity', rlist(deck%seg%velocity(1:n)), 'm/s')
+      call item('segments', 'gap', rlist(deck%seg%gap(1:n-1)), 'm')
       call close_group()
 
       call open_group('ends')

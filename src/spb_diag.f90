@@ -50,7 +50,7 @@ contains
       e%e_strain = 0.5_wp * sum(st%s_old(1:n) * st%s(1:n) / mesh%stiff)
       e%e_pot = 0.0_wp - g * sum(mesh%ma * (st%ua - 0.5_wp * st%dua) + mesh%mb * (st%ub - 0.5_wp * st%dub))
       e%w_ext = st%w_load + st%w_transmit
-      e%e_lost = st%e_fracture + st%e_contact
+      e%e_lost = st%e_fracture + st%e_join + st%e_shift + st%e_contact
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost
       e%momentum = sum(mesh%ma * st%dua + mesh%mb * st%dub) / dt
    end function energies

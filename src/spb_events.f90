@@ -19,7 +19,10 @@ module spb_events
       real(wp) :: stress = 0.0_wp       !! section stress that caused it [Pa]
       real(wp) :: dt_bound = 0.0_wp     !! (4.1): the true time is at most this earlier [s]
       real(wp) :: dx_bound = 0.0_wp     !! (4.2): the true place is at most this far [m]
-      real(wp) :: opening = 0.0_wp      !! initial opening of the faces (fracture) [m]
+      real(wp) :: opening = 0.0_wp      !! fracture: initial opening of the faces; collision:
+                                        !! the correction (5.2) of the chosen rule [m]
+      real(wp) :: stress_bound = 0.0_wp !! (6.2): bound of the collision stress error [Pa]
+      real(wp) :: shift = 0.0_wp        !! rigid shift applied to one side [m]
       integer :: frag_above = 0         !! fragment ids on either side after the event
       integer :: frag_below = 0
    end type event_t

@@ -8,9 +8,9 @@
 !> energy change is booked in e_fracture, so the ledger stays closed.
 module spb_fracture
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_fixed
+   use spb_mesh, only: mesh_t, end_fixed, end_base
    use spb_state, only: state_t
-   use spb_events, only: event_t, event_list_t, push_event, ev_fracture
+   use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
    implicit none
    private
    public :: fracture_step, node_energy, fragment_span, shift_span, new_fragment_id, first_overlap
@@ -110,9 +110,11 @@ contains
       logical :: anchored_up, anchored_dn
       type(event_t) :: ev
 
-      if (st%n_breakable == 0) return
-      st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))))
+      if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%base_contact)) return
+      st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%sec(mesh%n)))
       eps = eps_rel * st%s_scale
+      if (mesh%bottom == end_base .and. st%base_contact) call lift_off(mesh, st, g, eps, events)
+      if (st%n_breakable == 0) return
       if (mesh%full_mass) then
          call cut_springs(mesh, st, eps, events)
          return
@@ -120,17 +122,13 @@ contains
       ! (3.3): all sections that break at this step, tested on the uncorrected step
       nb = 0
       do i = 1, mesh%n - 1
-         if (.not. st%joined(i)) cycle
-         if (st%strength(i) < 0.0_wp) cycle
-         if (st%sec(i) < -st%strength(i) - eps) nb = nb + 1
+         if (breaks(i)) nb = nb + 1
       end do
       if (nb == 0) return
       allocate(brk(nb), d_a(nb), d_b(nb), s_brk(nb))
       nb = 0
       do i = 1, mesh%n - 1
-         if (.not. st%joined(i)) cycle
-         if (st%strength(i) < 0.0_wp) cycle
-         if (st%sec(i) < -st%strength(i) - eps) then
+         if (breaks(i)) then
             nb = nb + 1
             brk(nb) = i
          end if
@@ -161,7 +159,8 @@ contains
          i = brk(m)
          call fragment_span(mesh, st, i, j, k)
          anchored_up = j == 0 .and. mesh%top == end_fixed
-         anchored_dn = k == mesh%n .and. mesh%bottom == end_fixed
+         anchored_dn = k == mesh%n .and. (mesh%bottom == end_fixed .or. &
+                       (mesh%bottom == end_base .and. st%base_contact))
          shift_up = 0.5_wp * d_a(m)
          shift_dn = -0.5_wp * d_b(m)
          if (anchored_up .and. .not. anchored_dn) then
@@ -183,6 +182,8 @@ contains
          call new_fragment_id(st, parent, st%frag_id(j))
          call new_fragment_id(st, parent, st%frag_id(i))
          ev%kind = ev_fracture
+         if (st%cracked(i)) ev%kind = ev_separation
+         st%cracked(i) = .true.
          ev%step = st%n
          ev%node = i
          ev%t = real(st%n, wp) * mesh%dt
@@ -195,7 +196,58 @@ contains
          ev%frag_below = st%frag_id(i)
          call push_event(events, ev)
       end do
+   contains
+      pure logical function breaks(i)
+         integer, intent(in) :: i
+         breaks = .false.
+         if (.not. st%joined(i)) return
+         if (st%strength(i) < 0.0_wp) return
+         if (any(st%skip_test(1:st%n_skip) == i)) return
+         breaks = st%sec(i) < -st%strength(i) - eps
+      end function breaks
    end subroutine fracture_step
+
+   !> The bar leaves the rigid base when the base section stress falls below -eps (the
+   !> base has no tensile strength): stage 1 and 2 on the bar side only.
+   pure subroutine lift_off(mesh, st, g, eps, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g, eps
+      type(event_list_t), intent(inout) :: events
+      real(wp) :: s_base, d_a, e0, de
+      integer :: n, j, k
+      type(event_t) :: ev
+      n = mesh%n
+      if (any(st%skip_test(1:st%n_skip) == n)) return
+      if (.not. (st%sec(n) < -eps)) return
+      s_base = st%sec(n)
+      d_a = -s_base * mesh%dt**2 / mesh%dm(n)
+      e0 = node_energy(mesh, st, g, n)
+      st%ua(n) = st%ua(n) - d_a
+      st%dua(n) = st%dua(n) - d_a
+      st%ub(n) = st%ua(n)
+      st%dub(n) = st%dua(n)
+      st%s(n) = st%s(n) - s_base
+      st%base_contact = .false.
+      st%sec(n) = 0.0_wp
+      st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
+      call fragment_span(mesh, st, n, j, k)
+      if (.not. (j == 0 .and. mesh%top == end_fixed)) then
+         call shift_span(mesh, st, g, j, n, 0.5_wp * d_a, de)
+         st%e_fracture = st%e_fracture - de
+      end if
+      ev%kind = ev_separation
+      ev%step = st%n
+      ev%node = n
+      ev%t = real(st%n, wp) * mesh%dt
+      ev%x = mesh%x(n)
+      ev%stress = s_base
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = 0.0_wp
+      ev%opening = st%u_base - st%ua(n)
+      ev%frag_above = st%frag_id(j)
+      call push_event(events, ev)
+   end subroutine lift_off
 
    !> The naive full-mass model (the paper's Fig. 12 comparison): a spring whose own stress
    !> falls below -R - eps is cut; from then on it carries compression only. No half masses,

@@ -18,18 +18,18 @@ module spb_output
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
-      // 'w_transmit ledger e_fracture'
+      // 'w_transmit ledger e_fracture e_join e_shift e_contact'
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum [kg/(m s)]'
    character(len=*), parameter :: event_columns = 't step kind node x stress dt_bound ' &
-      // 'dx_bound opening frag_above frag_below'
+      // 'dx_bound opening frag_above frag_below stress_bound shift'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
    character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
-      fmt_real // '),1x,i20,6(1x,' // fmt_real // '))'
+      fmt_real // '),1x,i20,9(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
-      '5(1x,' // fmt_real // '),2(1x,i12))'
+      '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
    character(len=*), parameter :: fmt_prf = '(4(1x,' // fmt_real // '))'
 
@@ -75,9 +75,13 @@ contains
       call header(out%evt, 'events: one row per fracture, collision, separation')
       write(out%evt, '(a)') '# t is the grid time the event takes effect; the true time lies in ' &
          // '[t - dt_bound, t] (4.1), the true place within dx_bound of x (4.2)'
-      write(out%evt, '(a)') '# frag_above, frag_below: fragment ids on either side after the event'
+      write(out%evt, '(a)') '# frag_above, frag_below: fragment ids on either side after the event ' &
+         // '(collision: the merged one and the lower parent)'
+      write(out%evt, '(a)') '# opening: fracture: (dA+dB)/2 of the new faces; collision: the ' &
+         // 'correction (5.2) of the rule used; stress_bound: (6.2) bound of the collision ' &
+         // 'stress error; shift: rigid shift given to one side'
       write(out%evt, '(a)') '# units: t, dt_bound [s]; step, node, frag_* [-]; x, dx_bound, ' &
-         // 'opening [m] (x reference); stress [Pa] (compression > 0)'
+         // 'opening, shift [m] (x reference); stress, stress_bound [Pa] (compression > 0)'
       write(out%evt, '(a)') '# ' // event_columns
       call header(out%frg, 'fragments: one block per profile time')
       write(out%frg, '(a)') '# x_top, x_bottom: current positions x + u of the faces; e_vib: ' &
@@ -146,15 +150,16 @@ contains
    !> One history row; values in the order of history_columns.
    subroutine write_history_row(out, t, reaction_bottom, reaction_top, fragments, e_kin, &
                                 e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
-                                s_end_bottom, w_load, w_transmit, ledger, e_fracture)
+                                s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, &
+                                e_shift, e_contact)
       type(outputs_t), intent(in) :: out
       real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
       real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
-      real(wp), intent(in) :: e_fracture
+      real(wp), intent(in) :: e_fracture, e_join, e_shift, e_contact
       integer, intent(in) :: fragments, step
       write(out%his, fmt_his) t, reaction_bottom, reaction_top, fragments, e_kin, e_strain, &
          e_pot, w_ext, e_lost, momentum, step, s_end_top, s_end_bottom, w_load, w_transmit, &
-         ledger, e_fracture
+         ledger, e_fracture, e_join, e_shift, e_contact
    end subroutine write_history_row
 
    !> Rows for the events of the list.
@@ -165,7 +170,8 @@ contains
       do k = 1, events%n
          associate (e => events%e(k))
             write(out%evt, fmt_evt) e%t, e%step, event_kind_name(e%kind), e%node, e%x, &
-               e%stress, e%dt_bound, e%dx_bound, e%opening, e%frag_above, e%frag_below
+               e%stress, e%dt_bound, e%dx_bound, e%opening, e%frag_above, e%frag_below, &
+               e%stress_bound, e%shift
          end associate
       end do
    end subroutine write_events

@@ -15,7 +15,9 @@ module spb_sim
    use spb_step, only: advance, end_stresses
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
    use spb_events, only: event_list_t
-   use spb_fracture, only: fracture_step, first_overlap
+   use spb_fracture, only: fracture_step
+   use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
+      shift_above, shift_fragment
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       write_events, write_fragments
    implicit none
@@ -54,11 +56,24 @@ contains
       call init_state(deck, sim%mesh, sim%st)
    end subroutine sim_setup
 
-   !> One step of the whole method: the compact update, then fracture at t^{n+1}.
+   !> One step of the whole method: the trial update, collisions by the timing rule, then
+   !> fracture and separation at t^{n+1}.
    pure subroutine sim_step(sim, events)
       type(sim_t), intent(inout) :: sim
       type(event_list_t), intent(inout) :: events   !! events of this step are appended
+      integer :: timing, policy
+      select case (sim%deck%run%timing)
+      case ('delay')
+         timing = timing_delay
+      case ('min')
+         timing = timing_min
+      case default
+         timing = timing_accelerate
+      end select
+      policy = shift_above
+      if (sim%deck%run%shift == 'fragment') policy = shift_fragment
       call advance(sim%mesh, sim%load, sim%deck%run%gravity, sim%st)
+      call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events)
       call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events)
    end subroutine sim_step
 
@@ -71,7 +86,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err
       type(outputs_t) :: out
       type(event_list_t) :: events
-      integer :: ip, nprof, every, n, i_overlap
+      integer :: ip, nprof, every, n
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
       real(wp) :: g
@@ -94,17 +109,6 @@ contains
          if (events%n > 0) then
             call write_events(out, events)
             summary%events = summary%events + events%n
-         end if
-         if (sim%st%n_frag_ids > 1 .and. .not. sim%mesh%full_mass) then
-            i_overlap = first_overlap(sim%mesh, sim%st)
-            if (i_overlap > 0) then
-               call row()
-               call make_error(err, 'run: fragments meet at node ' // itoa(i_overlap) // &
-                  ' (x = ' // rtoa(sim%mesh%x(i_overlap)) // ' m) at t = ' // &
-                  rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s; collisions are not ' // &
-                  'available in this version (outputs up to here are written)', code=exit_runtime)
-               exit
-            end if
          end if
          if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
             call row()
@@ -145,7 +149,7 @@ contains
          call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
             sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
-            e%ledger, sim%st%e_fracture)
+            e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
          summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &

@@ -7,7 +7,7 @@
 module spb_state
    use spb_kinds, only: wp
    use spb_deck, only: deck_t
-   use spb_mesh, only: mesh_t, end_fixed, end_free
+   use spb_mesh, only: mesh_t, end_fixed, end_free, end_base, end_transmit
    use spb_static, only: static_state
    implicit none
    private
@@ -46,6 +46,18 @@ module spb_state
       real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
       real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
       real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
+      real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
+      real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
+      logical, allocatable :: cracked(:)      !! (0:n) the section has been open once (a crack
+                                              !! or a dry contact): re-openings are separations
+      logical :: base_contact = .false.       !! the bottom face rests on the base
+      real(wp) :: u_base = 0.0_wp             !! displacement of node n at which it touches [m]
+      logical :: landing_top = .false.        !! the next support section stress starts from
+      logical :: landing_bot = .false.        !! a moving bar half (collision with a support):
+      real(wp) :: v_land_top = 0.0_wp         !! (3.1) then uses this velocity for v^n and
+      real(wp) :: v_land_bot = 0.0_wp         !! S^{n-1/2} = 0 [m/s]
+      integer, allocatable :: skip_test(:)    !! nodes joined at t^{n+1} this step (delay rule):
+      integer :: n_skip = 0                   !! their section stress starts next step
    end type state_t
 
 contains
@@ -56,7 +68,7 @@ contains
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(out) :: st
       integer :: n, j, i, k
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap_sum
 
       n = mesh%n
       g = deck%run%gravity
@@ -64,6 +76,8 @@ contains
       allocate(st%ua(0:n), st%ub(0:n), st%dua(0:n), st%dub(0:n))
       allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%sec(0:n), st%strength(0:n))
       st%joined = .true.
+      allocate(st%cracked(0:n), st%skip_test(8))
+      st%cracked = .false.
       call init_strength(deck, mesh, st)
       allocate(st%cell_strength(n), st%cut(16), st%is_cut(n))
       st%is_cut = .false.
@@ -104,19 +118,73 @@ contains
       st%ub = u
       st%dua = v * dt
       st%dub = v * dt
+      ! dry interfaces: open with their halves' own velocities and the lower side moved down by
+      ! the gap, unless touching and moving together (then joined)
+      gap_sum = 0.0_wp
+      do j = 1, mesh%nseg - 1
+         i = mesh%last(j)
+         if (deck%seg%interface(j) /= 'dry') cycle
+         st%cracked(i) = .true.
+         st%strength(i) = 0.0_wp
+         va = deck%seg%velocity(j)
+         vb = deck%seg%velocity(j + 1)
+         if (deck%seg%gap(j) > 0.0_wp .or. abs(va - vb) > 0.0_wp) then
+            st%joined(i) = .false.
+            st%dua(i) = va * dt
+            st%dub(i) = vb * dt
+            gap_sum = gap_sum + deck%seg%gap(j)
+            st%ub(i) = st%ub(i) + deck%seg%gap(j)
+            st%ua(i+1:n) = st%ua(i+1:n) + gap_sum
+            st%ub(i+1:n) = st%ub(i+1:n) + gap_sum
+         end if
+      end do
+      st%n_breakable = count(st%strength(1:n-1) >= 0.0_wp .and. st%joined(1:n-1))
+      if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
+      if (mesh%bottom == end_base) then
+         ! touching and at rest: in contact; moving onto it: the first step lands by the
+         ! timing rule (and logs the event)
+         st%u_base = st%ua(n) + deck%ends%base_gap
+         st%base_contact = deck%ends%base_gap <= 0.0_wp .and. .not. (st%dua(n) > 0.0_wp)
+         if (st%base_contact) st%dua(n) = 0.0_wp
+      end if
       st%s = 0.0_wp
       st%s(1:n) = s
       ! s^{-1} = s^0 - E (du_{k-1} - du_k)/dx, for the strain-energy product at the first row
       st%s_old = 0.0_wp
       st%s_old(1:n) = st%s(1:n) - mesh%stiff * (st%dub(0:n-1) - st%dua(1:n))
-      ! section stresses start at the fixed point of (3.1)-(3.2) for the initial stresses:
-      ! S = s_above + dm_above g / 2 (equal to s_below - dm_below g / 2 in equilibrium)
+      ! Section stresses S^{-1/2}. A bar in self-weight equilibrium starts at the fixed point
+      ! of (3.1)-(3.2), S = s_above + dm_above g / 2 (= s_below - dm_below g / 2). An
+      ! 'unstressed' bar had no stress before t = 0: S = s (a free-falling bar then keeps
+      ! S = 0 exactly). A support that a moving bar presses on at t = 0 is a collision at t^0:
+      ! (3.1) starts from the bar half's own velocity with S^{-1/2} = 0; since the support
+      ! half's increment is 0, that is the value that makes the step's (3.1) do so.
       st%sec = 0.0_wp
+      if (deck%init%state == 'static') then
+         do i = 1, n - 1
+            st%sec(i) = s(i) + 0.5_wp * mesh%dm(i) * g
+         end do
+         if (mesh%top /= end_free) st%sec(0) = s(1) - 0.5_wp * mesh%dm(1) * g
+         if (mesh%bottom /= end_free) st%sec(n) = s(n) + 0.5_wp * mesh%dm(n) * g
+      else
+         do i = 1, n - 1
+            st%sec(i) = s(i)
+         end do
+         ! a bar moving against a fixed end at t = 0 collides with it at t^0
+         if (mesh%top == end_fixed) then
+            st%landing_top = .true.
+            st%v_land_top = deck%seg%velocity(1)
+         end if
+         if (mesh%bottom == end_fixed) then
+            st%landing_bot = .true.
+            st%v_land_bot = deck%seg%velocity(mesh%nseg)
+         end if
+         if (mesh%top == end_transmit) st%sec(0) = s(1)
+         if (mesh%bottom == end_transmit) st%sec(n) = s(n)
+      end if
+      if (mesh%bottom == end_base .and. .not. st%base_contact) st%sec(n) = 0.0_wp
       do i = 1, n - 1
-         st%sec(i) = s(i) + 0.5_wp * mesh%dm(i) * g
+         if (.not. st%joined(i)) st%sec(i) = 0.0_wp
       end do
-      if (mesh%top /= end_free) st%sec(0) = s(1) - 0.5_wp * mesh%dm(1) * g
-      if (mesh%bottom /= end_free) st%sec(n) = s(n) + 0.5_wp * mesh%dm(n) * g
       st%s_scale = maxval(abs(s))
    end subroutine init_state
 

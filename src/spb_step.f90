@@ -1,7 +1,7 @@
 !> The compact update (2.3) of the half-node model (METHOD.md §3) for one step.
 module spb_step
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit
+   use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base
    use spb_load, only: load_t, load_none, face_top, step_load
    use spb_state, only: state_t
    use spb_section, only: section_stress_a, section_stress_b
@@ -90,7 +90,7 @@ contains
          st%dua(0) = 0.0_wp
          st%dub(0) = 0.0_wp
       end if
-      if (mesh%bottom == end_fixed) then
+      if (mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%base_contact)) then
          st%dua(n) = 0.0_wp
          st%dub(n) = 0.0_wp
       end if
@@ -115,9 +115,14 @@ contains
       end associate
 
       ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
+      ! a support just hit by a moving half starts from that half's velocity
+      if (st%landing_top) du_top_old = st%v_land_top * dt
+      if (st%landing_bot) du_bot_old = st%v_land_bot * dt
+      st%landing_top = .false.
+      st%landing_bot = .false.
       select case (mesh%top)
       case (end_fixed)
-         st%sec(0) = section_stress_b(st%s(1), st%sec(0), 0.0_wp, 0.0_wp, mesh%z(1), &
+         st%sec(0) = section_stress_b(st%s(1), st%sec(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
                                        mesh%dm(1), g)
       case (end_transmit)
          st%sec(0) = section_stress_b(st%s(1), st%sec(0), du_top_old / dt, st%dub(0) / dt, &
@@ -125,11 +130,20 @@ contains
       end select
       select case (mesh%bottom)
       case (end_fixed)
-         st%sec(n) = section_stress_a(st%s(n), st%sec(n), 0.0_wp, 0.0_wp, mesh%z(n), &
+         st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
                                        mesh%dm(n), g)
       case (end_transmit)
          st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, st%dua(n) / dt, &
                                        mesh%z(n), mesh%dm(n), g)
+      case (end_base)
+         ! resting on the rigid base: the base side does not move; v^n is the bottom half's
+         ! velocity before the step (0 while it rests)
+         if (st%base_contact) then
+            st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, 0.0_wp, &
+                                          mesh%z(n), mesh%dm(n), g)
+         else
+            st%sec(n) = 0.0_wp
+         end if
       end select
 
       ! (2.3)4: s^{n+1} = E (u_{k-1} - u_k)/dx, advanced by the increments of this step:

@@ -1,0 +1,289 @@
+!> Collisions (5.1)-(5.7) and the rigid base (METHOD.md §6).
+!>
+!> After the trial step every open section is tested for passing faces (5.1). The
+!> collision is put on the grid by the timing rule: 'accelerate' joins at t^n, 'delay' at
+!> t^{n+1}, 'min' takes the one with the smaller displacement correction (5.3). One side
+!> is shifted rigidly by the correction (5.2) - the whole bar above the section ('above')
+!> or only the colliding fragment ('fragment'); the lower side where the upper one is
+!> anchored - and the node's halves join with conserved momentum (5.4).
+!>
+!> Joining at t^n and stepping is linear in the increments: the joined node's increment is
+!> the mass-weighted mean of its halves' trial increments. So 'accelerate' is applied to
+!> the trial step locally (the shifted fragment, the node, its two cells), never by redoing
+!> the step for the whole bar.
+module spb_contact
+   use spb_kinds, only: wp
+   use spb_mesh, only: mesh_t, end_fixed, end_base
+   use spb_state, only: state_t
+   use spb_section, only: section_stress_a
+   use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
+   use spb_fracture, only: node_energy, fragment_span, shift_span, new_fragment_id
+   implicit none
+   private
+   public :: contact_step, timing_accelerate, timing_delay, timing_min, shift_above, &
+      shift_fragment, collision_stress
+
+   integer, parameter :: timing_accelerate = 1, timing_delay = 2, timing_min = 3
+   integer, parameter :: shift_above = 1, shift_fragment = 2
+
+contains
+
+   !> (5.6): stress in the section of a collision between halves moving at v_a (above)
+   !> and v_b (below), with alpha = Z_below / Z_above.
+   pure real(wp) function collision_stress(s_above, s_below, v_a, v_b, z_above, z_below) result(sz)
+      real(wp), intent(in) :: s_above, s_below, v_a, v_b, z_above, z_below
+      real(wp) :: alpha
+      alpha = z_below / z_above
+      sz = (2.0_wp * (alpha * s_above + s_below) + (v_a - v_b) * z_below) / (alpha + 1.0_wp)
+   end function collision_stress
+
+   !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
+   !> support that cannot move.
+   pure logical function anchored(mesh, st, top, bot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
+                 (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+                  (mesh%bottom == end_base .and. st%base_contact)))
+   end function anchored
+
+   !> Test every open section (and the base) after the trial step; join what collides.
+   pure subroutine contact_step(mesh, st, g, timing, policy, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g                !! gravity [m/s^2]
+      integer, intent(in) :: timing            !! timing_* rule
+      integer, intent(in) :: policy            !! shift_* policy
+      type(event_list_t), intent(inout) :: events
+      integer :: i
+      st%n_skip = 0
+      do i = 1, mesh%n - 1
+         if (st%joined(i)) cycle
+         if (st%ua(i) - st%ub(i) > 0.0_wp) call collide(mesh, st, g, timing, policy, i, events)
+      end do
+      if (mesh%bottom == end_base .and. .not. st%base_contact) then
+         if (st%ua(mesh%n) - st%u_base > 0.0_wp) call land(mesh, st, g, timing, policy, events)
+      end if
+   end subroutine contact_step
+
+   !> Trial increment of a split half over the step just taken, and its increment before.
+   pure real(wp) function du_before_a(mesh, st, g, i) result(d)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: i
+      d = st%dua(i) - (st%s_old(i) + mesh%ma(i) * g) / mesh%ma(i) * mesh%dt**2
+   end function du_before_a
+
+   pure real(wp) function du_before_b(mesh, st, g, i) result(d)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: i
+      d = st%dub(i) - (mesh%mb(i) * g - st%s_old(i + 1)) / mesh%mb(i) * mesh%dt**2
+   end function du_before_b
+
+   !> Choose the rule's time, shift one side, join node i.
+   pure subroutine collide(mesh, st, g, timing, policy, i, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: timing, policy, i
+      type(event_list_t), intent(inout) :: events
+      real(wp) :: dua0, dub0, d_acc, d_del, corr, mass_a, mass_b, du_join, e0, de, sz, v_a, v_b
+      real(wp) :: du_a_trial, du_b_trial, shift_amount
+      integer :: j, k, top, bot, parent_up, parent_dn
+      logical :: at_n, move_up
+      type(event_t) :: ev
+
+      dua0 = du_before_a(mesh, st, g, i)
+      dub0 = du_before_b(mesh, st, g, i)
+      ! (5.2): corrections that close the gap at t^n or remove the overlap at t^{n+1}
+      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))     ! u_A^n - u_B^n (< 0: a gap)
+      d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
+      select case (timing)
+      case (timing_accelerate)
+         at_n = .true.
+      case (timing_delay)
+         at_n = .false.
+      case default
+         at_n = abs(d_acc) <= abs(d_del)                          ! (5.3)
+      end select
+      if (at_n) then
+         corr = d_acc
+      else
+         corr = d_del
+      end if
+      ! the side to shift: the upper one, the lower one where the upper is anchored
+      call fragment_span(mesh, st, i, j, k)
+      if (policy == shift_above) then
+         j = 0
+         k = mesh%n
+      end if
+      move_up = .not. anchored(mesh, st, j, i)
+      shift_amount = 0.0_wp
+      if (move_up) then
+         top = j
+         bot = i
+         shift_amount = -corr
+      else if (.not. anchored(mesh, st, i, k)) then
+         top = i
+         bot = k
+         shift_amount = corr
+      end if
+      ! collision stress (5.6) at the joining time, and its error bound (6.2)
+      if (at_n) then
+         v_a = dua0 / mesh%dt
+         v_b = dub0 / mesh%dt
+         sz = collision_stress(st%s_old(i), st%s_old(i + 1), v_a, v_b, mesh%z(i), mesh%z(i + 1))
+      else
+         v_a = st%dua(i) / mesh%dt
+         v_b = st%dub(i) / mesh%dt
+         sz = collision_stress(st%s(i), st%s(i + 1), v_a, v_b, mesh%z(i), mesh%z(i + 1))
+      end if
+      ev%kind = ev_collision
+      ev%stress = sz
+      ev%stress_bound = abs(2.0_wp * (mesh%z(i + 1) / mesh%z(i) * st%s(i) + st%s(i + 1)) / &
+                            (mesh%z(i + 1) / mesh%z(i) + 1.0_wp))
+      if (abs(shift_amount) > 0.0_wp) then
+         call shift_span(mesh, st, g, top, bot, shift_amount, de)
+         st%e_shift = st%e_shift - de
+      end if
+      ! (5.4): join with conserved momentum
+      e0 = node_energy(mesh, st, g, i)
+      mass_a = mesh%ma(i)
+      mass_b = mesh%mb(i)
+      du_a_trial = st%dua(i)
+      du_b_trial = st%dub(i)
+      du_join = (mass_a * du_a_trial + mass_b * du_b_trial) / (mass_a + mass_b)
+      st%joined(i) = .true.
+      st%dua(i) = du_join
+      st%dub(i) = du_join
+      if (at_n) then
+         ! joined at t^n: the step just taken is the joined node's; its cells see the mean
+         ! increment, its section the collision stress S^{n+1/2} ((3.2) with S^{n-1/2} = 0)
+         st%ua(i) = st%ua(i) - du_a_trial + du_join
+         st%ub(i) = st%ub(i) - du_b_trial + du_join
+         st%s(i) = st%s(i) + mesh%stiff(i) * (du_a_trial - du_join)
+         st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * (du_join - du_b_trial)
+         st%sec(i) = section_stress_a(st%s_old(i), 0.0_wp, v_a, du_join / mesh%dt, mesh%z(i), &
+                                      mesh%dm(i), g)
+      else
+         ! joined at t^{n+1}: the next step computes the collision stress; this S^{n-1/2}
+         ! makes (3.1) start from the upper half's own velocity with zero section stress
+         st%sec(i) = mesh%z(i) * (du_join - du_a_trial) / mesh%dt
+         call skip_next(st, i)
+      end if
+      ! the halves now share one position (a shift closed the gap; if both sides were
+      ! anchored a length defect of |corr| stays in the displacements, not the stresses)
+      st%e_join = st%e_join + (e0 - node_energy(mesh, st, g, i))
+      st%n_breakable = st%n_breakable + 1
+      ! genealogy: the merged fragment is new, its parent the upper one
+      call fragment_span(mesh, st, i, j, k)
+      parent_up = st%frag_id(j)
+      parent_dn = st%frag_id(i)
+      st%frag_id(i) = 0
+      call new_fragment_id(st, parent_up, st%frag_id(j))
+      ev%step = st%n
+      if (at_n) ev%step = st%n - 1
+      ev%node = i
+      ev%t = real(ev%step, wp) * mesh%dt
+      ev%x = mesh%x(i)
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = 0.0_wp
+      ev%opening = corr
+      ev%shift = shift_amount
+      ev%frag_above = st%frag_id(j)
+      ev%frag_below = parent_dn
+      call push_event(events, ev)
+   end subroutine collide
+
+   !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
+   pure subroutine land(mesh, st, g, timing, policy, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: timing, policy
+      type(event_list_t), intent(inout) :: events
+      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount
+      integer :: n, j, k
+      logical :: at_n
+      type(event_t) :: ev
+      n = mesh%n
+      dua0 = st%dua(n) - (st%s_old(n) + mesh%ma(n) * g) / mesh%ma(n) * mesh%dt**2
+      d_acc = (st%ua(n) - st%dua(n)) - st%u_base
+      d_del = st%ua(n) - st%u_base
+      select case (timing)
+      case (timing_accelerate)
+         at_n = .true.
+      case (timing_delay)
+         at_n = .false.
+      case default
+         at_n = abs(d_acc) <= abs(d_del)
+      end select
+      if (at_n) then
+         corr = d_acc
+      else
+         corr = d_del
+      end if
+      call fragment_span(mesh, st, n, j, k)
+      if (policy == shift_above) j = 0
+      shift_amount = 0.0_wp
+      if (.not. anchored(mesh, st, j, n)) then
+         shift_amount = -corr
+         call shift_span(mesh, st, g, j, n, shift_amount, de)
+         st%e_shift = st%e_shift - de
+      end if
+      ev%kind = ev_base_collision
+      if (at_n) then
+         ev%stress = 2.0_wp * st%s_old(n) + mesh%z(n) * dua0 / mesh%dt
+      else
+         ev%stress = 2.0_wp * st%s(n) + mesh%z(n) * st%dua(n) / mesh%dt
+      end if
+      ev%stress_bound = abs(2.0_wp * st%s(n))                      ! (6.3), alpha -> infinity
+      e0 = node_energy(mesh, st, g, n)
+      du_trial = st%dua(n)
+      st%base_contact = .true.
+      st%dua(n) = 0.0_wp
+      st%dub(n) = 0.0_wp
+      if (at_n) then
+         st%ua(n) = st%ua(n) - du_trial
+         st%ub(n) = st%ua(n)
+         st%s(n) = st%s(n) + mesh%stiff(n) * du_trial
+         st%sec(n) = section_stress_a(st%s_old(n), 0.0_wp, dua0 / mesh%dt, 0.0_wp, mesh%z(n), &
+                                      mesh%dm(n), g)
+      else
+         ! joined at t^{n+1}: the next step's base section stress starts from the bottom
+         ! half's own velocity with S^{n+1/2} = 0, the collision stress (5.6), alpha -> inf
+         st%sec(n) = 0.0_wp
+         st%landing_bot = .true.
+         st%v_land_bot = du_trial / mesh%dt
+         call skip_next(st, n)
+      end if
+      st%e_join = st%e_join + (e0 - node_energy(mesh, st, g, n))
+      ev%step = st%n
+      if (at_n) ev%step = st%n - 1
+      ev%node = n
+      ev%t = real(ev%step, wp) * mesh%dt
+      ev%x = mesh%x(n)
+      ev%dt_bound = mesh%dt
+      ev%opening = corr
+      ev%shift = shift_amount
+      ev%frag_above = st%frag_id(j)
+      call push_event(events, ev)
+   end subroutine land
+
+   pure subroutine skip_next(st, i)
+      type(state_t), intent(inout) :: st
+      integer, intent(in) :: i
+      integer, allocatable :: grown(:)
+      if (st%n_skip == size(st%skip_test)) then
+         allocate(grown(2 * size(st%skip_test)))
+         grown(1:st%n_skip) = st%skip_test(1:st%n_skip)
+         call move_alloc(grown, st%skip_test)
+      end if
+      st%n_skip = st%n_skip + 1
+      st%skip_test(st%n_skip) = i
+   end subroutine skip_next
+end module spb_contact
