@@ -127,10 +127,12 @@ contains
          top = j
          bot = i
          shift_amount = -corr
+         call extend_up(mesh, st, top, shift_amount)
       else if (.not. anchored(mesh, st, i, k)) then
          top = i
          bot = k
          shift_amount = corr
+         call extend_down(mesh, st, bot, shift_amount)
       end if
       ! collision stress (5.6) at the joining time, and its error bound (6.2)
       if (at_n) then
@@ -170,8 +172,14 @@ contains
          st%sec(i) = section_stress_a(st%s_old(i), 0.0_wp, v_a, du_join / mesh%dt, mesh%z(i), &
                                       mesh%dm(i), g)
       else
-         ! joined at t^{n+1}: the next step computes the collision stress; this S^{n-1/2}
-         ! makes (3.1) start from the upper half's own velocity with zero section stress
+         ! joined at t^{n+1}: positions and stresses at t^{n+1} stay, the increment becomes
+         ! the mean, so the step in effect ended from other u^n, s^n: s_old follows (it only
+         ! enters the energy measure), which keeps s^{n+1} - s^n = E/dx (du_{k-1} - du_k) and
+         ! with it the ledger's telescoping exact.
+         st%s_old(i) = st%s_old(i) + mesh%stiff(i) * (du_join - du_a_trial)
+         st%s_old(i + 1) = st%s_old(i + 1) - mesh%stiff(i + 1) * (du_join - du_b_trial)
+         ! the next step computes the collision stress; this S^{n-1/2} makes (3.1) start
+         ! from the upper half's own velocity with zero section stress
          st%sec(i) = mesh%z(i) * (du_join - du_a_trial) / mesh%dt
          call skip_next(st, i)
       end if
@@ -232,6 +240,7 @@ contains
       shift_amount = 0.0_wp
       if (.not. anchored(mesh, st, j, n)) then
          shift_amount = -corr
+         call extend_up(mesh, st, j, shift_amount)
          call shift_span(mesh, st, g, j, n, shift_amount, de)
          st%e_shift = st%e_shift - de
       end if
@@ -254,8 +263,11 @@ contains
          st%sec(n) = section_stress_a(st%s_old(n), 0.0_wp, dua0 / mesh%dt, 0.0_wp, mesh%z(n), &
                                       mesh%dm(n), g)
       else
-         ! joined at t^{n+1}: the next step's base section stress starts from the bottom
-         ! half's own velocity with S^{n+1/2} = 0, the collision stress (5.6), alpha -> inf
+         ! joined at t^{n+1}: as for a collision between fragments, s_old follows the
+         ! increment so that the ledger's telescoping stays exact; the next step's base
+         ! section stress starts from the bottom half's own velocity with S^{n+1/2} = 0, the
+         ! collision stress (5.6), alpha -> infinity
+         st%s_old(n) = st%s_old(n) - mesh%stiff(n) * du_trial
          st%sec(n) = 0.0_wp
          st%landing_bot = .true.
          st%v_land_bot = du_trial / mesh%dt
@@ -273,6 +285,43 @@ contains
       ev%frag_above = st%frag_id(j)
       call push_event(events, ev)
    end subroutine land
+
+   !> A shifted fragment must not be pushed into its neighbour: while the shift would make
+   !> the faces at the region's top node overlap, the fragment above moves with it.
+   pure subroutine extend_up(mesh, st, top, shift)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(inout) :: top
+      real(wp), intent(in) :: shift
+      do while (top > 0)
+         if (st%joined(top)) exit
+         if (.not. ((st%ub(top) + shift) - st%ua(top) < 0.0_wp)) exit
+         top = top - 1
+         do while (top > 0)
+            if (.not. st%joined(top)) exit
+            top = top - 1
+         end do
+         if (anchored(mesh, st, top, mesh%n - 1)) exit
+      end do
+   end subroutine extend_up
+
+   !> The same downward, for a shift of the lower side.
+   pure subroutine extend_down(mesh, st, bot, shift)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(inout) :: bot
+      real(wp), intent(in) :: shift
+      do while (bot < mesh%n)
+         if (st%joined(bot)) exit
+         if (.not. (st%ub(bot) - (st%ua(bot) + shift) < 0.0_wp)) exit
+         bot = bot + 1
+         do while (bot < mesh%n)
+            if (.not. st%joined(bot)) exit
+            bot = bot + 1
+         end do
+         if (anchored(mesh, st, 1, bot)) exit
+      end do
+   end subroutine extend_down
 
    pure subroutine skip_next(st, i)
       type(state_t), intent(inout) :: st
