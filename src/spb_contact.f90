@@ -18,6 +18,7 @@ module spb_contact
    use spb_section, only: section_stress_a
    use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
    use spb_fracture, only: node_energy, fragment_span, shift_span, new_fragment_id
+   use spb_arrays, only: append
    implicit none
    private
    public :: contact_step, timing_accelerate, timing_delay, timing_min, shift_above, &
@@ -36,6 +37,21 @@ contains
       alpha = z_below / z_above
       sz = (2.0_wp * (alpha * s_above + s_below) + (v_a - v_b) * z_below) / (alpha + 1.0_wp)
    end function collision_stress
+
+   !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay), or where the
+   !> correction is smaller (min, (5.3)).
+   pure logical function joins_at_n(timing, d_acc, d_del)
+      integer, intent(in) :: timing
+      real(wp), intent(in) :: d_acc, d_del   !! corrections (5.2) for t^n and t^{n+1} [m]
+      select case (timing)
+      case (timing_accelerate)
+         joins_at_n = .true.
+      case (timing_delay)
+         joins_at_n = .false.
+      case default
+         joins_at_n = abs(d_acc) <= abs(d_del)
+      end select
+   end function joins_at_n
 
    !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
    !> support that cannot move.
@@ -102,14 +118,7 @@ contains
       ! (5.2): corrections that close the gap at t^n or remove the overlap at t^{n+1}
       d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))     ! u_A^n - u_B^n (< 0: a gap)
       d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
-      select case (timing)
-      case (timing_accelerate)
-         at_n = .true.
-      case (timing_delay)
-         at_n = .false.
-      case default
-         at_n = abs(d_acc) <= abs(d_del)                          ! (5.3)
-      end select
+      at_n = joins_at_n(timing, d_acc, d_del)
       if (at_n) then
          corr = d_acc
       else
@@ -222,14 +231,7 @@ contains
       dua0 = st%dua(n) - (st%s_old(n) + mesh%ma(n) * g) / mesh%ma(n) * mesh%dt**2
       d_acc = (st%ua(n) - st%dua(n)) - st%u_base
       d_del = st%ua(n) - st%u_base
-      select case (timing)
-      case (timing_accelerate)
-         at_n = .true.
-      case (timing_delay)
-         at_n = .false.
-      case default
-         at_n = abs(d_acc) <= abs(d_del)
-      end select
+      at_n = joins_at_n(timing, d_acc, d_del)
       if (at_n) then
          corr = d_acc
       else
@@ -326,13 +328,6 @@ contains
    pure subroutine skip_next(st, i)
       type(state_t), intent(inout) :: st
       integer, intent(in) :: i
-      integer, allocatable :: grown(:)
-      if (st%n_skip == size(st%skip_test)) then
-         allocate(grown(2 * size(st%skip_test)))
-         grown(1:st%n_skip) = st%skip_test(1:st%n_skip)
-         call move_alloc(grown, st%skip_test)
-      end if
-      st%n_skip = st%n_skip + 1
-      st%skip_test(st%n_skip) = i
+      call append(st%skip_test, st%n_skip, i)
    end subroutine skip_next
 end module spb_contact

@@ -11,6 +11,7 @@ module spb_fracture
    use spb_mesh, only: mesh_t, end_fixed, end_base
    use spb_state, only: state_t
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
+   use spb_arrays, only: append
    implicit none
    private
    public :: fracture_step, node_energy, fragment_span, shift_span, new_fragment_id, first_overlap
@@ -80,19 +81,11 @@ contains
       type(state_t), intent(inout) :: st
       integer, intent(in) :: parent
       integer, intent(out) :: id
-      integer, allocatable :: grown(:)
-      if (st%n_frag_ids == size(st%frag_parent)) then
-         allocate(grown(2 * size(st%frag_parent)))
-         grown(1:st%n_frag_ids) = st%frag_parent(1:st%n_frag_ids)
-         call move_alloc(grown, st%frag_parent)
-         allocate(grown(2 * size(st%frag_birth)))
-         grown(1:st%n_frag_ids) = st%frag_birth(1:st%n_frag_ids)
-         call move_alloc(grown, st%frag_birth)
-      end if
-      st%n_frag_ids = st%n_frag_ids + 1
+      integer :: n
+      n = st%n_frag_ids
+      call append(st%frag_parent, n, parent)
+      call append(st%frag_birth, st%n_frag_ids, st%n)
       id = st%n_frag_ids
-      st%frag_parent(id) = parent
-      st%frag_birth(id) = st%n
    end subroutine new_fragment_id
 
    !> Test every joined interior node at t^{n+1} = st%n dt and break those in tension
@@ -257,7 +250,6 @@ contains
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: eps
       type(event_list_t), intent(inout) :: events
-      integer, allocatable :: grown(:)
       integer :: k, j, parent
       type(event_t) :: ev
       do k = 1, mesh%n
@@ -269,13 +261,7 @@ contains
          st%is_cut(k) = .true.
          st%cell_strength(k) = 0.0_wp
          st%n_breakable = st%n_breakable - 1
-         if (st%n_cut == size(st%cut)) then
-            allocate(grown(2 * size(st%cut)))
-            grown(1:st%n_cut) = st%cut(1:st%n_cut)
-            call move_alloc(grown, st%cut)
-         end if
-         st%n_cut = st%n_cut + 1
-         st%cut(st%n_cut) = k
+         call append(st%cut, st%n_cut, k)
          ! the fragment that held cell k starts at node j (0 or just below a cut cell)
          j = k - 1
          do while (j > 0)
