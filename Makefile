@@ -36,7 +36,7 @@ debug: $(BUILD_DEBUG)/build.ninja
 run: build
 	mkdir -p $(BUILD_RELEASE)/runs
 	cd input && ../$(BUILD_RELEASE)/bin/spallbar $(RUN_DECK).nml --output ../$(BUILD_RELEASE)/runs/$(RUN_DECK)
-	@echo "outputs: $(BUILD_RELEASE)/runs/$(RUN_DECK).{his,prf,evt}"
+	@echo "outputs: $(BUILD_RELEASE)/runs/$(RUN_DECK).{his,prf,evt,frg}"
 
 test: debug
 	cd $(BUILD_DEBUG) && ctest --output-on-failure -j $(JOBS)
