@@ -32,6 +32,8 @@ module spb_deck
       integer :: n_profiles = 0                         !! how many profile_times were given
       logical :: hdf5 = .false.                         !! also write PREFIX.h5
       character(len=name_len) :: model = 'half-mass'    !! 'half-mass' | 'full-mass' (naive)
+      real(wp) :: energy_guard = 0.5_wp                 !! stop (exit 3) when mechanical energy
+                                                        !! exceeds initial + work by this share
    end type run_cfg
 
    type :: mesh_cfg
@@ -176,9 +178,10 @@ contains
       character(len=name_len) :: timing, shift, model
       integer :: history_every, ios
       logical :: hdf5
+      real(wp) :: energy_guard
       character(len=256) :: msg
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
-         profile_times, hdf5, model
+         profile_times, hdf5, model, energy_guard
       title = deck%run%title
       t_end = deck%run%t_end
       gravity = deck%run%gravity
@@ -189,6 +192,7 @@ contains
       profile_times = deck%run%profile_times
       hdf5 = deck%run%hdf5
       model = deck%run%model
+      energy_guard = deck%run%energy_guard
       rewind(u)
       read(u, nml=run, iostat=ios, iomsg=msg)
       call read_status(deck, 'run', ios, msg, err)
@@ -203,6 +207,7 @@ contains
       deck%run%profile_times = profile_times
       deck%run%hdf5 = hdf5
       deck%run%model = lower(model)
+      deck%run%energy_guard = energy_guard
    end subroutine read_run
 
    subroutine read_mesh(u, deck, err)
@@ -417,6 +422,12 @@ contains
       if (allocated(err)) return
       if (run%eps_rel < 0.0_wp .or. run%eps_rel > 1.0e-3_wp) then
          call make_error(err, '&run: eps_rel must be in [0, 1e-3], got ' // rtoa(run%eps_rel))
+         return
+      end if
+      call need_finite(err, 'run', 'energy_guard', run%energy_guard)
+      if (allocated(err)) return
+      if (run%energy_guard < 0.0_wp) then
+         call make_error(err, '&run: energy_guard must be >= 0 (0: off), got ' // rtoa(run%energy_guard))
          return
       end if
       if (run%history_every < 1) then
@@ -672,6 +683,7 @@ contains
       call item('run', 'profile_times', v, 's')
       call item('run', 'hdf5', ltoa(deck%run%hdf5), '')
       call item('run', 'model', quote(deck%run%model), '')
+      call item('run', 'energy_guard', rtoa(deck%run%energy_guard), '- (0: off)')
       call close_group()
 
       call open_group('mesh')

@@ -39,6 +39,8 @@ module spb_sim
       real(wp) :: ledger0 = 0.0_wp         !! ledger at t = 0 [J/m^2]
       real(wp) :: ledger_drift = 0.0_wp    !! largest |ledger - ledger0| over rows [J/m^2]
       real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
+      real(wp) :: max_excess = 0.0_wp      !! largest (E - E0) - w_ext, relative to the guard's
+                                           !! scale [-]
    end type run_summary_t
 
 contains
@@ -89,7 +91,8 @@ contains
       integer :: ip, nprof, every, n
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
-      real(wp) :: g
+      real(wp) :: g, e_mech0, guard_scale
+      logical :: wrote_row
 
       call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
       if (allocated(err)) return
@@ -101,6 +104,12 @@ contains
       ip = 1
       call system_clock(c0, rate)
       c_last = c0
+      block
+         type(energies_t) :: e0
+         e0 = energies(sim%mesh, sim%st, g)
+         e_mech0 = e0%e_kin + e0%e_strain + e0%e_pot
+         guard_scale = e0%e_kin + abs(e0%e_strain)
+      end block
       call row()
       call profiles()
       do n = 1, sim%mesh%nsteps
@@ -110,9 +119,22 @@ contains
             call write_events(out, events)
             summary%events = summary%events + events%n
          end if
+         wrote_row = .false.
          if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
             call row()
+            wrote_row = .true.
             if (allocated(err)) exit
+         end if
+         if (.not. wrote_row .and. mod(n, 64) == 0) then
+            block
+               type(energies_t) :: e
+               e = energies(sim%mesh, sim%st, g)
+               call guard(e)
+            end block
+            if (allocated(err)) then
+               call row()
+               exit
+            end if
          end if
          call profiles()
          if (mod(n, 1024) == 0) then
@@ -151,10 +173,33 @@ contains
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
             e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
+         call guard(e)
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
          summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
                                     abs(e%e_pot), abs(e%w_ext))
       end subroutine row
+      !> Stop when the mechanical energy exceeds the initial energy plus the work of the
+      !> loads (gravity's work is in e_pot) by more than energy_guard times the scale.
+      subroutine guard(e)
+         type(energies_t), intent(in) :: e
+         real(wp) :: excess
+         character(len=16) :: b1, b2
+         if (allocated(err)) return
+         guard_scale = max(guard_scale, abs(e%w_ext))
+         excess = (e%e_kin + e%e_strain + e%e_pot - e_mech0) - e%w_ext
+         if (guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, excess / guard_scale)
+         if (sim%deck%run%energy_guard > 0.0_wp .and. &
+             excess > sim%deck%run%energy_guard * guard_scale .and. guard_scale > 0.0_wp) then
+            write(b1, '(es10.3)') excess
+            write(b2, '(es10.3)') excess / guard_scale
+            call make_error(err, 'run: mechanical energy exceeds the initial energy plus the ' // &
+               'work of the loads by ' // trim(adjustl(b1)) // ' J/m^2 (' // &
+               trim(adjustl(b2)) // ' of the energy scale, above ' // &
+               '&run energy_guard = ' // rtoa(sim%deck%run%energy_guard) // ') at step ' // &
+               itoa(sim%st%n) // ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // &
+               ' s); outputs up to here are written', code=exit_runtime)
+         end if
+      end subroutine guard
       subroutine profiles()
          type(frag_info_t), allocatable :: list(:)
          do while (ip <= nprof)

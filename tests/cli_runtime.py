@@ -1,0 +1,59 @@
+#!/usr/bin/env python3
+"""Run-time contract (INTERFACE.md): a run that goes wrong stops with exit status 3 and one
+message, and what was written until then stays readable.
+
+The case: the paper's Example 3, case 2 (zero tensile strength everywhere) with the delay
+rule, whose upward shifts pump gravity energy into the bar (doc/method.md); the energy
+guard stops it. With energy_guard = 0 the same deck runs to its end.
+
+usage: cli_runtime.py SPALLBAR INPUT_DIR WORKDIR
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+
+def main():
+    exe, indir, work = sys.argv[1:4]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    base = open(os.path.join(indir, "example3_case1_accelerate.nml")).read()
+    deck = (base.replace("  young   = 20.0e6", "  young   = 20.0e6\n  strength = 0.0")
+                .replace("timing        = 'accelerate'", "timing        = 'delay'")
+                .replace("t_end         = 1.0", "t_end         = 0.6"))
+    failures = checks = 0
+
+    def check(cond, what):
+        nonlocal failures, checks
+        checks += 1
+        if not cond:
+            failures += 1
+            print("FAIL:", what)
+
+    with open(os.path.join(work, "blowup.nml"), "w") as f:
+        f.write(deck)
+    r = subprocess.run([exe, "blowup.nml", "-q"], cwd=work, capture_output=True, text=True,
+                       timeout=600)
+    lines = r.stderr.splitlines()
+    check(r.returncode == 3, f"exit status {r.returncode}, expected 3")
+    check(len(lines) == 1 and "mechanical energy exceeds" in lines[0], f"stderr {r.stderr!r}")
+    rows = [l.split() for l in open(os.path.join(work, "blowup.his")) if not l.startswith("#")]
+    check(len(rows) > 10 and all(len(x) == len(rows[0]) for x in rows), "history rows complete")
+    t_last = float(rows[-1][0])
+    check(0.0 < t_last < 0.6, f"history ends at t = {t_last}, before t_end")
+    for ext in (".prf", ".evt", ".frg"):
+        check(os.path.getsize(os.path.join(work, "blowup" + ext)) > 0, f"{ext} written")
+    print(f"ok   guard stopped the run at t = {t_last}: {lines[0] if lines else ''}")
+
+    with open(os.path.join(work, "noguard.nml"), "w") as f:
+        f.write(deck.replace("  gravity       = 9.81", "  gravity       = 9.81\n  energy_guard  = 0.0"))
+    r = subprocess.run([exe, "noguard.nml", "-q"], cwd=work, capture_output=True, text=True,
+                       timeout=600)
+    check(r.returncode == 0, f"energy_guard = 0: exit {r.returncode} {r.stderr}")
+    print(f"{checks - failures} passed, {failures} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
