@@ -39,19 +39,22 @@ contains
    end function collision_stress
 
    !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay), or where the
-   !> correction is smaller (min, (5.3)).
-   pure logical function joins_at_n(timing, d_acc, d_del)
+   !> correction is smaller (min, (5.3)); corr is the chosen correction (5.2).
+   pure subroutine choose_time(timing, d_acc, d_del, at_n, corr)
       integer, intent(in) :: timing
       real(wp), intent(in) :: d_acc, d_del   !! corrections (5.2) for t^n and t^{n+1} [m]
+      logical, intent(out) :: at_n           !! join at t^n (else at t^{n+1})
+      real(wp), intent(out) :: corr          !! the correction of the chosen time [m]
       select case (timing)
       case (timing_accelerate)
-         joins_at_n = .true.
+         at_n = .true.
       case (timing_delay)
-         joins_at_n = .false.
+         at_n = .false.
       case default
-         joins_at_n = abs(d_acc) <= abs(d_del)
+         at_n = abs(d_acc) <= abs(d_del)
       end select
-   end function joins_at_n
+      corr = merge(d_acc, d_del, at_n)
+   end subroutine choose_time
 
    !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
    !> support that cannot move.
@@ -118,12 +121,7 @@ contains
       ! (5.2): corrections that close the gap at t^n or remove the overlap at t^{n+1}
       d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))     ! u_A^n - u_B^n (< 0: a gap)
       d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
-      at_n = joins_at_n(timing, d_acc, d_del)
-      if (at_n) then
-         corr = d_acc
-      else
-         corr = d_del
-      end if
+      call choose_time(timing, d_acc, d_del, at_n, corr)
       ! the side to shift: the upper one, the lower one where the upper is anchored
       call fragment_span(mesh, st, i, j, k)
       if (policy == shift_above) then
@@ -228,15 +226,10 @@ contains
       logical :: at_n
       type(event_t) :: ev
       n = mesh%n
-      dua0 = st%dua(n) - (st%s_old(n) + mesh%ma(n) * g) / mesh%ma(n) * mesh%dt**2
+      dua0 = du_before_a(mesh, st, g, n)
       d_acc = (st%ua(n) - st%dua(n)) - st%u_base
       d_del = st%ua(n) - st%u_base
-      at_n = joins_at_n(timing, d_acc, d_del)
-      if (at_n) then
-         corr = d_acc
-      else
-         corr = d_del
-      end if
+      call choose_time(timing, d_acc, d_del, at_n, corr)
       call fragment_span(mesh, st, n, j, k)
       if (policy == shift_above) j = 0
       shift_amount = 0.0_wp

@@ -6,8 +6,9 @@ usage: cli_deck_errors.py SPALLBAR WORKDIR
 """
 import os
 import shutil
-import subprocess
 import sys
+
+from clitools import Checks, run
 
 GOOD = """&run t_end = 1.0e-5, title = 'cli' /
 &mesh cells = 10 /
@@ -37,24 +38,11 @@ BAD = [
 ]
 
 
-def run(exe, args, cwd):
-    return subprocess.run([exe] + args, cwd=cwd, capture_output=True, text=True,
-                          errors="replace", timeout=60)
-
-
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    failures = 0
-    checks = 0
-
-    def check(cond, what):
-        nonlocal failures, checks
-        checks += 1
-        if not cond:
-            failures += 1
-            print("FAIL:", what)
+    check = Checks()
 
     for name, text, expect in BAD:
         deck = os.path.join(work, name + ".nml")
@@ -101,8 +89,7 @@ def main():
     r = run(exe, ["good.nml"], work)
     check(r.returncode == 0 and os.path.exists(os.path.join(work, "good.his")), "default prefix")
 
-    print(f"{checks - failures} passed, {failures} failed")
-    return 1 if failures else 0
+    return check.finish()
 
 
 if __name__ == "__main__":

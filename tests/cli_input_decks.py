@@ -8,8 +8,9 @@ usage: cli_input_decks.py SPALLBAR INPUT_DIR WORKDIR
 import glob
 import os
 import shutil
-import subprocess
 import sys
+
+from clitools import Checks, run
 
 REQUIRED = ["t", "reaction_bottom", "reaction_top", "fragments", "e_kin", "e_strain",
             "e_pot", "w_ext", "e_lost", "momentum"]
@@ -30,22 +31,14 @@ def main():
     exe, indir, work = sys.argv[1:4]
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    failures = checks = 0
-
-    def check(cond, what):
-        nonlocal failures, checks
-        checks += 1
-        if not cond:
-            failures += 1
-            print("FAIL:", what)
+    check = Checks()
 
     decks = sorted(glob.glob(os.path.join(indir, "*.nml")))
     check(len(decks) > 0, "input/ has decks")
     for deck in decks:
         name = os.path.splitext(os.path.basename(deck))[0]
         prefix = os.path.join(work, name)
-        r = subprocess.run([exe, os.path.basename(deck), "--output", prefix], cwd=indir,
-                           capture_output=True, text=True, timeout=600)
+        r = run(exe, [os.path.basename(deck), "--output", prefix], indir)
         check(r.returncode == 0, f"{name}: exit {r.returncode}: {r.stderr}")
         if r.returncode != 0:
             continue
@@ -108,8 +101,7 @@ def main():
               f"{name}: {frag_col[-1]} fragments after {opened} openings and {closed} collisions")
         print(f"ok   {name}: {len(rows)} history rows, {len(starts)} profiles, {len(ev)} events, "
               f"ledger drift {drift:.2e}")
-    print(f"{checks - failures} passed, {failures} failed")
-    return 1 if failures else 0
+    return check.finish()
 
 
 if __name__ == "__main__":

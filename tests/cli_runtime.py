@@ -10,8 +10,9 @@ usage: cli_runtime.py SPALLBAR INPUT_DIR WORKDIR
 """
 import os
 import shutil
-import subprocess
 import sys
+
+from clitools import Checks, run
 
 
 def main():
@@ -22,19 +23,11 @@ def main():
     deck = (base.replace("  young   = 20.0e6", "  young   = 20.0e6\n  strength = 0.0")
                 .replace("timing        = 'accelerate'", "timing        = 'delay'")
                 .replace("t_end         = 1.0", "t_end         = 0.6"))
-    failures = checks = 0
-
-    def check(cond, what):
-        nonlocal failures, checks
-        checks += 1
-        if not cond:
-            failures += 1
-            print("FAIL:", what)
+    check = Checks()
 
     with open(os.path.join(work, "blowup.nml"), "w") as f:
         f.write(deck)
-    r = subprocess.run([exe, "blowup.nml", "-q"], cwd=work, capture_output=True, text=True,
-                       timeout=600)
+    r = run(exe, ["blowup.nml", "-q"], work)
     lines = r.stderr.splitlines()
     check(r.returncode == 3, f"exit status {r.returncode}, expected 3")
     check(len(lines) == 1 and "mechanical energy exceeds" in lines[0], f"stderr {r.stderr!r}")
@@ -48,11 +41,9 @@ def main():
 
     with open(os.path.join(work, "noguard.nml"), "w") as f:
         f.write(deck.replace("  gravity       = 9.81", "  gravity       = 9.81\n  energy_guard  = 0.0"))
-    r = subprocess.run([exe, "noguard.nml", "-q"], cwd=work, capture_output=True, text=True,
-                       timeout=600)
+    r = run(exe, ["noguard.nml", "-q"], work)
     check(r.returncode == 0, f"energy_guard = 0: exit {r.returncode} {r.stderr}")
-    print(f"{checks - failures} passed, {failures} failed")
-    return 1 if failures else 0
+    return check.finish()
 
 
 if __name__ == "__main__":

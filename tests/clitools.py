@@ -1,0 +1,26 @@
+"""Small helpers shared by the command-line tests (cli_*.py)."""
+import subprocess
+
+
+class Checks:
+    """Counts checks, prints each failure, ends with the plain 'N passed, N failed' line."""
+
+    def __init__(self):
+        self.checks = 0
+        self.failures = 0
+
+    def __call__(self, cond, what):
+        self.checks += 1
+        if not cond:
+            self.failures += 1
+            print("FAIL:", what)
+
+    def finish(self):
+        print(f"{self.checks - self.failures} passed, {self.failures} failed")
+        return 1 if self.failures else 0
+
+
+def run(exe, args, cwd, timeout=600):
+    """Run spallbar; text output, nothing on stdin."""
+    return subprocess.run([exe] + args, cwd=cwd, capture_output=True, text=True,
+                          errors="replace", timeout=timeout, stdin=subprocess.DEVNULL)
