@@ -200,18 +200,7 @@ contains
       parent_dn = st%frag_id(i)
       st%frag_id(i) = 0
       call new_fragment_id(st, parent_up, st%frag_id(j))
-      ev%step = st%n
-      if (at_n) ev%step = st%n - 1
-      ev%node = i
-      ev%t = real(ev%step, wp) * mesh%dt
-      ev%x = mesh%x(i)
-      ev%dt_bound = mesh%dt
-      ev%dx_bound = 0.0_wp
-      ev%opening = corr
-      ev%shift = shift_amount
-      ev%frag_above = st%frag_id(j)
-      ev%frag_below = parent_dn
-      call push_event(events, ev)
+      call finish_event(mesh, st, ev, i, at_n, corr, shift_amount, st%frag_id(j), parent_dn, events)
    end subroutine collide
 
    !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
@@ -269,16 +258,7 @@ contains
          call skip_next(st, n)
       end if
       st%e_join = st%e_join + (e0 - node_energy(mesh, st, g, n))
-      ev%step = st%n
-      if (at_n) ev%step = st%n - 1
-      ev%node = n
-      ev%t = real(ev%step, wp) * mesh%dt
-      ev%x = mesh%x(n)
-      ev%dt_bound = mesh%dt
-      ev%opening = corr
-      ev%shift = shift_amount
-      ev%frag_above = st%frag_id(j)
-      call push_event(events, ev)
+      call finish_event(mesh, st, ev, n, at_n, corr, shift_amount, st%frag_id(j), 0, events)
    end subroutine land
 
    !> A shifted fragment must not be pushed into its neighbour: while the shift would make
@@ -317,6 +297,29 @@ contains
          if (anchored(mesh, st, 1, bot)) exit
       end do
    end subroutine extend_down
+
+   !> Fill the time, place and correction of a collision event and append it.
+   pure subroutine finish_event(mesh, st, ev, node, at_n, corr, shift, above, below, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      type(event_t), intent(inout) :: ev       !! kind, stress and stress_bound already set
+      integer, intent(in) :: node, above, below
+      logical, intent(in) :: at_n              !! joined at t^n (else t^{n+1})
+      real(wp), intent(in) :: corr, shift      !! correction (5.2) and the shift applied [m]
+      type(event_list_t), intent(inout) :: events
+      ev%step = st%n
+      if (at_n) ev%step = st%n - 1
+      ev%node = node
+      ev%t = real(ev%step, wp) * mesh%dt
+      ev%x = mesh%x(node)
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = 0.0_wp
+      ev%opening = corr
+      ev%shift = shift
+      ev%frag_above = above
+      ev%frag_below = below
+      call push_event(events, ev)
+   end subroutine finish_event
 
    pure subroutine skip_next(st, i)
       type(state_t), intent(inout) :: st
