@@ -13,11 +13,11 @@
 !> the step for the whole bar.
 module spb_contact
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_fixed, end_base
+   use spb_mesh, only: mesh_t, end_fixed, end_base, end_free
    use spb_state, only: state_t
    use spb_section, only: section_stress_a
    use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
-   use spb_fracture, only: node_energy, fragment_span, shift_span, new_fragment_id
+   use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id
    use spb_arrays, only: append
    implicit none
    private
@@ -111,9 +111,9 @@ contains
       integer, intent(in) :: timing, policy, i
       type(event_list_t), intent(inout) :: events
       real(wp) :: dua0, dub0, d_acc, d_del, corr, mass_a, mass_b, du_join, e0, de, sz, v_a, v_b
-      real(wp) :: du_a_trial, du_b_trial, shift_amount
+      real(wp) :: du_a_trial, du_b_trial, shift_amount, w, closing
       integer :: j, k, top, bot, parent_up, parent_dn
-      logical :: at_n, move_up
+      logical :: at_n, ok
       type(event_t) :: ev
 
       dua0 = du_before_a(mesh, st, g, i)
@@ -122,24 +122,27 @@ contains
       d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))     ! u_A^n - u_B^n (< 0: a gap)
       d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
       call choose_time(timing, d_acc, d_del, at_n, corr)
-      ! the side to shift: the upper one, the lower one where the upper is anchored
-      call fragment_span(mesh, st, i, j, k)
-      if (policy == shift_above) then
-         j = 0
-         k = mesh%n
+      call shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
+      if (.not. at_n) then
+         ! a join at t^{n+1} moves the shifted region on its path (shift_late); where no
+         ! path leads there, or the join would create energy, it is joined at t^n
+         call path_speed(mesh, st, g, top, bot, shift_amount, w, ok)
+         closing = st%dua(i) - st%dub(i)
+         if (bot == i) closing = closing + w * mesh%dt
+         if (top == i) closing = closing - w * mesh%dt
+         if (.not. ok .or. late_join_energy(mesh, st, i, closing) > 0.0_wp) then
+            at_n = .true.
+            corr = d_acc
+            call shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
+         end if
       end if
-      move_up = .not. anchored(mesh, st, j, i)
-      shift_amount = 0.0_wp
-      if (move_up) then
-         top = j
-         bot = i
-         shift_amount = -corr
-         call extend_up(mesh, st, top, shift_amount)
-      else if (.not. anchored(mesh, st, i, k)) then
-         top = i
-         bot = k
-         shift_amount = corr
-         call extend_down(mesh, st, bot, shift_amount)
+      if (abs(shift_amount) > 0.0_wp) then
+         if (at_n) then
+            call shift_span(mesh, st, g, top, bot, shift_amount, de)
+            st%e_shift = st%e_shift - de
+         else
+            call shift_late(mesh, st, g, top, bot, shift_amount, w)
+         end if
       end if
       ! collision stress (5.6) at the joining time, and its error bound (6.2)
       if (at_n) then
@@ -155,10 +158,6 @@ contains
       ev%stress = sz
       ev%stress_bound = abs(2.0_wp * (mesh%z(i + 1) / mesh%z(i) * st%s(i) + st%s(i + 1)) / &
                             (mesh%z(i + 1) / mesh%z(i) + 1.0_wp))
-      if (abs(shift_amount) > 0.0_wp) then
-         call shift_span(mesh, st, g, top, bot, shift_amount, de)
-         st%e_shift = st%e_shift - de
-      end if
       ! (5.4): join with conserved momentum
       e0 = node_energy(mesh, st, g, i)
       mass_a = mesh%ma(i)
@@ -203,6 +202,147 @@ contains
       call finish_event(mesh, st, ev, i, at_n, corr, shift_amount, st%frag_id(j), parent_dn, events)
    end subroutine collide
 
+   !> Momentum of the region from B_top to A_bot over the last step [kg/(m s)].
+   pure real(wp) function span_momentum(mesh, st, top, bot) result(mom)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      integer :: i
+      mom = 0.0_wp
+      do i = top, bot
+         if (i > top .or. top == 0) mom = mom + mesh%ma(i) * st%dua(i)
+         if (i < bot .or. bot == mesh%n) mom = mom + mesh%mb(i) * st%dub(i)
+      end do
+      mom = mom / mesh%dt
+   end function span_momentum
+
+   !> Load on a free end face that belongs to the region top..bot, along +x [N/m^2].
+   pure real(wp) function end_force(mesh, st, top, bot) result(f)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      f = 0.0_wp
+      if (top == 0 .and. mesh%top == end_free) f = f + st%s(0)
+      if (bot == mesh%n .and. mesh%bottom == end_free) f = f - st%s(mesh%n + 1)
+   end function end_force
+
+   !> Velocity change w of a region shifted on its path (see shift_late): the real root
+   !> of M w^2/2 + (P + F dt/2) w - F shift = 0 on the side of the region's motion, with
+   !> P its momentum over the step and F = M g + end loads the constant force on it (the
+   !> ledger measures potential and work at mid-step); ok = .false. where there is none:
+   !> the region is too slow to have come that far.
+   pure subroutine path_speed(mesh, st, g, top, bot, shift, w, ok)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g, shift
+      integer, intent(in) :: top, bot
+      real(wp), intent(out) :: w               !! [m/s]
+      logical, intent(out) :: ok
+      real(wp) :: mass, force, vm, disc
+      w = 0.0_wp
+      ok = .true.
+      mass = span_mass(mesh, top, bot)
+      force = g * mass + end_force(mesh, st, top, bot)
+      if (force == 0.0_wp .or. shift == 0.0_wp .or. mass <= 0.0_wp) return
+      vm = (span_momentum(mesh, st, top, bot) + 0.5_wp * force * mesh%dt) / mass
+      disc = vm**2 + 2.0_wp * force / mass * shift
+      ok = disc >= 0.0_wp
+      if (ok) w = sign(sqrt(disc), vm) - vm
+   end subroutine path_speed
+
+   !> The correction of a join at t^{n+1} moves the shifted region along its path: besides
+   !> the rigid shift (5.2) that removes the overlap, its increments change by a uniform
+   !> w dt (path_speed) so that kinetic plus potential energy change by exactly the work
+   !> the end loads do on the region's move (booked in w_load). A rigid shift alone would
+   !> lift the region against gravity and the loads for nothing: the paper's "fragments
+   !> keep being pushed apart". The momentum w gives the region is booked in p_shift.
+   pure subroutine shift_late(mesh, st, g, top, bot, shift, w)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g, shift, w
+      integer, intent(in) :: top, bot
+      real(wp) :: de, mass, mom, f_end, work
+      integer :: i
+      mass = span_mass(mesh, top, bot)
+      mom = span_momentum(mesh, st, top, bot)
+      f_end = end_force(mesh, st, top, bot)
+      call shift_span(mesh, st, g, top, bot, shift, de)
+      do i = top, bot
+         if (i > top .or. top == 0) st%dua(i) = st%dua(i) + w * mesh%dt
+         if (i < bot .or. bot == mesh%n) st%dub(i) = st%dub(i) + w * mesh%dt
+      end do
+      work = f_end * (shift - 0.5_wp * w * mesh%dt)
+      st%w_load = st%w_load + work
+      ! kinetic + potential change minus that work: zero but for the root's rounding
+      st%e_shift = st%e_shift - (mom * w + mass * (0.5_wp * w**2 + 0.5_wp * g * mesh%dt * w) &
+                                 + de - work)
+      st%p_shift = st%p_shift + mass * w
+   end subroutine shift_late
+
+   !> The side a correction corr (5.2) moves at split node i: the upper one (the fragment
+   !> ending at A_i, or all above it for 'above'), the lower one where the upper is
+   !> anchored, none if both are; a shifted side takes along what it would be pushed into.
+   pure subroutine shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: policy, i
+      real(wp), intent(in) :: corr
+      integer, intent(out) :: top, bot         !! the region moved, as for shift_span
+      real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
+      integer :: j, k
+      call fragment_span(mesh, st, i, j, k)
+      if (policy == shift_above) then
+         j = 0
+         k = mesh%n
+      end if
+      top = i
+      bot = i
+      shift_amount = 0.0_wp
+      if (.not. anchored(mesh, st, j, i)) then
+         top = j
+         shift_amount = -corr
+         call extend_up(mesh, st, top, shift_amount)
+      else if (.not. anchored(mesh, st, i, k)) then
+         bot = k
+         shift_amount = corr
+         call extend_down(mesh, st, bot, shift_amount)
+      end if
+   end subroutine shift_side
+
+   !> Energy that joining split node i at t^{n+1} adds (negative: dissipates), as booked in
+   !> e_join: the momentum join's kinetic loss and the strain measure, whose s^n follows
+   !> the joined increment. [J/m^2]
+   pure real(wp) function late_join_energy(mesh, st, i, closing) result(de)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: i
+      real(wp), intent(in) :: closing          !! du_A - du_B over the step [m]
+      real(wp) :: ma, mb
+      ma = mesh%ma(i)
+      mb = mesh%mb(i)
+      de = -0.5_wp * ma * mb / (ma + mb) * (closing / mesh%dt)**2 &
+           - 0.5_wp * closing * (mb * st%s(i) + ma * st%s(i + 1)) / (ma + mb)
+   end function late_join_energy
+
+   !> The region a landing's correction moves: the fragment on the base's side (all of the
+   !> bar for 'above'), unless it is anchored; top node j.
+   pure subroutine land_side(mesh, st, policy, corr, j, shift_amount)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: policy
+      real(wp), intent(in) :: corr
+      integer, intent(out) :: j
+      real(wp), intent(out) :: shift_amount
+      integer :: k
+      call fragment_span(mesh, st, mesh%n, j, k)
+      if (policy == shift_above) j = 0
+      shift_amount = 0.0_wp
+      if (.not. anchored(mesh, st, j, mesh%n)) then
+         shift_amount = -corr
+         call extend_up(mesh, st, j, shift_amount)
+      end if
+   end subroutine land_side
+
    !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
    pure subroutine land(mesh, st, g, timing, policy, events)
       type(mesh_t), intent(in) :: mesh
@@ -210,23 +350,34 @@ contains
       real(wp), intent(in) :: g
       integer, intent(in) :: timing, policy
       type(event_list_t), intent(inout) :: events
-      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount
-      integer :: n, j, k
-      logical :: at_n
+      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w
+      integer :: n, j
+      logical :: at_n, ok
       type(event_t) :: ev
       n = mesh%n
       dua0 = du_before_a(mesh, st, g, n)
       d_acc = (st%ua(n) - st%dua(n)) - st%u_base
       d_del = st%ua(n) - st%u_base
       call choose_time(timing, d_acc, d_del, at_n, corr)
-      call fragment_span(mesh, st, n, j, k)
-      if (policy == shift_above) j = 0
-      shift_amount = 0.0_wp
-      if (.not. anchored(mesh, st, j, n)) then
-         shift_amount = -corr
-         call extend_up(mesh, st, j, shift_amount)
-         call shift_span(mesh, st, g, j, n, shift_amount, de)
-         st%e_shift = st%e_shift - de
+      call land_side(mesh, st, policy, corr, j, shift_amount)
+      if (.not. at_n) then
+         ! as for a collision: on its path, and never creating energy, else at t^n
+         call path_speed(mesh, st, g, j, n, shift_amount, w, ok)
+         du_trial = st%dua(n) + w * mesh%dt
+         if (.not. ok .or. -0.5_wp * mesh%ma(n) * ((du_trial / mesh%dt)**2 + g * du_trial) &
+             - 0.5_wp * st%s(n) * du_trial > 0.0_wp) then
+            at_n = .true.
+            corr = d_acc
+            call land_side(mesh, st, policy, corr, j, shift_amount)
+         end if
+      end if
+      if (abs(shift_amount) > 0.0_wp) then
+         if (at_n) then
+            call shift_span(mesh, st, g, j, n, shift_amount, de)
+            st%e_shift = st%e_shift - de
+         else
+            call shift_late(mesh, st, g, j, n, shift_amount, w)
+         end if
       end if
       ev%kind = ev_base_collision
       if (at_n) then
@@ -238,6 +389,7 @@ contains
       e0 = node_energy(mesh, st, g, n)
       du_trial = st%dua(n)
       st%base_contact = .true.
+      st%i_support = st%i_support - mesh%ma(n) * du_trial / mesh%dt
       st%dua(n) = 0.0_wp
       st%dub(n) = 0.0_wp
       if (at_n) then

@@ -14,7 +14,7 @@ module spb_fracture
    use spb_arrays, only: append
    implicit none
    private
-   public :: fracture_step, node_energy, fragment_span, shift_span, new_fragment_id, first_overlap
+   public :: fracture_step, node_energy, fragment_span, shift_span, span_mass, new_fragment_id, first_overlap
 
 contains
 
@@ -52,6 +52,18 @@ contains
       end do
    end subroutine fragment_span
 
+   !> Mass of the region from B_top to A_bot (as moved by shift_span) [kg/m^2].
+   pure real(wp) function span_mass(mesh, top, bot) result(mass)
+      type(mesh_t), intent(in) :: mesh
+      integer, intent(in) :: top, bot
+      integer :: i
+      mass = 0.0_wp
+      do i = top, bot
+         if (i > top .or. top == 0) mass = mass + mesh%ma(i)
+         if (i < bot .or. bot == mesh%n) mass = mass + mesh%mb(i)
+      end do
+   end function span_mass
+
    !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
    !> rigidly by delta; returns the change of gravity potential energy.
    pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
@@ -60,20 +72,12 @@ contains
       real(wp), intent(in) :: g, delta
       integer, intent(in) :: top, bot      !! end nodes; an end node of the bar moves whole
       real(wp), intent(out) :: de_pot      !! [J/m^2]
-      real(wp) :: mass
       integer :: i
-      mass = 0.0_wp
       do i = top, bot
-         if (i > top .or. top == 0) then
-            st%ua(i) = st%ua(i) + delta
-            mass = mass + mesh%ma(i)
-         end if
-         if (i < bot .or. bot == mesh%n) then
-            st%ub(i) = st%ub(i) + delta
-            mass = mass + mesh%mb(i)
-         end if
+         if (i > top .or. top == 0) st%ua(i) = st%ua(i) + delta
+         if (i < bot .or. bot == mesh%n) st%ub(i) = st%ub(i) + delta
       end do
-      de_pot = -g * mass * delta
+      de_pot = -g * span_mass(mesh, top, bot) * delta
    end subroutine shift_span
 
    !> Issue a new fragment id with its parent and birth step.
@@ -218,6 +222,7 @@ contains
       e0 = node_energy(mesh, st, g, n)
       st%ua(n) = st%ua(n) - d_a
       st%dua(n) = st%dua(n) - d_a
+      st%i_support = st%i_support - mesh%ma(n) * d_a / mesh%dt
       st%ub(n) = st%ua(n)
       st%dub(n) = st%dua(n)
       st%s(n) = st%s(n) - s_base

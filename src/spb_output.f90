@@ -18,16 +18,17 @@ module spb_output
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
-      // 'w_transmit ledger e_fracture e_join e_shift e_contact'
+      // 'w_transmit ledger e_fracture e_join e_shift e_contact i_gravity i_ends i_support p_shift'
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
-      // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum [kg/(m s)]'
+      // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
+      // 'p_shift [kg/(m s)] along +x (down)'
    character(len=*), parameter :: event_columns = 't step kind node x stress dt_bound ' &
       // 'dx_bound opening frag_above frag_below stress_bound shift'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
    character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
-      fmt_real // '),1x,i20,9(1x,' // fmt_real // '))'
+      fmt_real // '),1x,i20,13(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
       '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
@@ -62,6 +63,8 @@ contains
          // ' s^n s^{n+1}, e_pot from (u^n+u^{n+1})/2 (the scheme''s invariant, METHOD.md 3)'
       write(out%his, '(a)') '# ledger = e_kin + e_strain + e_pot - w_ext + e_lost is constant; ' &
          // 'w_ext = w_load + w_transmit; e_lost = e_fracture'
+      write(out%his, '(a)') '# momentum balance: momentum - momentum(t=0) = i_gravity + i_ends ' &
+         // '+ i_support + p_shift (gravity, end stresses, supports/base, collision shifts)'
       write(out%his, '(a)') '# units: ' // history_units
       write(out%his, '(a)') '# ' // history_columns
       call header(out%prf, 'stress profiles: one block per profile time')
@@ -151,15 +154,16 @@ contains
    subroutine write_history_row(out, t, reaction_bottom, reaction_top, fragments, e_kin, &
                                 e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
                                 s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, &
-                                e_shift, e_contact)
+                                e_shift, e_contact, i_gravity, i_ends, i_support, p_shift)
       type(outputs_t), intent(in) :: out
       real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
       real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
       real(wp), intent(in) :: e_fracture, e_join, e_shift, e_contact
+      real(wp), intent(in) :: i_gravity, i_ends, i_support, p_shift
       integer, intent(in) :: fragments, step
       write(out%his, fmt_his) t, reaction_bottom, reaction_top, fragments, e_kin, e_strain, &
          e_pot, w_ext, e_lost, momentum, step, s_end_top, s_end_bottom, w_load, w_transmit, &
-         ledger, e_fracture, e_join, e_shift, e_contact
+         ledger, e_fracture, e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift
    end subroutine write_history_row
 
    !> Rows for the events of the list.

@@ -171,7 +171,9 @@ contains
          call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
             sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
-            e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact)
+            e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
+            g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
+            sim%st%i_ends, sim%st%i_support, sim%st%p_shift)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
          call guard(e)
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))

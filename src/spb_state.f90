@@ -48,6 +48,12 @@ module spb_state
       real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
       real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
       real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
+      real(wp) :: p_shift = 0.0_wp            !! momentum collision shifts gave the shifted
+                                              !! masses, moving them along their path [kg/(m s)]
+      real(wp) :: i_ends = 0.0_wp             !! impulse of the end stresses (loads and
+                                              !! transmitting ends) on the end nodes [kg/(m s)]
+      real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed ends, the
+                                              !! base): the momentum they took [kg/(m s)]
       logical, allocatable :: cracked(:)      !! (0:n) the section has been open once (a crack
                                               !! or a dry contact): re-openings are separations
       logical :: base_contact = .false.       !! the bottom face rests on the base

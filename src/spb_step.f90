@@ -86,11 +86,16 @@ contains
             st%dub(i) = st%dub(i) + fb / mesh%mb(i) * dt2
          end if
       end do
+      ! momentum balance: the end stresses act on the end nodes, supports take what reaches
+      ! them
+      st%i_ends = st%i_ends + (s_top - s_bot) * dt
       if (mesh%top == end_fixed) then
+         st%i_support = st%i_support - (mesh%ma(0) * st%dua(0) + mesh%mb(0) * st%dub(0)) / dt
          st%dua(0) = 0.0_wp
          st%dub(0) = 0.0_wp
       end if
       if (mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%base_contact)) then
+         st%i_support = st%i_support - (mesh%ma(n) * st%dua(n) + mesh%mb(n) * st%dub(n)) / dt
          st%dua(n) = 0.0_wp
          st%dub(n) = 0.0_wp
       end if
