@@ -229,8 +229,9 @@ contains
    !> Velocity change w of a region shifted on its path (see shift_late): the real root
    !> of M w^2/2 + (P + F dt/2) w - F shift = 0 on the side of the region's motion, with
    !> P its momentum over the step and F = M g + end loads the constant force on it (the
-   !> ledger measures potential and work at mid-step); ok = .false. where there is none:
-   !> the region is too slow to have come that far.
+   !> ledger measures potential and work at mid-step); ok = .false. where there is none
+   !> (the region is too slow to have come that far) or where it would set the region
+   !> back by more than the step.
    pure subroutine path_speed(mesh, st, g, top, bot, shift, w, ok)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
@@ -248,6 +249,9 @@ contains
       disc = vm**2 + 2.0_wp * force / mass * shift
       ok = disc >= 0.0_wp
       if (ok) w = sign(sqrt(disc), vm) - vm
+      ! the velocity change is the force's over the time the region is set back; the
+      ! contact happened within the step, so that time is at most dt
+      ok = ok .and. abs(w) <= abs(force / mass) * mesh%dt
    end subroutine path_speed
 
    !> The correction of a join at t^{n+1} moves the shifted region along its path: besides

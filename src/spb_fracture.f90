@@ -218,14 +218,15 @@ contains
       if (any(st%skip_test(1:st%n_skip) == n)) return
       if (.not. (st%sec(n) < -eps)) return
       s_base = st%sec(n)
-      d_a = -s_base * mesh%dt**2 / mesh%dm(n)
+      ! the full-mass model lets go without corrections (it has no section stresses)
+      d_a = merge(0.0_wp, -s_base * mesh%dt**2 / mesh%dm(n), mesh%full_mass)
       e0 = node_energy(mesh, st, g, n)
       st%ua(n) = st%ua(n) - d_a
       st%dua(n) = st%dua(n) - d_a
       st%i_support = st%i_support - mesh%ma(n) * d_a / mesh%dt
       st%ub(n) = st%ua(n)
       st%dub(n) = st%dua(n)
-      st%s(n) = st%s(n) - s_base
+      if (.not. mesh%full_mass) st%s(n) = st%s(n) - s_base
       st%base_contact = .false.
       st%sec(n) = 0.0_wp
       st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))

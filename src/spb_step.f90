@@ -143,7 +143,10 @@ contains
       case (end_base)
          ! resting on the rigid base: the base side does not move; v^n is the bottom half's
          ! velocity before the step (0 while it rests)
-         if (st%base_contact) then
+         if (st%base_contact .and. mesh%full_mass) then
+            ! full-mass model: no section stresses; the base takes the force on the node
+            st%sec(n) = st%s(n) + mesh%ma(n) * g
+         else if (st%base_contact) then
             st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, 0.0_wp, &
                                           mesh%z(n), mesh%dm(n), g)
          else
