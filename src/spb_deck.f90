@@ -13,12 +13,19 @@ module spb_deck
    implicit none
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
-   public :: read_deck, validate_deck, write_echo, unset, is_set, known_groups
+   public :: read_deck, validate_deck, write_echo, deck_items, echo_item_t, unset, is_set, &
+      known_groups
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
    character(len=16), parameter :: known_groups(8) = [character(len=16) :: 'run', 'mesh', &
       'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep']
+
+   !> One echoed deck value (write_echo, and the attributes of PREFIX.h5).
+   type :: echo_item_t
+      character(len=:), allocatable :: group, name, value, unit
+      logical :: given = .false.                        !! set in the deck (else default)
+   end type echo_item_t
 
    type :: run_cfg
       character(len=path_len) :: title = ''             !! echoed in every output header
@@ -28,6 +35,8 @@ module spb_deck
       character(len=name_len) :: shift = 'above'        !! collision shift policy
       real(wp) :: eps_rel = 1.0e-9_wp                   !! round-off guard of the fracture test [-]
       integer :: history_every = 1                      !! steps between history rows
+      integer :: field_every = 0                        !! steps between x-t field rows in
+                                                        !! PREFIX.h5 (0: none)
       real(wp) :: profile_times(max_profiles) = unset   !! profile snapshot times [s]
       integer :: n_profiles = 0                         !! how many profile_times were given
       logical :: hdf5 = .false.                         !! also write PREFIX.h5
@@ -176,12 +185,12 @@ contains
       character(len=path_len) :: title
       real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
       character(len=name_len) :: timing, shift, model
-      integer :: history_every, ios
+      integer :: history_every, field_every, ios
       logical :: hdf5
       real(wp) :: energy_guard
       character(len=256) :: msg
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
-         profile_times, hdf5, model, energy_guard
+         profile_times, hdf5, model, energy_guard, field_every
       title = deck%run%title
       t_end = deck%run%t_end
       gravity = deck%run%gravity
@@ -189,6 +198,7 @@ contains
       shift = deck%run%shift
       eps_rel = deck%run%eps_rel
       history_every = deck%run%history_every
+      field_every = deck%run%field_every
       profile_times = deck%run%profile_times
       hdf5 = deck%run%hdf5
       model = deck%run%model
@@ -204,6 +214,7 @@ contains
       deck%run%shift = lower(shift)
       deck%run%eps_rel = eps_rel
       deck%run%history_every = history_every
+      deck%run%field_every = field_every
       deck%run%profile_times = profile_times
       deck%run%hdf5 = hdf5
       deck%run%model = lower(model)
@@ -400,13 +411,6 @@ contains
                       // trim(value) // '''')
    end subroutine need_choice
 
-   subroutine not_in_version(err, group, name, what)
-      type(spb_error_t), allocatable, intent(inout) :: err
-      character(len=*), intent(in) :: group, name, what
-      if (allocated(err)) return
-      call make_error(err, '&' // group // ': ' // name // ': ' // what // &
-                      ' is not available in this version of spallbar')
-   end subroutine not_in_version
 
    subroutine validate_run(run, err)
       type(run_cfg), intent(inout) :: run
@@ -434,6 +438,16 @@ contains
          call make_error(err, '&run: history_every must be >= 1, got ' // itoa(run%history_every))
          return
       end if
+      if (run%field_every < 0) then
+         call make_error(err, '&run: field_every must be >= 0 (0: no x-t fields), got ' // &
+                         itoa(run%field_every))
+         return
+      end if
+      if (run%field_every > 0 .and. .not. run%hdf5) then
+         call make_error(err, '&run: field_every = ' // itoa(run%field_every) // &
+                         ' needs hdf5 = .true. (the x-t fields are written to PREFIX.h5 only)')
+         return
+      end if
       run%n_profiles = 0
       do k = 1, max_profiles
          if (.not. is_set(run%profile_times(k))) exit
@@ -454,7 +468,6 @@ contains
          end associate
          if (allocated(err)) return
       end do
-      if (run%hdf5) call not_in_version(err, 'run', 'hdf5', 'HDF5 output')
    contains
       subroutine need_order(k)
          integer, intent(in) :: k
@@ -657,17 +670,14 @@ contains
 
    ! ---------------------------------------------------------------------- echo
 
-   !> Write every deck value, defaults included, as namelist text behind prefix.
-   subroutine write_echo(u, deck, prefix)
-      integer, intent(in) :: u                    !! open formatted unit
+   !> Every deck value, defaults included, in echo order: group, name, value as namelist
+   !> text, unit, and whether the deck gave it.
+   subroutine deck_items(deck, items)
       type(deck_t), intent(in) :: deck
-      character(len=*), intent(in) :: prefix      !! e.g. '# '
+      type(echo_item_t), allocatable, intent(out) :: items(:)
       integer :: j, n
       character(len=:), allocatable :: v
-
-      write(u, '(a)') prefix // 'deck: ' // trim(deck%path) // &
-         '   (every value; "input" = given in the deck, "default" = not given)'
-      call open_group('run')
+      allocate(items(0))
       call item('run', 'title', quote(deck%run%title), '')
       call item('run', 't_end', rtoa(deck%run%t_end), 's')
       call item('run', 'gravity', rtoa(deck%run%gravity), 'm/s^2')
@@ -682,19 +692,16 @@ contains
       end do
       call item('run', 'profile_times', v, 's')
       call item('run', 'hdf5', ltoa(deck%run%hdf5), '')
+      call item('run', 'field_every', itoa(deck%run%field_every), 'steps (0: none)')
       call item('run', 'model', quote(deck%run%model), '')
       call item('run', 'energy_guard', rtoa(deck%run%energy_guard), '- (0: off)')
-      call close_group()
 
-      call open_group('mesh')
       call item('mesh', 'cells', itoa(deck%mesh%cells), '')
       call item('mesh', 'ref_segment', itoa(deck%mesh%ref_segment), '')
       call item('mesh', 'dt', rtoa(deck%mesh%dt), 's')
       call item('mesh', 'fit', quote(deck%mesh%fit), '')
-      call close_group()
 
       n = deck%seg%n
-      call open_group('segments')
       call item('segments', 'n', itoa(n), '')
       call item('segments', 'length', rlist(deck%seg%length(1:n)), 'm')
       call item('segments', 'young', rlist(deck%seg%young(1:n)), 'Pa')
@@ -708,15 +715,11 @@ contains
       call item('segments', 'interface', v, '')
       call item('segments', 'velocity', rlist(deck%seg%velocity(1:n)), 'm/s')
       call item('segments', 'gap', rlist(deck%seg%gap(1:n-1)), 'm')
-      call close_group()
 
-      call open_group('ends')
       call item('ends', 'top', quote(deck%ends%top), '')
       call item('ends', 'bottom', quote(deck%ends%bottom), '')
       call item('ends', 'base_gap', rtoa(deck%ends%base_gap), 'm')
-      call close_group()
 
-      call open_group('load')
       call item('load', 'kind', quote(deck%load%kind), '')
       call item('load', 'face', quote(deck%load%face), '')
       call item('load', 'p0', rtoa(deck%load%p0), 'Pa')
@@ -724,29 +727,41 @@ contains
       call item('load', 'exponent', rtoa(deck%load%exponent), '-')
       call item('load', 't_cut', opt(deck%load%t_cut), 's')
       call item('load', 'table', quote(deck%load%table), '')
-      call close_group()
 
-      call open_group('initial')
       call item('initial', 'state', quote(deck%init%state), '')
-      call close_group()
    contains
-      subroutine open_group(g)
-         character(len=*), intent(in) :: g
-         write(u, '(a)') prefix // '&' // g
-      end subroutine open_group
-      subroutine close_group()
-         write(u, '(a)') prefix // '/'
-      end subroutine close_group
       subroutine item(g, name, value, unit)
          character(len=*), intent(in) :: g, name, value, unit
-         character(len=40) :: lhs
-         character(len=:), allocatable :: note
-         lhs = '   ' // name
-         note = 'default'
-         if (has_var(deck%scan, g, name)) note = 'input'
-         if (len_trim(unit) > 0) note = '[' // unit // '] ' // note
-         write(u, '(a)') prefix // lhs(1:18) // '= ' // pad(value, 30) // ' ! ' // note
+         items = [items, echo_item_t(g, name, value, unit, has_var(deck%scan, g, name))]
       end subroutine item
+   end subroutine deck_items
+
+   !> Write every deck value, defaults included, as namelist text behind prefix.
+   subroutine write_echo(u, deck, prefix)
+      integer, intent(in) :: u                    !! open formatted unit
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: prefix      !! e.g. '# '
+      type(echo_item_t), allocatable :: items(:)
+      character(len=40) :: lhs
+      character(len=:), allocatable :: note
+      integer :: k
+      write(u, '(a)') prefix // 'deck: ' // trim(deck%path) // &
+         '   (every value; "input" = given in the deck, "default" = not given)'
+      call deck_items(deck, items)
+      do k = 1, size(items)
+         if (k == 1) then
+            write(u, '(a)') prefix // '&' // items(k)%group
+         else if (items(k)%group /= items(k - 1)%group) then
+            write(u, '(a)') prefix // '/'
+            write(u, '(a)') prefix // '&' // items(k)%group
+         end if
+         lhs = '   ' // items(k)%name
+         note = merge('input  ', 'default', items(k)%given)
+         note = trim(note)
+         if (len_trim(items(k)%unit) > 0) note = '[' // items(k)%unit // '] ' // note
+         write(u, '(a)') prefix // lhs(1:18) // '= ' // pad(items(k)%value, 30) // ' ! ' // note
+      end do
+      if (size(items) > 0) write(u, '(a)') prefix // '/'
    end subroutine write_echo
 
    pure function pad(s, n) result(r)

@@ -1,12 +1,15 @@
-!> Column text outputs (INTERFACE.md): PREFIX.his, PREFIX.prf, PREFIX.evt.
+!> Outputs (INTERFACE.md): the column text files PREFIX.his, .prf, .evt, .frg and, with
+!> &run hdf5 = .true., PREFIX.h5 holding the same (layout in doc/outputs.md).
 !>
-!> Each file starts with '#' header lines (version, title, the full echoed deck, the mesh,
-!> units); the last header line names the columns.
+!> Each text file starts with '#' header lines (version, title, the full echoed deck, the
+!> mesh, units); the last header line names the columns. Every writer here writes both.
 module spb_output
    use spb_kinds, only: wp, version
-   use spb_error, only: spb_error_t, make_error
+   use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t, write_echo
+   use spb_deck, only: deck_t, write_echo, deck_items, echo_item_t
+   use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
+      h5_table, h5_append, h5_xt, h5_append_xt
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
    use spb_events, only: event_list_t, event_kind_name
@@ -15,6 +18,7 @@ module spb_output
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
+   public :: write_field, flush_outputs, history_units_of
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
@@ -37,6 +41,10 @@ module spb_output
    type :: outputs_t
       character(len=:), allocatable :: prefix
       integer :: his = -1, prf = -1, evt = -1, frg = -1   !! units; -1 when closed
+      logical :: hdf5 = .false.                           !! PREFIX.h5 is written
+      type(h5file_t) :: h5
+      integer :: h_his = 0, h_evt = 0                     !! its table handles
+      integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
    end type outputs_t
 
 contains
@@ -93,6 +101,7 @@ contains
       write(out%frg, '(a)') '# units: birth_t [s]; x_* [m]; mass [kg/m^2]; velocity [m/s]; ' &
          // 'e_vib [J/m^2]; ids and nodes [-]'
       write(out%frg, '(a)') '# ' // fragment_columns
+      if (deck%run%hdf5) call open_h5(prefix, deck, mesh, report, out, err)
    contains
       subroutine open_one(ext, u)
          character(len=*), intent(in) :: ext
@@ -138,8 +147,10 @@ contains
       end do
    end subroutine write_mesh_summary
 
-   subroutine close_outputs(out)
+   !> Close every file; a failure of the HDF5 file (its first error) comes back in err.
+   subroutine close_outputs(out, err)
       type(outputs_t), intent(inout) :: out
+      type(spb_error_t), allocatable, intent(out), optional :: err
       if (out%his >= 0) close(out%his)
       if (out%prf >= 0) close(out%prf)
       if (out%evt >= 0) close(out%evt)
@@ -148,14 +159,208 @@ contains
       out%his = -1
       out%prf = -1
       out%evt = -1
+      if (out%hdf5) then
+         call h5_close(out%h5)
+         out%hdf5 = .false.
+         if (allocated(out%h5%error) .and. present(err)) call make_error(err, out%h5%error, &
+                                                                         code=exit_runtime)
+      end if
    end subroutine close_outputs
+
+   !> Push what is written so far to disk (text and HDF5): a killed run reads up to here.
+   subroutine flush_outputs(out)
+      type(outputs_t), intent(inout) :: out
+      if (out%his >= 0) flush(out%his)
+      if (out%evt >= 0) flush(out%evt)
+      if (out%hdf5) call h5_flush(out%h5)
+   end subroutine flush_outputs
+
+   !> PREFIX.h5: root attributes, /deck, /mesh, the /history and /events tables, /fields
+   !> (profiles, and x-t rows when field_every > 0), /fragments.
+   subroutine open_h5(prefix, deck, mesh, report, out, err)
+      character(len=*), intent(in) :: prefix
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(in) :: mesh
+      character(len=*), intent(in) :: report(:)
+      type(outputs_t), intent(inout) :: out
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(echo_item_t), allocatable :: items(:)
+      character(len=32), allocatable :: names(:), units(:)
+      integer :: k, n
+      call h5_create(out%h5, prefix // '.h5')
+      out%hdf5 = .true.
+      call h5_attr(out%h5, '/', 'program', 'spallbar ' // version)
+      call h5_attr(out%h5, '/', 'title', trim(deck%run%title))
+      call h5_attr(out%h5, '/', 'deck_path', trim(deck%path))
+      call h5_attr(out%h5, '/', 'layout', 'doc/outputs.md; h5py shows a Fortran a(nx, nt) ' // &
+                   'as (nt, nx)')
+      call h5_attr(out%h5, '/', 'conventions', 'SI units; x down from the top end; ' // &
+                   'stress > 0 in compression')
+      ! the deck: one group per namelist group, one string attribute per variable (the
+      ! echoed value), with name:units and name:from ('input' or 'default')
+      call h5_group(out%h5, '/deck')
+      call deck_items(deck, items)
+      do k = 1, size(items)
+         if (k == 1) then
+            call h5_group(out%h5, '/deck/' // items(k)%group)
+         else if (items(k)%group /= items(k - 1)%group) then
+            call h5_group(out%h5, '/deck/' // items(k)%group)
+         end if
+         associate (g => '/deck/' // items(k)%group, nm => items(k)%name)
+            call h5_attr(out%h5, g, nm, unquote(items(k)%value))
+            if (len_trim(items(k)%unit) > 0) call h5_attr(out%h5, g, nm // ':units', items(k)%unit)
+            call h5_attr(out%h5, g, nm // ':from', trim(merge('input  ', 'default', items(k)%given)))
+         end associate
+      end do
+      ! the mesh
+      n = mesh%n
+      call h5_group(out%h5, '/mesh')
+      call h5_attr(out%h5, '/mesh', 'dt', mesh%dt)
+      call h5_attr(out%h5, '/mesh', 'cells', n)
+      call h5_attr(out%h5, '/mesh', 'steps', mesh%nsteps)
+      call h5_attr(out%h5, '/mesh', 'segments', mesh%nseg)
+      do k = 1, size(report)
+         call h5_attr(out%h5, '/mesh', 'fit_report_' // itoa(k), trim(report(k)))
+      end do
+      call h5_write(out%h5, '/mesh/x', mesh%x, 'm')
+      call h5_write(out%h5, '/mesh/m_upper', mesh%ma, 'kg/m^2')
+      call h5_write(out%h5, '/mesh/m_lower', mesh%mb, 'kg/m^2')
+      call h5_write(out%h5, '/mesh/dx', mesh%dx, 'm')
+      call h5_write(out%h5, '/mesh/dm', mesh%dm, 'kg/m^2')
+      call h5_write(out%h5, '/mesh/impedance', mesh%z, 'kg/(m^2 s)')
+      call h5_write(out%h5, '/mesh/stiffness', mesh%stiff, 'Pa/m')
+      call h5_write(out%h5, '/mesh/segment', mesh%seg, '-')
+      call h5_write(out%h5, '/mesh/x_half', half_x(mesh), 'm')
+      ! tables
+      call split(history_columns, names)
+      allocate(units(size(names)))
+      do k = 1, size(names)
+         units(k) = history_units_of(names(k))
+      end do
+      call h5_table(out%h5, '/history', names, units, &
+                    names == 'fragments' .or. names == 'step', out%h_his)
+      call h5_attr(out%h5, '/history', 'columns', history_columns)
+      call split(event_columns, names)
+      units = [character(len=32) :: 's', '-', '-', '-', 'm', 'Pa', 's', 'm', 'm', '-', '-', &
+               'Pa', 'm']
+      call h5_table(out%h5, '/events', names, units, &
+                    names == 'step' .or. names == 'kind' .or. names == 'node' .or. &
+                    names == 'frag_above' .or. names == 'frag_below', out%h_evt)
+      call h5_attr(out%h5, '/events', 'kind_codes', '1 fracture, 2 collision, 3 separation, ' // &
+                   '4 base-collision')
+      call h5_group(out%h5, '/fields')
+      call h5_group(out%h5, '/fields/profiles')
+      call h5_attr(out%h5, '/fields', 'rows', 'half nodes top to bottom, as PREFIX.prf: ' // &
+                   'node 0 lower half, then upper and lower half of each interior node, ' // &
+                   'node n upper half; x at /mesh/x_half')
+      if (deck%run%field_every > 0) then
+         call h5_xt(out%h5, '/fields/xt', 2 * n)
+         call h5_attr(out%h5, '/fields/xt', 'every', deck%run%field_every)
+      end if
+      call h5_group(out%h5, '/fragments')
+      call h5_flush(out%h5)
+      if (allocated(out%h5%error)) call make_error(err, '--output: ' // out%h5%error)
+   end subroutine open_h5
+
+   !> Reference position of every half-node row (the .prf layout).
+   pure function half_x(mesh) result(x)
+      type(mesh_t), intent(in) :: mesh
+      real(wp) :: x(2 * mesh%n)
+      integer :: i, r
+      r = 0
+      do i = 0, mesh%n
+         if (i > 0) then
+            r = r + 1
+            x(r) = mesh%x(i)
+         end if
+         if (i < mesh%n) then
+            r = r + 1
+            x(r) = mesh%x(i)
+         end if
+      end do
+   end function half_x
+
+   !> u, v and stress of every half-node row at the state's time.
+   pure subroutine half_rows(mesh, st, u, v, s)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(out) :: u(:), v(:), s(:)
+      integer :: i, r
+      r = 0
+      do i = 0, mesh%n
+         if (i > 0) then
+            r = r + 1
+            u(r) = st%ua(i)
+            v(r) = st%dua(i) / mesh%dt
+            s(r) = st%s(i)
+         end if
+         if (i < mesh%n) then
+            r = r + 1
+            u(r) = st%ub(i)
+            v(r) = st%dub(i) / mesh%dt
+            s(r) = st%s(i + 1)
+         end if
+      end do
+   end subroutine half_rows
+
+   !> One row of the x-t fields (PREFIX.h5 only).
+   subroutine write_field(out, mesh, st)
+      type(outputs_t), intent(inout) :: out
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp) :: u(2 * mesh%n), v(2 * mesh%n), s(2 * mesh%n)
+      if (.not. out%hdf5) return
+      call half_rows(mesh, st, u, v, s)
+      call h5_append_xt(out%h5, real(st%n, wp) * mesh%dt, u, v, s)
+   end subroutine write_field
+
+   !> Unit of a history column.
+   pure function history_units_of(name) result(u)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: u
+      select case (trim(name))
+      case ('t')
+         u = 's'
+      case ('reaction_bottom', 'reaction_top', 's_end_top', 's_end_bottom')
+         u = 'Pa'
+      case ('fragments', 'step')
+         u = '-'
+      case ('momentum', 'i_gravity', 'i_ends', 'i_support', 'p_shift')
+         u = 'kg/(m s)'
+      case default
+         u = 'J/m^2'
+      end select
+   end function history_units_of
+
+   !> The blank-separated words of s.
+   pure subroutine split(s, words)
+      character(len=*), intent(in) :: s
+      character(len=32), allocatable, intent(out) :: words(:)
+      integer :: i, j, n
+      allocate(words(0))
+      i = 1
+      n = len_trim(s)
+      do while (i <= n)
+         if (s(i:i) == ' ') then
+            i = i + 1
+            cycle
+         end if
+         j = i
+         do while (j < n)
+            if (s(j + 1:j + 1) == ' ') exit
+            j = j + 1
+         end do
+         words = [character(len=32) :: words, s(i:j)]
+         i = j + 1
+      end do
+   end subroutine split
 
    !> One history row; values in the order of history_columns.
    subroutine write_history_row(out, t, reaction_bottom, reaction_top, fragments, e_kin, &
                                 e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
                                 s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, &
                                 e_shift, e_contact, i_gravity, i_ends, i_support, p_shift)
-      type(outputs_t), intent(in) :: out
+      type(outputs_t), intent(inout) :: out
       real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
       real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
       real(wp), intent(in) :: e_fracture, e_join, e_shift, e_contact
@@ -164,11 +369,15 @@ contains
       write(out%his, fmt_his) t, reaction_bottom, reaction_top, fragments, e_kin, e_strain, &
          e_pot, w_ext, e_lost, momentum, step, s_end_top, s_end_bottom, w_load, w_transmit, &
          ledger, e_fracture, e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift
+      if (out%hdf5) call h5_append(out%h5, out%h_his, [t, reaction_bottom, reaction_top, &
+         real(fragments, wp), e_kin, e_strain, e_pot, w_ext, e_lost, momentum, real(step, wp), &
+         s_end_top, s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, e_shift, &
+         e_contact, i_gravity, i_ends, i_support, p_shift])
    end subroutine write_history_row
 
    !> Rows for the events of the list.
    subroutine write_events(out, events)
-      type(outputs_t), intent(in) :: out
+      type(outputs_t), intent(inout) :: out
       type(event_list_t), intent(in) :: events
       integer :: k
       do k = 1, events%n
@@ -176,32 +385,67 @@ contains
             write(out%evt, fmt_evt) e%t, e%step, event_kind_name(e%kind), e%node, e%x, &
                e%stress, e%dt_bound, e%dx_bound, e%opening, e%frag_above, e%frag_below, &
                e%stress_bound, e%shift
+            if (out%hdf5) call h5_append(out%h5, out%h_evt, [e%t, real(e%step, wp), &
+               real(e%kind, wp), real(e%node, wp), e%x, e%stress, e%dt_bound, e%dx_bound, &
+               e%opening, real(e%frag_above, wp), real(e%frag_below, wp), e%stress_bound, e%shift])
          end associate
       end do
    end subroutine write_events
 
    !> One block of fragments at time t.
    subroutine write_fragments(out, t, dt, list)
-      type(outputs_t), intent(in) :: out
+      type(outputs_t), intent(inout) :: out
       real(wp), intent(in) :: t, dt
       type(frag_info_t), intent(in) :: list(:)
       integer :: f
+      character(len=:), allocatable :: g
       write(out%frg, '(a)') '# t = ' // rtoa(t)
       do f = 1, size(list)
          write(out%frg, fmt_frg) list(f)%id, list(f)%parent, real(list(f)%birth_step, wp) * dt, &
             list(f)%x_top, list(f)%x_bot, list(f)%mass, list(f)%velocity, list(f)%e_vib, &
             list(f)%top, list(f)%bot
       end do
+      if (.not. out%hdf5) return
+      out%n_frg = out%n_frg + 1
+      g = '/fragments/' // block_name(out%n_frg)
+      call h5_group(out%h5, g)
+      call h5_attr(out%h5, g, 't', t)
+      block
+         integer :: ic(size(list))
+         real(wp) :: rc(size(list))
+         ic = list%id
+         call h5_write(out%h5, g // '/id', ic, '-')
+         ic = list%parent
+         call h5_write(out%h5, g // '/parent', ic, '-')
+         rc = real(list%birth_step, wp) * dt
+         call h5_write(out%h5, g // '/birth_t', rc, 's')
+         rc = list%x_top
+         call h5_write(out%h5, g // '/x_top', rc, 'm')
+         rc = list%x_bot
+         call h5_write(out%h5, g // '/x_bottom', rc, 'm')
+         rc = list%mass
+         call h5_write(out%h5, g // '/mass', rc, 'kg/m^2')
+         rc = list%velocity
+         call h5_write(out%h5, g // '/velocity', rc, 'm/s')
+         rc = list%e_vib
+         call h5_write(out%h5, g // '/e_vib', rc, 'J/m^2')
+         ic = list%top
+         call h5_write(out%h5, g // '/top_node', ic, '-')
+         ic = list%bot
+         call h5_write(out%h5, g // '/bottom_node', ic, '-')
+      end block
    end subroutine write_fragments
 
    !> One profile block at the state's time.
    subroutine write_profile(out, mesh, st, t_requested)
-      type(outputs_t), intent(in) :: out
+      type(outputs_t), intent(inout) :: out
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
       real(wp), intent(in) :: t_requested   !! the profile_times entry [s]
       integer :: i, n
       real(wp) :: dt
+      real(wp) :: u(2 * mesh%n), v(2 * mesh%n), s(2 * mesh%n)
+      character(len=:), allocatable :: g
       n = mesh%n
       dt = mesh%dt
       write(out%prf, '(a)') '# t = ' // rtoa(real(st%n, wp) * dt)
@@ -210,5 +454,36 @@ contains
          if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, st%s(i)
          if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, st%s(i + 1)
       end do
+      if (.not. out%hdf5) return
+      out%n_prof = out%n_prof + 1
+      g = '/fields/profiles/' // block_name(out%n_prof)
+      call half_rows(mesh, st, u, v, s)
+      call h5_group(out%h5, g)
+      call h5_attr(out%h5, g, 't', real(st%n, wp) * dt)
+      call h5_attr(out%h5, g, 't_requested', t_requested)
+      call h5_attr(out%h5, g, 'step', st%n)
+      call h5_write(out%h5, g // '/u', u, 'm')
+      call h5_write(out%h5, g // '/v', v, 'm/s')
+      call h5_write(out%h5, g // '/stress', s, 'Pa')
    end subroutine write_profile
+   !> A namelist string value without its quotes ('a' -> a); lists are left as they are.
+   pure function unquote(v) result(r)
+      character(len=*), intent(in) :: v
+      character(len=:), allocatable :: r
+      integer :: n
+      n = len(v)
+      r = v
+      if (n >= 2) then
+         if (v(1:1) == '''' .and. v(n:n) == '''' .and. index(v(2:n - 1), '''') == 0) r = v(2:n - 1)
+      end if
+   end function unquote
+
+   !> Name of the k-th block group: 'p000', 'p001', ... (sorts in time order).
+   pure function block_name(k) result(name)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: name
+      character(len=12) :: buf
+      write(buf, '(a,i3.3)') 'p', k - 1
+      name = trim(buf)
+   end function block_name
 end module spb_output

@@ -19,7 +19,7 @@ module spb_sim
    use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
-      write_events, write_fragments
+      write_events, write_fragments, write_field, flush_outputs
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step
@@ -112,6 +112,7 @@ contains
       end block
       call row()
       call profiles()
+      if (sim%deck%run%field_every > 0) call write_field(out, sim%mesh, sim%st)
       do n = 1, sim%mesh%nsteps
          events%n = 0
          call sim_step(sim, events)
@@ -137,18 +138,25 @@ contains
             end if
          end if
          call profiles()
+         if (sim%deck%run%field_every > 0) then
+            if (mod(n, sim%deck%run%field_every) == 0) call write_field(out, sim%mesh, sim%st)
+         end if
          if (mod(n, 1024) == 0) then
             call system_clock(c_now)
             if (real(c_now - c_last, wp) > 0.5_wp * real(rate, wp)) then
                c_last = c_now
-               flush(out%his)
+               call flush_outputs(out)
                if (progress) call show_progress(n, real(c_now - c0, wp) / real(rate, wp))
             end if
          end if
       end do
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
-      call close_outputs(out)
+      block
+         type(spb_error_t), allocatable :: err_close
+         call close_outputs(out, err_close)
+         if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
+      end block
       summary%steps = sim%st%n
       summary%wall = real(c_now - c0, wp) / real(max(rate, 1_int64), wp)
    contains
@@ -165,7 +173,7 @@ contains
             call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
                ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &
                itoa(min(i, sim%mesh%n)), code=exit_runtime)
-            flush(out%his)
+            call flush_outputs(out)
             return
          end if
          call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &

@@ -1,0 +1,505 @@
+!> PREFIX.h5 (INTERFACE.md, layout in doc/outputs.md): the only module that uses HDF5.
+!>
+!> An opaque file type with open / write / flush / close. Tables (the history, the events)
+!> are groups of one extendible 1-D dataset per column, chunked and deflated, appended
+!> through a row buffer; the x-t fields are extendible 2-D datasets (rows of the half-node
+!> layout x snapshots). flush writes the buffers and calls H5Fflush: a run killed after a
+!> flush leaves a file that reads up to it. Every hdferr goes through check(), which names
+!> the operation, the file and the object. h5py sees a Fortran a(nx, nt) as (nt, nx).
+module spb_hdf5
+   use hdf5, only: hid_t, hsize_t, h5open_f, h5fcreate_f, h5fopen_f, h5fclose_f, h5fflush_f, &
+      h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_f, h5screate_simple_f, h5sclose_f, &
+      h5sselect_hyperslab_f, h5pcreate_f, h5pset_chunk_f, h5pset_deflate_f, h5pclose_f, &
+      h5dcreate_f, h5dopen_f, h5dclose_f, h5dwrite_f, h5dread_f, h5dget_space_f, &
+      h5dset_extent_f, h5sget_simple_extent_dims_f, h5acreate_f, h5awrite_f, h5aclose_f, &
+      h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
+      H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
+      H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
+      H5T_NATIVE_CHARACTER
+   use spb_kinds, only: wp
+   implicit none
+   private
+   public :: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
+      h5_table, h5_append, h5_xt, h5_append_xt, h5_read, h5_read_size
+
+   integer, parameter :: buffer_rows = 1024     !! rows held before a table is written
+   integer, parameter :: deflate_level = 4
+
+   !> One table: a group with one extendible dataset per column.
+   type :: table_t
+      character(len=:), allocatable :: path     !! e.g. '/history'
+      integer(hid_t), allocatable :: dset(:)
+      logical, allocatable :: is_int(:)
+      real(wp), allocatable :: buf(:, :)        !! (columns, buffer_rows)
+      integer :: nbuf = 0
+      integer(hsize_t) :: rows = 0              !! rows in the file
+   end type table_t
+
+   !> The x-t fields: datasets t(nt), u, v, stress(nrow, nt).
+   type :: xt_t
+      integer(hid_t) :: dset(4) = -1
+      integer :: nrow = 0
+      real(wp), allocatable :: buf(:, :, :)     !! (nrow, 3, buffer) for u, v, stress
+      real(wp), allocatable :: tbuf(:)
+      integer :: nbuf = 0
+      integer(hsize_t) :: rows = 0
+   end type xt_t
+
+   type :: h5file_t
+      character(len=:), allocatable :: path
+      integer(hid_t) :: file = -1
+      type(table_t), allocatable :: tables(:)
+      type(xt_t) :: xt
+      logical :: has_xt = .false.
+      character(len=:), allocatable :: error    !! first failure, if any
+   end type h5file_t
+
+   interface h5_attr
+      module procedure attr_string, attr_real, attr_int
+   end interface h5_attr
+
+   interface h5_write
+      module procedure write_real_1d, write_int_1d
+   end interface h5_write
+
+contains
+
+   !> Record the first failure of an HDF5 call.
+   subroutine check(h5, hdferr, what)
+      type(h5file_t), intent(inout) :: h5
+      integer, intent(in) :: hdferr
+      character(len=*), intent(in) :: what      !! operation and object
+      if (hdferr < 0 .and. .not. allocated(h5%error)) &
+         h5%error = 'HDF5: ' // what // ' failed in ''' // h5%path // ''''
+   end subroutine check
+
+   !> Create (truncate) the file.
+   subroutine h5_create(h5, path)
+      type(h5file_t), intent(out) :: h5
+      character(len=*), intent(in) :: path
+      integer :: hdferr
+      h5%path = path
+      allocate(h5%tables(0))
+      call h5open_f(hdferr)
+      call check(h5, hdferr, 'h5open_f')
+      ! failures are reported once, through check(), not by the library's own printing
+      call h5eset_auto_f(0, hdferr)
+      call h5fcreate_f(path, H5F_ACC_TRUNC_F, h5%file, hdferr)
+      call check(h5, hdferr, 'h5fcreate_f')
+      if (hdferr < 0) h5%file = -1
+   end subroutine h5_create
+
+   !> Create the group path (its parent must exist).
+   subroutine h5_group(h5, path)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer(hid_t) :: g
+      integer :: hdferr
+      if (h5%file < 0) return
+      call h5gcreate_f(h5%file, path, g, hdferr)
+      call check(h5, hdferr, 'h5gcreate_f ' // path)
+      if (hdferr >= 0) call h5gclose_f(g, hdferr)
+   end subroutine h5_group
+
+   !> Open a group or dataset path for attributes.
+   subroutine open_obj(h5, path, obj, is_dset)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer(hid_t), intent(out) :: obj
+      logical, intent(out) :: is_dset
+      integer :: hdferr
+      is_dset = .false.
+      call h5oopen_f(h5%file, path, obj, hdferr)
+      call check(h5, hdferr, 'h5oopen_f ' // path)
+   end subroutine open_obj
+
+   subroutine close_obj(obj, is_dset)
+      integer(hid_t), intent(in) :: obj
+      logical, intent(in) :: is_dset
+      integer :: hdferr
+      if (is_dset .or. .not. is_dset) call h5oclose_f(obj, hdferr)
+   end subroutine close_obj
+
+   subroutine attr_string(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name, value
+      integer(hid_t) :: obj, space, atype, attr
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      logical :: is_dset
+      character(len=max(1, len(value))) :: text   ! an empty value is stored as one blank
+      if (h5%file < 0) return
+      text = value
+      call open_obj(h5, path, obj, is_dset)
+      if (allocated(h5%error)) return
+      dims = 1
+      call h5screate_f(H5S_SCALAR_F, space, hdferr)
+      call h5tcopy_f(H5T_NATIVE_CHARACTER, atype, hdferr)
+      call h5tset_size_f(atype, int(len(text), hsize_t), hdferr)
+      call h5acreate_f(obj, name, atype, space, attr, hdferr)
+      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
+      if (hdferr >= 0) then
+         call h5awrite_f(attr, atype, text, dims, hdferr)
+         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
+         call h5aclose_f(attr, hdferr)
+      end if
+      call h5tclose_f(atype, hdferr)
+      call h5sclose_f(space, hdferr)
+      call close_obj(obj, is_dset)
+   end subroutine attr_string
+
+   subroutine attr_real(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name
+      real(wp), intent(in) :: value
+      integer(hid_t) :: obj, space, attr
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      logical :: is_dset
+      if (h5%file < 0) return
+      call open_obj(h5, path, obj, is_dset)
+      if (allocated(h5%error)) return
+      dims = 1
+      call h5screate_f(H5S_SCALAR_F, space, hdferr)
+      call h5acreate_f(obj, name, H5T_NATIVE_DOUBLE, space, attr, hdferr)
+      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
+      if (hdferr >= 0) then
+         call h5awrite_f(attr, H5T_NATIVE_DOUBLE, value, dims, hdferr)
+         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
+         call h5aclose_f(attr, hdferr)
+      end if
+      call h5sclose_f(space, hdferr)
+      call close_obj(obj, is_dset)
+   end subroutine attr_real
+
+   subroutine attr_int(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name
+      integer, intent(in) :: value
+      integer(hid_t) :: obj, space, attr
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      logical :: is_dset
+      if (h5%file < 0) return
+      call open_obj(h5, path, obj, is_dset)
+      if (allocated(h5%error)) return
+      dims = 1
+      call h5screate_f(H5S_SCALAR_F, space, hdferr)
+      call h5acreate_f(obj, name, H5T_NATIVE_INTEGER, space, attr, hdferr)
+      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
+      if (hdferr >= 0) then
+         call h5awrite_f(attr, H5T_NATIVE_INTEGER, value, dims, hdferr)
+         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
+         call h5aclose_f(attr, hdferr)
+      end if
+      call h5sclose_f(space, hdferr)
+      call close_obj(obj, is_dset)
+   end subroutine attr_int
+
+   !> A fixed 1-D dataset with a units attribute.
+   subroutine write_real_1d(h5, path, values, units)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, units
+      real(wp), intent(in) :: values(:)
+      integer(hid_t) :: space, dset
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      if (h5%file < 0) return
+      dims = size(values)
+      call h5screate_simple_f(1, dims, space, hdferr)
+      call h5dcreate_f(h5%file, path, H5T_NATIVE_DOUBLE, space, dset, hdferr)
+      call check(h5, hdferr, 'h5dcreate_f ' // path)
+      if (hdferr >= 0) then
+         call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+         call check(h5, hdferr, 'h5dwrite_f ' // path)
+         call h5dclose_f(dset, hdferr)
+      end if
+      call h5sclose_f(space, hdferr)
+      call attr_string(h5, path, 'units', units)
+   end subroutine write_real_1d
+
+   subroutine write_int_1d(h5, path, values, units)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, units
+      integer, intent(in) :: values(:)
+      integer(hid_t) :: space, dset
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      if (h5%file < 0) return
+      dims = size(values)
+      call h5screate_simple_f(1, dims, space, hdferr)
+      call h5dcreate_f(h5%file, path, H5T_NATIVE_INTEGER, space, dset, hdferr)
+      call check(h5, hdferr, 'h5dcreate_f ' // path)
+      if (hdferr >= 0) then
+         call h5dwrite_f(dset, H5T_NATIVE_INTEGER, values, dims, hdferr)
+         call check(h5, hdferr, 'h5dwrite_f ' // path)
+         call h5dclose_f(dset, hdferr)
+      end if
+      call h5sclose_f(space, hdferr)
+      call attr_string(h5, path, 'units', units)
+   end subroutine write_int_1d
+
+   !> An extendible, chunked, deflated dataset of rank 1 (nrow = 0) or 2 (nrow rows).
+   subroutine create_extendible(h5, path, dtype, nrow, dset)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer(hid_t), intent(in) :: dtype
+      integer, intent(in) :: nrow
+      integer(hid_t), intent(out) :: dset
+      integer(hid_t) :: space, plist
+      integer(hsize_t) :: dims(2), maxdims(2), chunk(2)
+      integer :: hdferr, rank
+      dset = -1
+      if (nrow == 0) then
+         rank = 1
+         dims = [0_hsize_t, 0_hsize_t]
+         maxdims = [H5S_UNLIMITED_F, 0_hsize_t]
+         chunk = [int(buffer_rows, hsize_t), 1_hsize_t]
+      else
+         rank = 2
+         dims = [int(nrow, hsize_t), 0_hsize_t]
+         maxdims = [int(nrow, hsize_t), H5S_UNLIMITED_F]
+         chunk = [int(nrow, hsize_t), int(max(1, min(64, 262144 / max(nrow, 1))), hsize_t)]
+      end if
+      call h5screate_simple_f(rank, dims(1:rank), space, hdferr, maxdims(1:rank))
+      call h5pcreate_f(H5P_DATASET_CREATE_F, plist, hdferr)
+      call h5pset_chunk_f(plist, rank, chunk(1:rank), hdferr)
+      call h5pset_deflate_f(plist, deflate_level, hdferr)
+      call h5dcreate_f(h5%file, path, dtype, space, dset, hdferr, plist)
+      call check(h5, hdferr, 'h5dcreate_f ' // path)
+      call h5pclose_f(plist, hdferr)
+      call h5sclose_f(space, hdferr)
+   end subroutine create_extendible
+
+   !> A table: group path with one extendible column per name; returns its handle.
+   subroutine h5_table(h5, path, names, units, is_int, handle)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: names(:), units(:)
+      logical, intent(in) :: is_int(:)
+      integer, intent(out) :: handle
+      type(table_t) :: tab
+      integer :: k
+      handle = 0
+      if (h5%file < 0) return
+      call h5_group(h5, path)
+      tab%path = path
+      allocate(tab%dset(size(names)), tab%is_int(size(names)))
+      allocate(tab%buf(size(names), buffer_rows))
+      tab%is_int = is_int
+      do k = 1, size(names)
+         if (is_int(k)) then
+            call create_extendible(h5, path // '/' // trim(names(k)), H5T_NATIVE_INTEGER, 0, tab%dset(k))
+         else
+            call create_extendible(h5, path // '/' // trim(names(k)), H5T_NATIVE_DOUBLE, 0, tab%dset(k))
+         end if
+         call attr_string(h5, path // '/' // trim(names(k)), 'units', trim(units(k)))
+      end do
+      h5%tables = [h5%tables, tab]
+      handle = size(h5%tables)
+   end subroutine h5_table
+
+   !> Append one row to a table (buffered).
+   subroutine h5_append(h5, handle, row)
+      type(h5file_t), intent(inout) :: h5
+      integer, intent(in) :: handle
+      real(wp), intent(in) :: row(:)
+      if (h5%file < 0 .or. handle < 1) return
+      associate (tab => h5%tables(handle))
+         tab%nbuf = tab%nbuf + 1
+         tab%buf(:, tab%nbuf) = row
+      end associate
+      if (h5%tables(handle)%nbuf == buffer_rows) call write_table(h5, handle)
+   end subroutine h5_append
+
+   subroutine write_table(h5, handle)
+      type(h5file_t), intent(inout) :: h5
+      integer, intent(in) :: handle
+      integer(hid_t) :: fspace, mspace
+      integer(hsize_t) :: off(1), cnt(1), newsize(1)
+      integer :: k, hdferr
+      real(wp) :: col(h5%tables(handle)%nbuf)
+      integer :: icol(h5%tables(handle)%nbuf)
+      associate (tab => h5%tables(handle))
+         if (tab%nbuf == 0) return
+         cnt = tab%nbuf
+         off = tab%rows
+         newsize = tab%rows + cnt
+         do k = 1, size(tab%dset)
+            call h5dset_extent_f(tab%dset(k), newsize, hdferr)
+            call check(h5, hdferr, 'h5dset_extent_f ' // tab%path)
+            call h5dget_space_f(tab%dset(k), fspace, hdferr)
+            call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off, cnt, hdferr)
+            call h5screate_simple_f(1, cnt, mspace, hdferr)
+            if (tab%is_int(k)) then
+               icol = nint(tab%buf(k, 1:tab%nbuf))
+               call h5dwrite_f(tab%dset(k), H5T_NATIVE_INTEGER, icol, cnt, hdferr, &
+                               mem_space_id=mspace, file_space_id=fspace)
+            else
+               col = tab%buf(k, 1:tab%nbuf)
+               call h5dwrite_f(tab%dset(k), H5T_NATIVE_DOUBLE, col, cnt, hdferr, &
+                               mem_space_id=mspace, file_space_id=fspace)
+            end if
+            call check(h5, hdferr, 'h5dwrite_f ' // tab%path)
+            call h5sclose_f(mspace, hdferr)
+            call h5sclose_f(fspace, hdferr)
+         end do
+         tab%rows = newsize(1)
+         tab%nbuf = 0
+      end associate
+   end subroutine write_table
+
+   !> The x-t fields under path: t(nt) and u, v, stress(nrow, nt), with units.
+   subroutine h5_xt(h5, path, nrow)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: nrow
+      character(len=6), parameter :: names(3) = [character(len=6) :: 'u', 'v', 'stress']
+      character(len=6), parameter :: units(3) = [character(len=6) :: 'm', 'm/s', 'Pa']
+      integer :: k
+      if (h5%file < 0) return
+      call h5_group(h5, path)
+      h5%has_xt = .true.
+      h5%xt%nrow = nrow
+      allocate(h5%xt%buf(nrow, 3, 64), h5%xt%tbuf(64))
+      call create_extendible(h5, path // '/t', H5T_NATIVE_DOUBLE, 0, h5%xt%dset(4))
+      call attr_string(h5, path // '/t', 'units', 's')
+      do k = 1, 3
+         call create_extendible(h5, path // '/' // trim(names(k)), H5T_NATIVE_DOUBLE, nrow, &
+                                h5%xt%dset(k))
+         call attr_string(h5, path // '/' // trim(names(k)), 'units', trim(units(k)))
+      end do
+   end subroutine h5_xt
+
+   subroutine h5_append_xt(h5, t, u, v, s)
+      type(h5file_t), intent(inout) :: h5
+      real(wp), intent(in) :: t                !! [s]
+      real(wp), intent(in) :: u(:), v(:), s(:) !! per half-node row [m], [m/s], [Pa]
+      if (h5%file < 0 .or. .not. h5%has_xt) return
+      h5%xt%nbuf = h5%xt%nbuf + 1
+      h5%xt%tbuf(h5%xt%nbuf) = t
+      h5%xt%buf(:, 1, h5%xt%nbuf) = u
+      h5%xt%buf(:, 2, h5%xt%nbuf) = v
+      h5%xt%buf(:, 3, h5%xt%nbuf) = s
+      if (h5%xt%nbuf == size(h5%xt%tbuf)) call write_xt(h5)
+   end subroutine h5_append_xt
+
+   subroutine write_xt(h5)
+      type(h5file_t), intent(inout) :: h5
+      integer(hid_t) :: fspace, mspace
+      integer(hsize_t) :: off2(2), cnt2(2), size2(2), off1(1), cnt1(1)
+      integer :: k, hdferr, nb
+      real(wp) :: block(h5%xt%nrow, h5%xt%nbuf), tcol(h5%xt%nbuf)
+      nb = h5%xt%nbuf
+      if (nb == 0) return
+      size2 = [int(h5%xt%nrow, hsize_t), h5%xt%rows + nb]
+      off2 = [0_hsize_t, h5%xt%rows]
+      cnt2 = [int(h5%xt%nrow, hsize_t), int(nb, hsize_t)]
+      do k = 1, 3
+         call h5dset_extent_f(h5%xt%dset(k), size2, hdferr)
+         call check(h5, hdferr, 'h5dset_extent_f x-t field')
+         call h5dget_space_f(h5%xt%dset(k), fspace, hdferr)
+         call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off2, cnt2, hdferr)
+         call h5screate_simple_f(2, cnt2, mspace, hdferr)
+         block = h5%xt%buf(:, k, 1:nb)
+         call h5dwrite_f(h5%xt%dset(k), H5T_NATIVE_DOUBLE, block, cnt2, hdferr, &
+                         mem_space_id=mspace, file_space_id=fspace)
+         call check(h5, hdferr, 'h5dwrite_f x-t field')
+         call h5sclose_f(mspace, hdferr)
+         call h5sclose_f(fspace, hdferr)
+      end do
+      off1 = h5%xt%rows
+      cnt1 = nb
+      call h5dset_extent_f(h5%xt%dset(4), [h5%xt%rows + nb], hdferr)
+      call h5dget_space_f(h5%xt%dset(4), fspace, hdferr)
+      call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off1, cnt1, hdferr)
+      call h5screate_simple_f(1, cnt1, mspace, hdferr)
+      tcol = h5%xt%tbuf(1:nb)
+      call h5dwrite_f(h5%xt%dset(4), H5T_NATIVE_DOUBLE, tcol, cnt1, hdferr, &
+                      mem_space_id=mspace, file_space_id=fspace)
+      call check(h5, hdferr, 'h5dwrite_f x-t times')
+      call h5sclose_f(mspace, hdferr)
+      call h5sclose_f(fspace, hdferr)
+      h5%xt%rows = h5%xt%rows + nb
+      h5%xt%nbuf = 0
+   end subroutine write_xt
+
+   !> Write every buffer and flush the file: it then reads up to here if the run dies.
+   subroutine h5_flush(h5)
+      type(h5file_t), intent(inout) :: h5
+      integer :: k, hdferr
+      if (h5%file < 0) return
+      do k = 1, size(h5%tables)
+         call write_table(h5, k)
+      end do
+      if (h5%has_xt) call write_xt(h5)
+      call h5fflush_f(h5%file, H5F_SCOPE_GLOBAL_F, hdferr)
+      call check(h5, hdferr, 'h5fflush_f')
+   end subroutine h5_flush
+
+   subroutine h5_close(h5)
+      type(h5file_t), intent(inout) :: h5
+      integer :: k, j, hdferr
+      if (h5%file < 0) return
+      call h5_flush(h5)
+      do k = 1, size(h5%tables)
+         do j = 1, size(h5%tables(k)%dset)
+            if (h5%tables(k)%dset(j) >= 0) call h5dclose_f(h5%tables(k)%dset(j), hdferr)
+         end do
+      end do
+      if (h5%has_xt) then
+         do k = 1, 4
+            if (h5%xt%dset(k) >= 0) call h5dclose_f(h5%xt%dset(k), hdferr)
+         end do
+      end if
+      call h5fclose_f(h5%file, hdferr)
+      call check(h5, hdferr, 'h5fclose_f')
+      h5%file = -1
+   end subroutine h5_close
+
+   !> Length of a 1-D dataset (or the last dimension) in an existing file; -1 if absent.
+   subroutine h5_read_size(path, dset_path, n)
+      character(len=*), intent(in) :: path, dset_path
+      integer, intent(out) :: n
+      integer(hid_t) :: file, dset, space
+      integer(hsize_t) :: dims(2), maxdims(2)
+      integer :: hdferr, rank
+      logical :: exists
+      n = -1
+      call h5open_f(hdferr)
+      call h5fopen_f(path, H5F_ACC_RDONLY_F, file, hdferr)
+      if (hdferr < 0) return
+      call h5lexists_f(file, dset_path, exists, hdferr)
+      if (exists) then
+         call h5dopen_f(file, dset_path, dset, hdferr)
+         call h5dget_space_f(dset, space, hdferr)
+         call h5sget_simple_extent_dims_f(space, dims, maxdims, rank)
+         if (rank >= 1) n = int(dims(rank))
+         call h5sclose_f(space, hdferr)
+         call h5dclose_f(dset, hdferr)
+      end if
+      call h5fclose_f(file, hdferr)
+   end subroutine h5_read_size
+
+   !> Read a 1-D float64 dataset of an existing file into values (size from h5_read_size).
+   subroutine h5_read(path, dset_path, values, ok)
+      character(len=*), intent(in) :: path, dset_path
+      real(wp), intent(out) :: values(:)
+      logical, intent(out) :: ok
+      integer(hid_t) :: file, dset
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      ok = .false.
+      call h5open_f(hdferr)
+      call h5fopen_f(path, H5F_ACC_RDONLY_F, file, hdferr)
+      if (hdferr < 0) return
+      call h5dopen_f(file, dset_path, dset, hdferr)
+      if (hdferr >= 0) then
+         dims = size(values)
+         call h5dread_f(dset, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+         ok = hdferr >= 0
+         call h5dclose_f(dset, hdferr)
+      end if
+      call h5fclose_f(file, hdferr)
+   end subroutine h5_read
+end module spb_hdf5
