@@ -38,9 +38,12 @@ module spb_output
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
    character(len=*), parameter :: fmt_prf = '(4(1x,' // fmt_real // '))'
 
+   !> A closed file's unit: newunit= numbers are negative but never -1.
+   integer, parameter :: no_unit = -1
+
    type :: outputs_t
       character(len=:), allocatable :: prefix
-      integer :: his = -1, prf = -1, evt = -1, frg = -1   !! units; -1 when closed
+      integer :: his = no_unit, prf = no_unit, evt = no_unit, frg = no_unit   !! units
       logical :: hdf5 = .false.                           !! PREFIX.h5 is written
       type(h5file_t) :: h5
       integer :: h_his = 0, h_evt = 0                     !! its table handles
@@ -111,7 +114,7 @@ contains
          open(newunit=u, file=prefix // ext, status='replace', action='write', iostat=ios, &
               iomsg=msg)
          if (ios /= 0) then
-            u = -1
+            u = no_unit
             call make_error(err, '--output: cannot write ''' // prefix // ext // ''': ' // trim(msg))
          end if
       end subroutine open_one
@@ -151,14 +154,14 @@ contains
    subroutine close_outputs(out, err)
       type(outputs_t), intent(inout) :: out
       type(spb_error_t), allocatable, intent(out), optional :: err
-      if (out%his >= 0) close(out%his)
-      if (out%prf >= 0) close(out%prf)
-      if (out%evt >= 0) close(out%evt)
-      if (out%frg >= 0) close(out%frg)
-      out%frg = -1
-      out%his = -1
-      out%prf = -1
-      out%evt = -1
+      if (out%his /= no_unit) close(out%his)
+      if (out%prf /= no_unit) close(out%prf)
+      if (out%evt /= no_unit) close(out%evt)
+      if (out%frg /= no_unit) close(out%frg)
+      out%frg = no_unit
+      out%his = no_unit
+      out%prf = no_unit
+      out%evt = no_unit
       if (out%hdf5) then
          call h5_close(out%h5)
          out%hdf5 = .false.
@@ -170,8 +173,8 @@ contains
    !> Push what is written so far to disk (text and HDF5): a killed run reads up to here.
    subroutine flush_outputs(out)
       type(outputs_t), intent(inout) :: out
-      if (out%his >= 0) flush(out%his)
-      if (out%evt >= 0) flush(out%evt)
+      if (out%his /= no_unit) flush(out%his)
+      if (out%evt /= no_unit) flush(out%evt)
       if (out%hdf5) call h5_flush(out%h5)
    end subroutine flush_outputs
 
