@@ -3,6 +3,7 @@
 #   make           Release build in build/release
 #   make run       build and run the seed example deck (input/$(RUN_DECK).nml)
 #   make test      Debug build (all checks on, -std=f2008) and ctest
+#   make figures   run the paper's examples, render its figures into build/release/figures
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
@@ -11,12 +12,12 @@ RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug run test clean help
+.PHONY: all setup build debug run test figures clean help
 
 all: build
 
 help:
-	@sed -n '1,8p' Makefile
+	@sed -n '1,9p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -40,6 +41,10 @@ run: build
 
 test: debug
 	cd $(BUILD_DEBUG) && ctest --output-on-failure -j $(JOBS)
+
+figures: build
+	cmake --build $(BUILD_RELEASE) --target figures
+	@echo "figures: $(BUILD_RELEASE)/figures/fig{07c,08b,10,11,12}.png"
 
 clean:
 	rm -rf build

@@ -1,0 +1,126 @@
+"""Read a spallbar run: PREFIX.h5 when it exists, else the column text files.
+
+    run = spbread.load("runs/example2")
+    run.history["t"], run.history["reaction_bottom"]      numpy arrays
+    run.events["t"], run.events["kind"] (names), ...      numpy arrays
+    run.profiles   list of dict(t, x, u, v, stress)       half-node rows (doc/outputs.md)
+    run.fragments  list of dict(t, id, x_top, x_bottom, mass, velocity, ...)
+    run.xt         dict(t, x, u, v, stress) with arrays (snapshots, rows), or None
+    run.source     'hdf5' or 'text'
+
+The HDF5 layout is in doc/outputs.md; h5py shows the Fortran x-t arrays (rows, snapshots)
+as (snapshots, rows), which is the orientation returned here for both sources.
+"""
+import os
+
+import numpy as np
+
+EVENT_KINDS = {1: "fracture", 2: "collision", 3: "separation", 4: "base-collision"}
+
+
+def _text(value):
+    return value.decode(errors="replace") if isinstance(value, bytes) else str(value)
+
+
+class Run:
+    def __init__(self, prefix):
+        self.prefix = prefix
+        self.history, self.events, self.profiles, self.fragments = {}, {}, [], []
+        self.xt, self.title, self.deck = None, "", {}
+        if os.path.exists(prefix + ".h5"):
+            self._read_h5()
+        else:
+            self._read_text()
+
+    # ------------------------------------------------------------------ HDF5
+    def _read_h5(self):
+        import h5py
+        self.source = "hdf5"
+        with h5py.File(self.prefix + ".h5", "r") as f:
+            self.title = _text(f.attrs.get("title", ""))
+            for group in f["deck"]:
+                self.deck[group] = {k: _text(v) for k, v in f["deck"][group].attrs.items()
+                                    if ":" not in k}
+            self.history = {k: f["history"][k][:] for k in f["history"]}
+            self.events = {k: f["events"][k][:] for k in f["events"]}
+            if "kind" in self.events:
+                self.events["kind"] = np.array([EVENT_KINDS[int(k)] for k in self.events["kind"]],
+                                               dtype=object)
+            x_half = f["mesh"]["x_half"][:]
+            for name in sorted(f["fields"]["profiles"]):
+                g = f["fields"]["profiles"][name]
+                self.profiles.append(dict(t=float(g.attrs["t"]), x=x_half, u=g["u"][:],
+                                          v=g["v"][:], stress=g["stress"][:]))
+            for name in sorted(f["fragments"]):
+                g = f["fragments"][name]
+                block = {k: g[k][:] for k in g}
+                block["t"] = float(g.attrs["t"])
+                self.fragments.append(block)
+            if "xt" in f["fields"]:
+                g = f["fields"]["xt"]
+                self.xt = dict(t=g["t"][:], x=x_half, u=g["u"][:], v=g["v"][:],
+                               stress=g["stress"][:])
+
+    # ------------------------------------------------------------------ text
+    def _read_text(self):
+        self.source = "text"
+        self.history = _columns(self.prefix + ".his")
+        self.events = _columns(self.prefix + ".evt", kinds=True)
+        for t, rows in _blocks(self.prefix + ".prf"):
+            a = np.array(rows, dtype=float).reshape(-1, 4)
+            self.profiles.append(dict(t=t, x=a[:, 0], u=a[:, 1], v=a[:, 2], stress=a[:, 3]))
+        names = None
+        with open(self.prefix + ".frg") as f:
+            for line in f:
+                if line.startswith("# id "):
+                    names = line[2:].split()
+        names = [n if n != "birth_t" else "birth_t" for n in names]
+        for t, rows in _blocks(self.prefix + ".frg"):
+            a = np.array(rows, dtype=float).reshape(-1, len(names))
+            block = {n: a[:, k] for k, n in enumerate(names)}
+            block["t"] = t
+            self.fragments.append(block)
+        with open(self.prefix + ".his") as f:
+            for line in f:
+                if line.startswith("# title:"):
+                    self.title = line[len("# title:"):].strip()
+                    break
+
+
+def _columns(path, kinds=False):
+    """Columns of a text table by the names on its last header line."""
+    names, rows = None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                names = line[1:].split()
+                continue
+            rows.append(line.split())
+    out = {}
+    for k, n in enumerate(names):
+        col = [r[k] for r in rows]
+        if kinds and n == "kind":
+            out[n] = np.array(col, dtype=object)
+        else:
+            out[n] = np.array(col, dtype=float)
+    return out
+
+
+def _blocks(path):
+    """(t, rows) for each '# t = T' block of a text file."""
+    blocks, t, rows = [], None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# t = "):
+                if t is not None:
+                    blocks.append((t, rows))
+                t, rows = float(line[6:]), []
+            elif not line.startswith("#") and t is not None:
+                rows.append(line.split())
+    if t is not None:
+        blocks.append((t, rows))
+    return blocks
+
+
+def load(prefix):
+    return Run(prefix)

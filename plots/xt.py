@@ -1,0 +1,44 @@
+"""x-t diagram of a run: the stress field (PREFIX.h5 with field_every > 0) and the events
+(fractures, collisions, separations, base collisions) at their sections and times.
+
+usage: xt.py PREFIX -o xt.png
+"""
+import numpy as np
+
+from _common import parser, plt, save, spbread
+
+MARKERS = {"fracture": ("x", "k"), "collision": ("o", "tab:red"),
+           "separation": ("^", "tab:blue"), "base-collision": ("s", "tab:green")}
+
+
+def plot(run, ax):
+    if run.xt is not None and len(run.xt["t"]) > 1:
+        s = run.xt["stress"]
+        lim = np.max(np.abs(s)) or 1.0
+        mesh = ax.pcolormesh(run.xt["x"], run.xt["t"] * 1e3, s / 1e6, cmap="RdBu_r",
+                             vmin=-lim / 1e6, vmax=lim / 1e6, shading="nearest")
+        plt.colorbar(mesh, ax=ax, label="stress [MPa] (compression > 0)")
+    ev = run.events
+    if len(ev.get("t", [])):
+        for kind, (m, c) in MARKERS.items():
+            sel = np.array([k == kind for k in ev["kind"]], dtype=bool)
+            if sel.any():
+                style = dict(c=c) if m == "x" else dict(facecolors="none", edgecolors=c)
+                ax.scatter(ev["x"][sel], ev["t"][sel] * 1e3, marker=m, s=14, linewidths=0.8,
+                           label=f"{kind} ({sel.sum()})", **style)
+        ax.legend(fontsize=7, loc="upper right")
+    ax.set_xlabel("x [m] (from the top end)")
+    ax.set_ylabel("t [ms]")
+
+
+def main():
+    args = parser(__doc__).parse_args()
+    run = spbread.load(args.prefix[0])
+    fig, ax = plt.subplots(figsize=(8, 6))
+    plot(run, ax)
+    ax.set_title(args.title or run.title, fontsize=9)
+    save(fig, args.output)
+
+
+if __name__ == "__main__":
+    main()
