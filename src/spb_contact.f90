@@ -78,6 +78,7 @@ contains
       integer :: i
       st%n_skip = 0
       do i = 1, mesh%n - 1
+         if (st%n_split == 0) exit
          if (st%joined(i)) cycle
          if (st%ua(i) - st%ub(i) > 0.0_wp) call collide(mesh, st, g, timing, policy, i, events)
       end do
@@ -166,6 +167,7 @@ contains
       du_b_trial = st%dub(i)
       du_join = (mass_a * du_a_trial + mass_b * du_b_trial) / (mass_a + mass_b)
       st%joined(i) = .true.
+      st%n_split = st%n_split - 1
       st%dua(i) = du_join
       st%dub(i) = du_join
       if (at_n) then
@@ -244,7 +246,7 @@ contains
       ok = .true.
       mass = span_mass(mesh, top, bot)
       force = g * mass + end_force(mesh, st, top, bot)
-      if (force == 0.0_wp .or. shift == 0.0_wp .or. mass <= 0.0_wp) return
+      if (.not. (abs(force) > 0.0_wp .and. abs(shift) > 0.0_wp .and. mass > 0.0_wp)) return
       vm = (span_momentum(mesh, st, top, bot) + 0.5_wp * force * mesh%dt) / mass
       disc = vm**2 + 2.0_wp * force / mass * shift
       ok = disc >= 0.0_wp

@@ -102,6 +102,7 @@ contains
       type(event_list_t), intent(inout) :: events
       integer, allocatable :: brk(:)
       real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
+      integer :: cand(mesh%n)
       real(wp) :: eps, dt2, e0, de, shift_up, shift_dn
       integer :: i, m, nb, j, k, parent
       logical :: anchored_up, anchored_dn
@@ -119,17 +120,16 @@ contains
       ! (3.3): all sections that break at this step, tested on the uncorrected step
       nb = 0
       do i = 1, mesh%n - 1
-         if (breaks(i)) nb = nb + 1
+         if (.not. st%joined(i)) cycle
+         if (st%strength(i) < 0.0_wp) cycle
+         if (.not. (st%sec(i) < -st%strength(i) - eps)) cycle
+         if (any(st%skip_test(1:st%n_skip) == i)) cycle
+         nb = nb + 1
+         cand(nb) = i
       end do
       if (nb == 0) return
       allocate(brk(nb), d_a(nb), d_b(nb), s_brk(nb))
-      nb = 0
-      do i = 1, mesh%n - 1
-         if (breaks(i)) then
-            nb = nb + 1
-            brk(nb) = i
-         end if
-      end do
+      brk = cand(1:nb)
       dt2 = mesh%dt**2
       ! stage 1, (3.4)-(3.6): each adjacent cell loses exactly S; the new faces are free
       do m = 1, nb
@@ -145,6 +145,7 @@ contains
          st%s(i) = st%s(i) - s_brk(m)
          st%s(i + 1) = st%s(i + 1) - s_brk(m)
          st%joined(i) = .false.
+         st%n_split = st%n_split + 1
          st%strength(i) = 0.0_wp
          st%sec(i) = 0.0_wp
          st%n_breakable = st%n_breakable - 1
@@ -193,15 +194,6 @@ contains
          ev%frag_below = st%frag_id(i)
          call push_event(events, ev)
       end do
-   contains
-      pure logical function breaks(i)
-         integer, intent(in) :: i
-         breaks = .false.
-         if (.not. st%joined(i)) return
-         if (st%strength(i) < 0.0_wp) return
-         if (any(st%skip_test(1:st%n_skip) == i)) return
-         breaks = st%sec(i) < -st%strength(i) - eps
-      end function breaks
    end subroutine fracture_step
 
    !> The bar leaves the rigid base when the base section stress falls below -eps (the

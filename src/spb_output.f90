@@ -6,7 +6,7 @@
 module spb_output
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
-   use spb_strings, only: itoa, rtoa
+   use spb_strings, only: itoa, rtoa, es20_12, int_right
    use spb_deck, only: deck_t, write_echo, deck_items, echo_item_t
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt
@@ -369,25 +369,54 @@ contains
       real(wp), intent(in) :: e_fracture, e_join, e_shift, e_contact
       real(wp), intent(in) :: i_gravity, i_ends, i_support, p_shift
       integer, intent(in) :: fragments, step
-      write(out%his, fmt_his) t, reaction_bottom, reaction_top, fragments, e_kin, e_strain, &
-         e_pot, w_ext, e_lost, momentum, step, s_end_top, s_end_bottom, w_load, w_transmit, &
-         ledger, e_fracture, e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift
-      if (out%hdf5) call h5_append(out%h5, out%h_his, [t, reaction_bottom, reaction_top, &
-         real(fragments, wp), e_kin, e_strain, e_pot, w_ext, e_lost, momentum, real(step, wp), &
-         s_end_top, s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, e_shift, &
-         e_contact, i_gravity, i_ends, i_support, p_shift])
+      ! fmt_his, written by the fast formatters into one line (the same characters as the
+      ! edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
+      character(len=24 * 21) :: line
+      integer :: k
+      real(wp) :: v(24)
+      v = [t, reaction_bottom, reaction_top, 0.0_wp, e_kin, e_strain, e_pot, w_ext, e_lost, &
+           momentum, 0.0_wp, s_end_top, s_end_bottom, w_load, w_transmit, ledger, e_fracture, &
+           e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift]
+      line = ' '
+      do k = 1, 24
+         select case (k)
+         case (4)
+            line(21 * k - 19:21 * k) = int_right(fragments, 20)
+         case (11)
+            line(21 * k - 19:21 * k) = int_right(step, 20)
+         case default
+            line(21 * k - 19:21 * k) = es20_12(v(k))
+         end select
+      end do
+      write(out%his, '(a)') line
+      v(4) = real(fragments, wp)
+      v(11) = real(step, wp)
+      if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
 
    !> Rows for the events of the list.
    subroutine write_events(out, events)
       type(outputs_t), intent(inout) :: out
       type(event_list_t), intent(in) :: events
+      character(len=237) :: line
       integer :: k
       do k = 1, events%n
          associate (e => events%e(k))
-            write(out%evt, fmt_evt) e%t, e%step, event_kind_name(e%kind), e%node, e%x, &
-               e%stress, e%dt_bound, e%dx_bound, e%opening, e%frag_above, e%frag_below, &
-               e%stress_bound, e%shift
+            ! fmt_evt, by the fast formatters into one line
+            line = ' ' // es20_12(e%t)
+            line(22:34) = ' ' // int_right(e%step, 12)
+            line(35:51) = ' ' // adjustr(kind_field(event_kind_name(e%kind)))
+            line(52:64) = ' ' // int_right(e%node, 12)
+            line(65:85) = ' ' // es20_12(e%x)
+            line(86:106) = ' ' // es20_12(e%stress)
+            line(107:127) = ' ' // es20_12(e%dt_bound)
+            line(128:148) = ' ' // es20_12(e%dx_bound)
+            line(149:169) = ' ' // es20_12(e%opening)
+            line(170:182) = ' ' // int_right(e%frag_above, 12)
+            line(183:195) = ' ' // int_right(e%frag_below, 12)
+            line(196:216) = ' ' // es20_12(e%stress_bound)
+            line(217:237) = ' ' // es20_12(e%shift)
+            write(out%evt, '(a)') line
             if (out%hdf5) call h5_append(out%h5, out%h_evt, [e%t, real(e%step, wp), &
                real(e%kind, wp), real(e%node, wp), e%x, e%stress, e%dt_bound, e%dx_bound, &
                e%opening, real(e%frag_above, wp), real(e%frag_below, wp), e%stress_bound, e%shift])
@@ -469,6 +498,13 @@ contains
       call h5_write(out%h5, g // '/v', v, 'm/s')
       call h5_write(out%h5, g // '/stress', s, 'Pa')
    end subroutine write_profile
+   !> An event kind in the a16 field of fmt_evt.
+   pure function kind_field(name) result(f)
+      character(len=*), intent(in) :: name
+      character(len=16) :: f
+      f = name
+   end function kind_field
+
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.
    pure function unquote(v) result(r)
       character(len=*), intent(in) :: v

@@ -26,6 +26,7 @@ module spb_state
       real(wp), allocatable :: strength(:)    !! tensile strength R_i of each node's section
                                               !! (0:n) [Pa]; < 0 unbreakable, 0 once broken
       integer :: n_breakable = 0              !! joined interior nodes with strength >= 0
+      integer :: n_split = 0                  !! split interior nodes (not joined)
       real(wp) :: s_scale = 0.0_wp            !! largest stress magnitude so far [Pa]
       integer, allocatable :: frag_id(:)      !! (0:n) id of the fragment whose top node is i,
                                               !! 0 at joined interior nodes
@@ -145,6 +146,7 @@ contains
          end if
       end do
       st%n_breakable = count(st%strength(1:n-1) >= 0.0_wp .and. st%joined(1:n-1))
+      st%n_split = count(.not. st%joined(1:n-1))
       if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
       if (mesh%bottom == end_base) then
          ! touching and at rest: in contact; moving onto it: the first step lands by the

@@ -51,8 +51,10 @@ contains
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       type(state_t), intent(inout) :: st
       real(wp), allocatable :: swap(:), du_cut_old(:)
-      real(wp) :: dt, dt2, fa, fb, d, du_top_old, du_bot_old, s_top, s_bot, w_cut, strain_cut
-      integer :: i, n, c, k
+      real(wp) :: old_a(st%n_split), old_b(st%n_split), old_sec(st%n_split)
+      real(wp) :: dt, dt2, d, du_top_old, du_bot_old, s_top, s_bot, w_cut, strain_cut
+      integer :: split(st%n_split)
+      integer :: i, n, c, k, n_split
 
       n = mesh%n
       dt = mesh%dt
@@ -70,21 +72,41 @@ contains
          end do
       end if
 
-      ! (2.3)1-2: a joined node takes the forces on both halves over both masses
+      ! (2.3)1-2: a joined node takes the forces on both halves over both masses. Every
+      ! node is first updated as joined (one branch-free, vectorisable pass), then the few
+      ! split nodes are redone from their saved increments: each half takes its own force.
+      n_split = 0
+      if (st%n_split > 0) then
+         do i = 1, n - 1
+            if (st%joined(i)) cycle
+            n_split = n_split + 1
+            split(n_split) = i
+         end do
+         old_a = st%dua(split(1:n_split))
+         old_b = st%dub(split(1:n_split))
+         old_sec = st%sec(split(1:n_split))
+      end if
+      if (st%n_breakable > 0) then
+         ! (3.1)-(3.2): the section stress S^{n+1/2} of a joined interior node, needed where
+         ! a node can break (an unbreakable node's is never read)
+         do i = 1, n - 1
+            d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+                * mesh%inv_m(i) * dt2
+            st%sec(i) = st%s(i) + mesh%z(i) * (st%dua(i) / dt + (st%s(i) - st%sec(i) + &
+                        0.5_wp * mesh%dm(i) * g) / mesh%z(i) - d / dt) + 0.5_wp * mesh%dm(i) * g
+         end do
+      end if
       do i = 0, n
-         fa = st%s(i) + mesh%ma(i) * g
-         fb = mesh%mb(i) * g - st%s(i + 1)
-         if (st%joined(i)) then
-            d = st%dua(i) + (fa + fb) * mesh%inv_m(i) * dt2
-            ! (3.1)-(3.2): the section stress S^{n+1/2} of a joined interior node
-            if (i > 0 .and. i < n) st%sec(i) = section_stress_a(st%s(i), st%sec(i), &
-               st%dua(i) / dt, d / dt, mesh%z(i), mesh%dm(i), g)
-            st%dua(i) = d
-            st%dub(i) = d
-         else
-            st%dua(i) = st%dua(i) + fa / mesh%ma(i) * dt2
-            st%dub(i) = st%dub(i) + fb / mesh%mb(i) * dt2
-         end if
+         d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+             * mesh%inv_m(i) * dt2
+         st%dua(i) = d
+         st%dub(i) = d
+      end do
+      do c = 1, n_split
+         i = split(c)
+         st%dua(i) = old_a(c) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
+         st%dub(i) = old_b(c) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
+         st%sec(i) = old_sec(c)
       end do
       ! momentum balance: the end stresses act on the end nodes, supports take what reaches
       ! them
@@ -99,10 +121,6 @@ contains
          st%dua(n) = 0.0_wp
          st%dub(n) = 0.0_wp
       end if
-      ! (2.3)3
-      st%ua = st%ua + st%dua
-      st%ub = st%ub + st%dub
-
       ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
       ! the discrete energy ledger exact
       associate (w_top => st%s(0) * 0.5_wp * (st%dub(0) + du_top_old), &
@@ -164,6 +182,9 @@ contains
       st%s(0) = st%s_old(0)
       st%s(n + 1) = st%s_old(n + 1)
       st%s(1:n) = st%s_old(1:n) + mesh%stiff * (st%dub(0:n-1) - st%dua(1:n))
+      ! (2.3)3: u^{n+1} = u^n + du^{n+1}
+      st%ua = st%ua + st%dua
+      st%ub = st%ub + st%dub
       ! full-mass model: a cut spring pushes only in compression, s = max(0, E/dx (u_{k-1} -
       ! u_k)); its force is not part of the linear invariant, so its work W (the F^n (u^{n+1}
       ! - u^{n-1})/2 product) and its strain measure go to e_contact, keeping the ledger exact

@@ -5,13 +5,114 @@ module spb_strings
    use spb_kinds, only: wp
    implicit none
    private
-   public :: itoa, rtoa, lower, ltoa
+   public :: itoa, rtoa, lower, ltoa, es20_12, int_right
 
    interface itoa
       module procedure itoa_default, itoa_int64
    end interface itoa
 
 contains
+
+   !> x as Fortran's ES20.12E3 edit would write it (correctly rounded, 13 significant
+   !> digits), without the run-time library's formatted I/O: the output columns are most of
+   !> a run's cost otherwise. x 10^k is formed exactly as hi + lo (Dekker's product; 10^k is
+   !> exact for 0 <= k <= 22, so 1e-10 <= |x| < 1e13); a value whose rounding is not decided
+   !> by hi alone (within 1e-4 of a tie), outside that range, or not finite, goes through
+   !> write(es20.12e3).
+   !> tests/test_format.pf compares both on a million values.
+   pure function es20_12(x) result(out)
+      real(wp), intent(in) :: x
+      character(len=20) :: out
+      integer :: e, k, j
+      real(wp), parameter :: pow10(0:22) = [(10.0_wp**k, k = 0, 22)]
+      real(wp), parameter :: splitter = 134217729.0_wp          ! 2^27 + 1
+      real(wp) :: a, p, hi, lo, r, ah, al, ph, pl
+      integer(int64) :: m
+      if (.not. ieee_is_finite(x)) then
+         write(out, '(es20.12e3)') x
+         return
+      end if
+      if (.not. (abs(x) > 0.0_wp)) then
+         out = merge('-0.000000000000E+000', ' 0.000000000000E+000', sign(1.0_wp, x) < 0.0_wp)
+         return
+      end if
+      a = abs(x)
+      ! the decade from the binary exponent (within one; corrected below)
+      e = floor(real(exponent(a) - 1, wp) * 0.30102999566398120_wp)
+      do j = 1, 3
+         k = 12 - e
+         if (k < 0 .or. k > 22) exit
+         ! hi + lo = a 10^k exactly; lo (at most half an ulp of hi, < 1e-3) only matters
+         ! next to a decade edge or a rounding tie
+         p = pow10(k)
+         hi = a * p
+         r = anint(hi)
+         if (hi > 1.0e12_wp + 1.0_wp .and. hi < 1.0e13_wp - 1.0_wp .and. &
+             abs(hi - r) < 0.499_wp) then
+            lo = 0.0_wp
+         else
+            call split(a, ah, al)
+            call split(p, ph, pl)
+            lo = ((ah * ph - hi) + ah * pl + al * ph) + al * pl
+            ! the decade: 10^12 <= hi + lo < 10^13 (compared exactly)
+            if ((hi - 1.0e13_wp) + lo >= 0.0_wp) then
+               e = e + 1
+               cycle
+            else if ((hi - 1.0e12_wp) + lo < 0.0_wp) then
+               e = e - 1
+               cycle
+            end if
+         end if
+         if (abs(hi - r) + abs(lo) > 0.4999_wp) exit      ! too close to a tie
+         if (r >= 1.0e13_wp) then                         ! rounded up into the next decade
+            r = 1.0e12_wp
+            e = e + 1
+         end if
+         m = int(r, int64)
+         out(1:1) = merge('-', ' ', x < 0.0_wp)
+         out(2:2) = achar(48 + int(m / 1000000000000_int64))
+         out(3:3) = '.'
+         do k = 15, 4, -1
+            out(k:k) = achar(48 + int(mod(m, 10_int64)))
+            m = m / 10_int64
+         end do
+         out(16:16) = 'E'
+         out(17:17) = merge('-', '+', e < 0)
+         k = abs(e)
+         out(18:18) = achar(48 + k / 100)
+         out(19:19) = achar(48 + mod(k / 10, 10))
+         out(20:20) = achar(48 + mod(k, 10))
+         return
+      end do
+      write(out, '(es20.12e3)') x
+   contains
+      pure subroutine split(v, vh, vl)
+         real(wp), intent(in) :: v
+         real(wp), intent(out) :: vh, vl
+         real(wp) :: c
+         c = splitter * v
+         vh = c - (c - v)
+         vl = v - vh
+      end subroutine split
+   end function es20_12
+
+   !> k right-justified in w characters, as the I<w> edit writes it (w <= 20).
+   pure function int_right(k, w) result(out)
+      integer, intent(in) :: k, w
+      character(len=w) :: out
+      integer(int64) :: m
+      integer :: j
+      m = abs(int(k, int64))
+      out = ' '
+      j = w
+      do
+         out(j:j) = achar(48 + int(mod(m, 10_int64)))
+         m = m / 10_int64
+         j = j - 1
+         if (m == 0 .or. j < 1) exit
+      end do
+      if (k < 0 .and. j >= 1) out(j:j) = '-'
+   end function int_right
 
    !> Integer as text, no blanks.
    pure function itoa_default(k) result(s)
