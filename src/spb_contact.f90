@@ -14,7 +14,7 @@
 module spb_contact
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, end_fixed, end_base, end_free
-   use spb_state, only: state_t
+   use spb_state, only: state_t, close_node
    use spb_section, only: section_stress_a
    use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
    use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id
@@ -75,11 +75,13 @@ contains
       integer, intent(in) :: timing            !! timing_* rule
       integer, intent(in) :: policy            !! shift_* policy
       type(event_list_t), intent(inout) :: events
-      integer :: i
+      integer :: open_nodes(st%n_split)
+      integer :: c, i
       st%n_skip = 0
-      do i = 1, mesh%n - 1
-         if (st%n_split == 0) exit
-         if (st%joined(i)) cycle
+      ! the open sections in ascending order; a join removes only its own node from the list
+      open_nodes = st%split(1:st%n_split)
+      do c = 1, size(open_nodes)
+         i = open_nodes(c)
          if (st%ua(i) - st%ub(i) > 0.0_wp) call collide(mesh, st, g, timing, policy, i, events)
       end do
       if (mesh%bottom == end_base .and. .not. st%base_contact) then
@@ -166,8 +168,7 @@ contains
       du_a_trial = st%dua(i)
       du_b_trial = st%dub(i)
       du_join = (mass_a * du_a_trial + mass_b * du_b_trial) / (mass_a + mass_b)
-      st%joined(i) = .true.
-      st%n_split = st%n_split - 1
+      call close_node(st, i)
       st%dua(i) = du_join
       st%dub(i) = du_join
       if (at_n) then

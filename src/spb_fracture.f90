@@ -9,7 +9,7 @@
 module spb_fracture
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, end_fixed, end_base
-   use spb_state, only: state_t
+   use spb_state, only: state_t, open_node
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
    use spb_arrays, only: append
    implicit none
@@ -144,8 +144,7 @@ contains
          st%dub(i) = st%dub(i) + d_b(m)
          st%s(i) = st%s(i) - s_brk(m)
          st%s(i + 1) = st%s(i + 1) - s_brk(m)
-         st%joined(i) = .false.
-         st%n_split = st%n_split + 1
+         call open_node(st, i)
          st%strength(i) = 0.0_wp
          st%sec(i) = 0.0_wp
          st%n_breakable = st%n_breakable - 1

@@ -11,7 +11,7 @@ module spb_state
    use spb_static, only: static_state
    implicit none
    private
-   public :: state_t, init_state, fragment_count
+   public :: state_t, init_state, fragment_count, open_node, close_node
 
    type :: state_t
       integer :: n = 0                        !! step index: the state is at t^n = n dt
@@ -27,6 +27,8 @@ module spb_state
                                               !! (0:n) [Pa]; < 0 unbreakable, 0 once broken
       integer :: n_breakable = 0              !! joined interior nodes with strength >= 0
       integer :: n_split = 0                  !! split interior nodes (not joined)
+      integer, allocatable :: split(:)        !! those nodes in ascending order, first n_split
+                                              !! used; kept by open_node and close_node
       real(wp) :: s_scale = 0.0_wp            !! largest stress magnitude so far [Pa]
       integer, allocatable :: frag_id(:)      !! (0:n) id of the fragment whose top node is i,
                                               !! 0 at joined interior nodes
@@ -75,7 +77,7 @@ contains
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(out) :: st
       integer :: n, j, i, k
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap_sum
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap
 
       n = mesh%n
       g = deck%run%gravity
@@ -127,7 +129,6 @@ contains
       st%dub = v * dt
       ! dry interfaces: open with their halves' own velocities and the lower side moved down by
       ! the gap, unless touching and moving together (then joined)
-      gap_sum = 0.0_wp
       do j = 1, mesh%nseg - 1
          i = mesh%last(j)
          if (deck%seg%interface(j) /= 'dry') cycle
@@ -139,14 +140,24 @@ contains
             st%joined(i) = .false.
             st%dua(i) = va * dt
             st%dub(i) = vb * dt
-            gap_sum = gap_sum + deck%seg%gap(j)
-            st%ub(i) = st%ub(i) + deck%seg%gap(j)
-            st%ua(i+1:n) = st%ua(i+1:n) + gap_sum
-            st%ub(i+1:n) = st%ub(i+1:n) + gap_sum
+            ! everything below the interface moves down by its gap (earlier gaps are in
+            ! already); O(n) per gapped interface only
+            gap = deck%seg%gap(j)
+            if (gap > 0.0_wp) then
+               st%ub(i) = st%ub(i) + gap
+               st%ua(i+1:n) = st%ua(i+1:n) + gap
+               st%ub(i+1:n) = st%ub(i+1:n) + gap
+            end if
          end if
       end do
       st%n_breakable = count(st%strength(1:n-1) >= 0.0_wp .and. st%joined(1:n-1))
-      st%n_split = count(.not. st%joined(1:n-1))
+      allocate(st%split(max(1, n - 1)))
+      st%n_split = 0
+      do i = 1, n - 1
+         if (st%joined(i)) cycle
+         st%n_split = st%n_split + 1
+         st%split(st%n_split) = i
+      end do
       if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
       if (mesh%bottom == end_base) then
          ! touching and at rest: in contact; moving onto it: the first step lands by the
@@ -223,9 +234,37 @@ contains
    !> Number of fragments: pieces between split interior nodes.
    pure integer function fragment_count(st) result(nf)
       type(state_t), intent(in) :: st
-      integer :: n
-      n = size(st%joined) - 1
-      nf = 1 + st%n_cut
-      if (n >= 2) nf = nf + count(.not. st%joined(1:n-1))
+      nf = 1 + st%n_cut + st%n_split
    end function fragment_count
+
+   !> Split interior node i (it must be joined): its halves move apart from now on. O(n_split).
+   pure subroutine open_node(st, i)
+      type(state_t), intent(inout) :: st
+      integer, intent(in) :: i
+      integer :: c
+      c = st%n_split
+      do while (c > 0)
+         if (st%split(c) < i) exit
+         st%split(c + 1) = st%split(c)
+         c = c - 1
+      end do
+      st%split(c + 1) = i
+      st%n_split = st%n_split + 1
+      st%joined(i) = .false.
+   end subroutine open_node
+
+   !> Join split interior node i: its halves move together from now on. O(n_split).
+   pure subroutine close_node(st, i)
+      type(state_t), intent(inout) :: st
+      integer, intent(in) :: i
+      integer :: c, k
+      k = 0
+      do c = 1, st%n_split
+         if (st%split(c) == i) k = c
+      end do
+      if (k == 0) return
+      st%split(k:st%n_split - 1) = st%split(k + 1:st%n_split)
+      st%n_split = st%n_split - 1
+      st%joined(i) = .true.
+   end subroutine close_node
 end module spb_state

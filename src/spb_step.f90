@@ -75,13 +75,9 @@ contains
       ! (2.3)1-2: a joined node takes the forces on both halves over both masses. Every
       ! node is first updated as joined (one branch-free, vectorisable pass), then the few
       ! split nodes are redone from their saved increments: each half takes its own force.
-      n_split = 0
-      if (st%n_split > 0) then
-         do i = 1, n - 1
-            if (st%joined(i)) cycle
-            n_split = n_split + 1
-            split(n_split) = i
-         end do
+      n_split = st%n_split
+      if (n_split > 0) then
+         split = st%split(1:n_split)
          old_a = st%dua(split(1:n_split))
          old_b = st%dub(split(1:n_split))
          old_sec = st%sec(split(1:n_split))

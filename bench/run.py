@@ -1,0 +1,244 @@
+#!/usr/bin/env python3
+"""spallbar benchmarks (`make bench`): whole-process wall times, medians of several runs.
+
+  intact    intact bar, N = 100 000 cells, 2000 steps: node-steps/s, and the NumPy
+            reference of the same compact scheme (bench/numpy_ref.py) in the same run
+  case2     the paper's Example 3 case 2 at h/190 (input/example3_case2/), outputs as in
+            the decks (history every step, every event)
+  output    case 2 at h/19 with history every step vs none: the share output costs
+  scaling   time per node-step for N = 1e3 .. 1e6 (intact); for N = 1e5 flying apart in
+            1, 10, 100 fragments; wall time vs event count over the six case-2 decks at
+            h/19, h/95, h/190 (slope = cost per event)
+
+usage: run.py --exe SPALLBAR [--repeats 5] [--table doc/benchmarks.md] [--plot PNG]
+"""
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+INTACT = """&run
+  title = 'intact bar benchmark, {cells} cells'
+  t_end = {t_end}
+  history_every = 1000000000
+/
+&mesh
+  dt = 1.0e-6
+/
+&segments
+  n = 1
+  length = {length}
+  young = 2.0e11
+  density = 8000.0
+/
+&ends
+  top = 'free'
+  bottom = 'free'
+/
+&load
+  kind = 'power'
+  p0 = 1.0e8
+  t_k = 1.0e-4
+  exponent = 1.0
+  t_cut = 1.0e-4
+/
+"""
+
+
+def timed(cmd, cwd, repeats):
+    walls = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.DEVNULL)
+        walls.append(time.perf_counter() - t)
+    return statistics.median(walls), min(walls), max(walls)
+
+
+def intact_deck(work, cells, steps):
+    path = os.path.join(work, f"intact_{cells}.nml")
+    with open(path, "w") as f:
+        f.write(INTACT.format(cells=cells, t_end=f"{steps * 1.0e-6:.10g}",
+                              length=f"{cells * 5.0e-3:.10g}"))
+    return path
+
+
+FLYING = """&run
+  title = 'flying fragments benchmark'
+  t_end = {t_end}
+  history_every = 1000000000
+/
+&mesh
+  dt = 1.0e-6
+/
+&segments
+  n = {k}
+  length = {k}*{length}
+  young = {k}*2.0e11
+  density = {k}*8000.0
+{dry}  velocity = {velocity}
+/
+&ends
+  top = 'free'
+  bottom = 'free'
+/
+"""
+
+
+def flying_deck(work, cells, steps, k):
+    """N cells in k segments, dry interfaces, each segment faster than the one above it:
+    k - 1 open sections from the first step and no event after."""
+    path = os.path.join(work, f"flying_{cells}_{k}.nml")
+    with open(path, "w") as f:
+        f.write(FLYING.format(t_end=f"{steps * 1.0e-6:.10g}", k=k,
+                              length=f"{cells // k * 5.0e-3:.10g}",
+                              dry=("  interface = " + ", ".join(["'dry'"] * (k - 1)) + "\n") if k > 1 else "",
+                              velocity=", ".join(f"{j:.1f}" for j in range(k))))
+    return path
+
+
+def linear_fit(x, y):
+    n = len(x)
+    mx, my = sum(x) / n, sum(y) / n
+    sxx = sum((a - mx) ** 2 for a in x)
+    sxy = sum((a - mx) * (b - my) for a, b in zip(x, y))
+    slope = sxy / sxx
+    return slope, my - slope * mx
+
+
+def count_events(prefix):
+    with open(prefix + ".evt") as f:
+        return sum(1 for line in f if not line.startswith("#"))
+
+
+def no_history(work, deck, name):
+    text = open(deck).read().replace("&run", "&run\n  history_every = 1000000000", 1)
+    path = os.path.join(work, name + ".nml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--exe", required=True)
+    p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--table", help="write the Markdown table here")
+    p.add_argument("--plot", help="write the scaling plot here")
+    p.add_argument("--label", default="this build")
+    args = p.parse_args()
+    exe = os.path.abspath(args.exe)
+    rep = args.repeats
+    rows, notes = [], []
+    with tempfile.TemporaryDirectory() as work:
+        # intact bar and the NumPy reference
+        cells, steps = 100000, 2000
+        deck = intact_deck(work, cells, steps)
+        med, lo, hi = timed([exe, deck, "-q"], work, rep)
+        rate = (cells + 1) * steps / med
+        rows.append(("intact bar, N = 1e5, 2000 steps", f"{med:.3f} s ({lo:.3f}-{hi:.3f})",
+                     f"{rate:.3g} node-steps/s"))
+        nmed, nlo, nhi = timed([sys.executable, os.path.join(HERE, "numpy_ref.py"), str(cells),
+                                str(steps)], work, max(3, rep // 2))
+        nrate = (cells + 1) * steps / nmed
+        rows.append(("NumPy reference, same scheme and size (bench/numpy_ref.py)",
+                     f"{nmed:.3f} s ({nlo:.3f}-{nhi:.3f})", f"{nrate:.3g} node-steps/s; "
+                     f"spallbar / NumPy = {rate / nrate:.2f}"))
+        # case 2 at h/190
+        for rule in ("accelerate_fragment", "accelerate_above", "delay_fragment",
+                     "min_fragment"):
+            deck = os.path.join(ROOT, "input", "example3_case2", f"{rule}_h190.nml")
+            prefix = os.path.join(work, rule)
+            med, lo, hi = timed([exe, deck, "-q", "--output", prefix], work, rep)
+            ev = count_events(prefix)
+            nmed, _, _ = timed([exe, no_history(work, deck, rule + "_nh"), "-q", "--output",
+                                prefix + "_nh"], work, rep)
+            rows.append((f"Example 3 case 2, {rule.replace('_', '/')}, h/190 (12 772 steps)",
+                         f"{med:.3f} s ({lo:.3f}-{hi:.3f})",
+                         f"{ev} events; without the history rows {nmed:.3f} s"))
+        # output share at N = 19
+        deck = os.path.join(ROOT, "input", "example3_case2", "accelerate_fragment_h19.nml")
+        w_med, _, _ = timed([exe, deck, "-q", "--output", os.path.join(work, "o19")], work,
+                            rep * 2)
+        n_med, _, _ = timed([exe, no_history(work, deck, "o19nh"), "-q", "--output",
+                             os.path.join(work, "o19nh")], work, rep * 2)
+        rows.append(("output share: case 2 at h/19 (N = 19, 1278 steps), history every step",
+                     f"{w_med:.4f} s vs {n_med:.4f} s without",
+                     f"history rows cost {100 * (w_med - n_med) / w_med:.0f}% of the run "
+                     "(process start and deck echo included in both)"))
+        # scaling with N (intact), with the number of fragments, and with the event count
+        sizes, per_node = [1000, 10000, 100000, 1000000], []
+        for n in sizes:
+            st = max(20, int(2.0e7 / n))
+            med, _, _ = timed([exe, intact_deck(work, n, st), "-q"], work, 3)
+            per_node.append(med / ((n + 1) * st) * 1e9)
+        rows.append(("time per node-step, intact bar, N = 1e3, 1e4, 1e5, 1e6",
+                     ", ".join(f"{x:.2f} ns" for x in per_node), "flat = O(N) per step"))
+        pieces, per_frag = [1, 10, 100], []
+        for k in pieces:
+            med, _, _ = timed([exe, flying_deck(work, 100000, 200, k), "-q"], work, 3)
+            per_frag.append(med / (100001 * 200) * 1e9)
+        rows.append(("time per node-step, N = 1e5 flying apart in 1, 10, 100 fragments "
+                     "(no events after t = 0)", ", ".join(f"{x:.2f} ns" for x in per_frag),
+                     "flat = independent of the number of fragments"))
+        fits = {}
+        for cells in (19, 95, 190):
+            evs, walls = [], []
+            for rule in ("accelerate", "delay", "min"):
+                for pol in ("above", "fragment"):
+                    deck = os.path.join(ROOT, "input", "example3_case2",
+                                        f"{rule}_{pol}_h{cells}.nml")
+                    prefix = os.path.join(work, f"ev{cells}_{rule}_{pol}")
+                    med, _, _ = timed([exe, no_history(work, deck, f"ev{cells}{rule}{pol}"),
+                                       "-q", "--output", prefix], work, 3)
+                    evs.append(count_events(prefix))
+                    walls.append(med)
+            slope, icpt = linear_fit(evs, walls)
+            fits[cells] = (evs, walls, slope, icpt)
+        rows.append(("wall time vs events, case 2, the 6 rule/policy decks at h/19, h/95, "
+                     "h/190 (least-squares slope)",
+                     ", ".join(f"{fits[c][2] * 1e6:.2f} us/event" for c in (19, 95, 190)),
+                     "events " + "; ".join(f"h/{c}: {min(fits[c][0])}-{max(fits[c][0])}"
+                                           for c in (19, 95, 190))))
+    lines = [f"| case ({args.label}) | median wall (min-max) | result |", "|---|---|---|"]
+    lines += [f"| {a} | {b} | {c} |" for a, b, c in rows]
+    text = "\n".join(lines)
+    print(text)
+    if args.table:
+        with open(args.table, "w") as f:
+            f.write(text + "\n")
+    if args.plot:
+        os.environ.setdefault("MPLBACKEND", "Agg")
+        import matplotlib.pyplot as plt
+        fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(13, 3.8))
+        a1.loglog(sizes, per_node, "o-")
+        a1.set_ylim(min(per_node) / 3, max(per_node) * 3)
+        a1.set_xlabel("cells N")
+        a1.set_ylabel("wall time per node-step [ns]")
+        a1.set_title("intact bar: cost per node-step vs N", fontsize=9)
+        a2.semilogx(pieces, per_frag, "o-")
+        a2.set_ylim(0, max(per_frag) * 1.5)
+        a2.set_xlabel("fragments (N = 1e5, 200 steps)")
+        a2.set_ylabel("wall time per node-step [ns]")
+        a2.set_title("no events: cost per step vs number of fragments", fontsize=9)
+        for c, mk in zip((19, 95, 190), ("o", "s", "^")):
+            evs, walls, slope, icpt = fits[c]
+            a3.plot(evs, walls, mk, label=f"h/{c}: {slope * 1e6:.2f} us/event")
+            xs = [0, max(evs)]
+            a3.plot(xs, [icpt + slope * x for x in xs], "-", lw=0.8)
+        a3.set_xlabel("events in the run (case 2, 6 rule/policy decks)")
+        a3.set_ylabel("wall time [s]")
+        a3.set_title("case 2: wall time vs event count", fontsize=9)
+        a3.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=110)
+        print(f"wrote {args.plot}")
+
+
+if __name__ == "__main__":
+    main()
