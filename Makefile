@@ -4,6 +4,7 @@
 #   make run       build and run the seed example deck (input/$(RUN_DECK).nml)
 #   make test      Debug build (all checks on, -std=f2008) and ctest
 #   make figures   run the paper's examples, render its figures into build/release/figures
+#   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
@@ -12,12 +13,12 @@ RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug run test figures clean help
+.PHONY: all setup build debug run test figures bench clean help
 
 all: build
 
 help:
-	@sed -n '1,9p' Makefile
+	@sed -n '1,10p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -45,6 +46,11 @@ test: debug
 figures: build
 	cmake --build $(BUILD_RELEASE) --target figures
 	@echo "figures: $(BUILD_RELEASE)/figures/fig{07c,08b,10,11,12}.png"
+
+PYTHON ?= $(shell test -x .venv/bin/python && echo .venv/bin/python || echo python3)
+bench: build
+	$(PYTHON) bench/run.py --exe $(BUILD_RELEASE)/bin/spallbar --label "$$(git describe --always --dirty 2>/dev/null || echo build)" \
+	  --table doc/benchmarks-latest.md --plot doc/figures/bench_scaling.png
 
 clean:
 	rm -rf build

@@ -92,12 +92,21 @@ contains
                         0.5_wp * mesh%dm(i) * g) / mesh%z(i) - d / dt) + 0.5_wp * mesh%dm(i) * g
          end do
       end if
-      do i = 0, n
-         d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
-             * mesh%inv_m(i) * dt2
-         st%dua(i) = d
-         st%dub(i) = d
-      end do
+      if (abs(g) > 0.0_wp) then
+         do i = 0, n
+            d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+                * mesh%inv_m(i) * dt2
+            st%dua(i) = d
+            st%dub(i) = d
+         end do
+      else
+         ! the same expression with g = 0 (x + 0 = x): two fewer arrays streamed
+         do i = 0, n
+            d = st%dua(i) + (st%s(i) - st%s(i + 1)) * mesh%inv_m(i) * dt2
+            st%dua(i) = d
+            st%dub(i) = d
+         end do
+      end if
       do c = 1, n_split
          i = split(c)
          st%dua(i) = old_a(c) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
