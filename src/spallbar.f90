@@ -2,7 +2,8 @@
 !>
 !> The main program only sequences the phases of the 1988 EMC workflow: read the deck,
 !> echo it, build the mesh, initialise, step, write columns. Exit status 2: bad input;
-!> 3: a run that went wrong; 0: success.
+!> 3: a run that went wrong; 128 + signal: stopped by SIGTERM/SIGINT (outputs complete to
+!> that step); 0: success.
 program spallbar
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use spb_kinds, only: wp, version, path_len
@@ -11,7 +12,7 @@ program spallbar
    use spb_deck, only: deck_t, read_deck
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
    use spb_output, only: write_mesh_summary
-   use spb_sys, only: sys_exit, stderr_is_terminal
+   use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals
    implicit none
 
    type(deck_t) :: deck
@@ -31,6 +32,7 @@ program spallbar
       write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
       call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
    end if
+   call catch_stop_signals()
    call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err)
    if (allocated(err)) call fail(err)
    if (.not. quiet) then

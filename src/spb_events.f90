@@ -5,10 +5,13 @@ module spb_events
    implicit none
    private
    public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
-   public :: ev_base_collision, event_kind_name
+   public :: ev_base_collision, event_kind_name, event_kind_names
 
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
+   !> Names of the kinds, in code order (the .evt 'kind' column; HDF5 stores the codes)
+   character(len=14), parameter :: event_kind_names(4) = [character(len=14) :: 'fracture', &
+      'collision', 'separation', 'base-collision']
 
    type :: event_t
       integer :: kind = ev_fracture     !! ev_* constant
@@ -51,15 +54,6 @@ contains
    pure function event_kind_name(kind) result(name)
       integer, intent(in) :: kind
       character(len=:), allocatable :: name
-      select case (kind)
-      case (ev_fracture)
-         name = 'fracture'
-      case (ev_collision)
-         name = 'collision'
-      case (ev_separation)
-         name = 'separation'
-      case default
-         name = 'base-collision'
-      end select
+      name = trim(event_kind_names(max(1, min(4, kind))))
    end function event_kind_name
 end module spb_events

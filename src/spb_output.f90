@@ -12,7 +12,7 @@ module spb_output
       h5_table, h5_append, h5_xt, h5_append_xt
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
-   use spb_events, only: event_list_t, event_kind_name
+   use spb_events, only: event_list_t, event_kind_names
    use spb_diag, only: frag_info_t
    implicit none
    private
@@ -403,19 +403,20 @@ contains
       do k = 1, events%n
          associate (e => events%e(k))
             ! fmt_evt, by the fast formatters into one line
-            line = ' ' // es20_12(e%t)
-            line(22:34) = ' ' // int_right(e%step, 12)
-            line(35:51) = ' ' // adjustr(kind_field(event_kind_name(e%kind)))
-            line(52:64) = ' ' // int_right(e%node, 12)
-            line(65:85) = ' ' // es20_12(e%x)
-            line(86:106) = ' ' // es20_12(e%stress)
-            line(107:127) = ' ' // es20_12(e%dt_bound)
-            line(128:148) = ' ' // es20_12(e%dx_bound)
-            line(149:169) = ' ' // es20_12(e%opening)
-            line(170:182) = ' ' // int_right(e%frag_above, 12)
-            line(183:195) = ' ' // int_right(e%frag_below, 12)
-            line(196:216) = ' ' // es20_12(e%stress_bound)
-            line(217:237) = ' ' // es20_12(e%shift)
+            line = ' '
+            line(2:21) = es20_12(e%t)
+            line(23:34) = int_right(e%step, 12)
+            line(36:51) = kind_field(e%kind)
+            line(53:64) = int_right(e%node, 12)
+            line(66:85) = es20_12(e%x)
+            line(87:106) = es20_12(e%stress)
+            line(108:127) = es20_12(e%dt_bound)
+            line(129:148) = es20_12(e%dx_bound)
+            line(150:169) = es20_12(e%opening)
+            line(171:182) = int_right(e%frag_above, 12)
+            line(184:195) = int_right(e%frag_below, 12)
+            line(197:216) = es20_12(e%stress_bound)
+            line(218:237) = es20_12(e%shift)
             write(out%evt, '(a)') line
             if (out%hdf5) call h5_append(out%h5, out%h_evt, [e%t, real(e%step, wp), &
                real(e%kind, wp), real(e%node, wp), e%x, e%stress, e%dt_bound, e%dx_bound, &
@@ -498,11 +499,12 @@ contains
       call h5_write(out%h5, g // '/v', v, 'm/s')
       call h5_write(out%h5, g // '/stress', s, 'Pa')
    end subroutine write_profile
-   !> An event kind in the a16 field of fmt_evt.
-   pure function kind_field(name) result(f)
-      character(len=*), intent(in) :: name
+   !> An event kind's name right-justified in 16 characters (the A16 field of fmt_evt),
+   !> without an allocatable temporary per event.
+   pure function kind_field(kind) result(f)
+      integer, intent(in) :: kind
       character(len=16) :: f
-      f = name
+      f = adjustr('  ' // event_kind_names(max(1, min(4, kind))))
    end function kind_field
 
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.

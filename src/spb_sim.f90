@@ -7,6 +7,7 @@ module spb_sim
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
+   use spb_sys, only: stop_signal
    use spb_strings, only: itoa, rtoa
    use spb_deck, only: deck_t
    use spb_mesh, only: mesh_t, build_mesh
@@ -127,15 +128,27 @@ contains
             if (allocated(err)) exit
          end if
          if (.not. wrote_row .and. mod(n, 64) == 0) then
+            ! between rows: the state's finiteness and the energy guard every 64 steps
             block
                type(energies_t) :: e
                e = energies(sim%mesh, sim%st, g)
-               call guard(e)
+               if (ieee_is_finite(e%ledger)) then
+                  call guard(e)
+                  if (allocated(err)) call row()
+               else
+                  call row()
+               end if
             end block
-            if (allocated(err)) then
-               call row()
-               exit
-            end if
+            if (allocated(err)) exit
+         end if
+         if (stop_signal() /= 0) then
+            ! SIGTERM/SIGINT: end here with the outputs complete up to this step
+            if (.not. wrote_row) call row()
+            call make_error(err, 'run: stopped by signal ' // itoa(stop_signal()) // &
+               ' at step ' // itoa(sim%st%n) // ' (t = ' // &
+               rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
+               'written and closed', code=128 + stop_signal())
+            exit
          end if
          call profiles()
          if (sim%deck%run%field_every > 0) then
@@ -167,8 +180,11 @@ contains
          e = energies(sim%mesh, sim%st, g)
          call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
          if (.not. ieee_is_finite(e%ledger)) then
+            ! the first node whose displacements, increments or cell stress above are bad
             do i = 0, sim%mesh%n
-               if (.not. (ieee_is_finite(sim%st%ua(i)) .and. ieee_is_finite(sim%st%ub(i)))) exit
+               if (.not. (ieee_is_finite(sim%st%ua(i)) .and. ieee_is_finite(sim%st%ub(i)) .and. &
+                          ieee_is_finite(sim%st%dua(i)) .and. ieee_is_finite(sim%st%dub(i)) &
+                          .and. ieee_is_finite(sim%st%s(i)))) exit
             end do
             call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
                ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &

@@ -1,9 +1,15 @@
 !> The few operating-system services Fortran 2008 lacks, through C interoperability.
 module spb_sys
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc
    implicit none
    private
-   public :: sys_exit, stderr_is_terminal, sys_rename
+   public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
+
+   integer(c_int), parameter :: sigint = 2_c_int, sigterm = 15_c_int   ! Linux numbers
+
+   !> The signal that asked the run to stop (0: none). The one piece of module state in
+   !> spallbar: a signal handler can reach nothing else. Written by the handler only.
+   integer(c_int), volatile, save :: caught = 0_c_int
 
    interface
       subroutine c_exit(status) bind(c, name='exit')
@@ -20,6 +26,12 @@ module spb_sys
          character(kind=c_char), intent(in) :: old(*), new(*)
          integer(c_int) :: r
       end function c_rename
+      function c_signal(signum, handler) bind(c, name='signal') result(previous)
+         import :: c_int, c_funptr
+         integer(c_int), value :: signum
+         type(c_funptr), value :: handler
+         type(c_funptr) :: previous
+      end function c_signal
    end interface
 
 contains
@@ -42,4 +54,22 @@ contains
       logical, intent(out) :: ok            !! true on success
       ok = c_rename(old // c_null_char, new // c_null_char) == 0_c_int
    end subroutine sys_rename
+
+   !> From now on SIGTERM and SIGINT only set a flag (stop_signal reads it): the run ends
+   !> its step, writes and closes its outputs, and exits with 128 + the signal number.
+   subroutine catch_stop_signals()
+      type(c_funptr) :: previous
+      previous = c_signal(sigterm, c_funloc(on_signal))
+      previous = c_signal(sigint, c_funloc(on_signal))
+   end subroutine catch_stop_signals
+
+   !> The signal caught since catch_stop_signals (0: none).
+   integer function stop_signal()
+      stop_signal = int(caught)
+   end function stop_signal
+
+   subroutine on_signal(signum) bind(c)
+      integer(c_int), value :: signum
+      caught = signum
+   end subroutine on_signal
 end module spb_sys
