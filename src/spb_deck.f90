@@ -10,6 +10,7 @@ module spb_deck
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, lower, ltoa
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var
+   use spb_sys, only: fp_traps_off, fp_traps_restore
    implicit none
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
@@ -109,6 +110,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err
       integer :: u, ios
       character(len=256) :: msg
+      logical :: traps(3)
 
       call scan_deck(path, known_groups, deck%scan, err)
       if (allocated(err)) return
@@ -132,16 +134,29 @@ contains
          call make_error(err, 'deck: cannot open ''' // trim(path) // ''': ' // trim(msg))
          return
       end if
+      call fp_traps_off(traps)
       call read_run(u, deck, err)
       if (.not. allocated(err)) call read_mesh(u, deck, err)
       if (.not. allocated(err)) call read_segments(u, deck, err)
       if (.not. allocated(err)) call read_ends(u, deck, err)
       if (.not. allocated(err)) call read_load(u, deck, err)
       if (.not. allocated(err)) call read_initial(u, deck, err)
+      call fp_traps_restore(traps)
       close(u)
       if (allocated(err)) return
       call validate_deck(deck, err)
    end subroutine read_deck
+
+   !> A keyword value longer than any keyword is an error here (the deck keeps name_len
+   !> characters, and a cut value could look like a valid one).
+   subroutine check_word(err, group, var, value)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: group, var, value
+      if (allocated(err)) return
+      if (len_trim(value) > name_len) call make_error(err, '&' // group // ': ' // var // &
+         ': ''' // value(1:20) // '...'' is longer than any choice (' // itoa(name_len) // &
+         ' characters at most)')
+   end subroutine check_word
 
    !> Turn a namelist read status into an error naming the group (and the variable).
    subroutine read_status(deck, group, ios, msg, err)
@@ -184,7 +199,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err
       character(len=path_len) :: title
       real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
-      character(len=name_len) :: timing, shift, model
+      character(len=path_len) :: timing, shift, model
       integer :: history_every, field_every, ios
       logical :: hdf5
       real(wp) :: energy_guard
@@ -206,7 +221,14 @@ contains
       rewind(u)
       read(u, nml=run, iostat=ios, iomsg=msg)
       call read_status(deck, 'run', ios, msg, err)
+      call check_word(err, 'run', 'timing', timing)
+      call check_word(err, 'run', 'shift', shift)
+      call check_word(err, 'run', 'model', model)
       if (allocated(err)) return
+      if (len_trim(title) == len(title)) then
+         call make_error(err, '&run: title: longer than ' // itoa(len(title) - 1) // ' characters')
+         return
+      end if
       deck%run%title = title
       deck%run%t_end = t_end
       deck%run%gravity = gravity
@@ -227,7 +249,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err
       integer :: cells, ref_segment, ios
       real(wp) :: dt
-      character(len=name_len) :: fit
+      character(len=path_len) :: fit
       character(len=256) :: msg
       namelist /mesh/ cells, ref_segment, dt, fit
       cells = deck%mesh%cells
@@ -237,6 +259,7 @@ contains
       rewind(u)
       read(u, nml=mesh, iostat=ios, iomsg=msg)
       call read_status(deck, 'mesh', ios, msg, err)
+      call check_word(err, 'mesh', 'fit', fit)
       if (allocated(err)) return
       deck%mesh%cells = cells
       deck%mesh%ref_segment = ref_segment
@@ -250,7 +273,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err
       integer :: n, ios, j
       real(wp), dimension(max_segments) :: length, young, density, strength, velocity, gap
-      character(len=name_len) :: interface(max_segments)
+      character(len=path_len) :: interface(max_segments)
       character(len=256) :: msg
       namelist /segments/ n, length, young, density, strength, interface, velocity, gap
       n = deck%seg%n
@@ -264,6 +287,9 @@ contains
       rewind(u)
       read(u, nml=segments, iostat=ios, iomsg=msg)
       call read_status(deck, 'segments', ios, msg, err)
+      do j = 1, max_segments
+         call check_word(err, 'segments', 'interface(' // itoa(j) // ')', interface(j))
+      end do
       if (allocated(err)) return
       deck%seg%n = n
       deck%seg%length = length
@@ -281,7 +307,7 @@ contains
       integer, intent(in) :: u
       type(deck_t), intent(inout) :: deck
       type(spb_error_t), allocatable, intent(inout) :: err
-      character(len=name_len) :: top, bottom
+      character(len=path_len) :: top, bottom
       real(wp) :: base_gap
       integer :: ios
       character(len=256) :: msg
@@ -292,6 +318,8 @@ contains
       rewind(u)
       read(u, nml=ends, iostat=ios, iomsg=msg)
       call read_status(deck, 'ends', ios, msg, err)
+      call check_word(err, 'ends', 'top', top)
+      call check_word(err, 'ends', 'bottom', bottom)
       if (allocated(err)) return
       deck%ends%top = lower(top)
       deck%ends%bottom = lower(bottom)
@@ -302,7 +330,7 @@ contains
       integer, intent(in) :: u
       type(deck_t), intent(inout) :: deck
       type(spb_error_t), allocatable, intent(inout) :: err
-      character(len=name_len) :: kind, face
+      character(len=path_len) :: kind, face
       real(wp) :: p0, t_k, exponent, t_cut
       character(len=path_len) :: table
       integer :: ios
@@ -318,6 +346,8 @@ contains
       rewind(u)
       read(u, nml=load, iostat=ios, iomsg=msg)
       call read_status(deck, 'load', ios, msg, err)
+      call check_word(err, 'load', 'kind', kind)
+      call check_word(err, 'load', 'face', face)
       if (allocated(err)) return
       deck%load%kind = lower(kind)
       deck%load%face = lower(face)
@@ -325,6 +355,11 @@ contains
       deck%load%t_k = t_k
       deck%load%exponent = exponent
       deck%load%t_cut = t_cut
+      if (len_trim(table) == len(table)) then
+         call make_error(err, '&load: table: the path is longer than ' // itoa(len(table) - 1) &
+                         // ' characters')
+         return
+      end if
       deck%load%table = table
    end subroutine read_load
 
@@ -332,7 +367,7 @@ contains
       integer, intent(in) :: u
       type(deck_t), intent(inout) :: deck
       type(spb_error_t), allocatable, intent(inout) :: err
-      character(len=name_len) :: state
+      character(len=path_len) :: state
       integer :: ios
       character(len=256) :: msg
       namelist /initial/ state
@@ -340,6 +375,7 @@ contains
       rewind(u)
       read(u, nml=initial, iostat=ios, iomsg=msg)
       call read_status(deck, 'initial', ios, msg, err)
+      call check_word(err, 'initial', 'state', state)
       if (allocated(err)) return
       deck%init%state = lower(state)
    end subroutine read_initial

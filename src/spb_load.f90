@@ -6,6 +6,7 @@ module spb_load
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa
    use spb_deck, only: load_cfg, is_set
+   use spb_sys, only: fp_traps_off, fp_traps_restore
    implicit none
    private
    public :: load_t, load_none, load_power, load_table, load_exponential, face_top, face_bottom
@@ -69,6 +70,7 @@ contains
       character(len=256) :: msg
       real(wp) :: tt, pp
       real(wp), allocatable :: tw(:), pw(:)
+      logical :: traps(3)
 
       open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
       if (ios /= 0) then
@@ -78,6 +80,7 @@ contains
       allocate(tw(64), pw(64))
       nrow = 0
       line = 0
+      call fp_traps_off(traps)
       do
          read(u, '(a)', iostat=ios) buf
          if (ios /= 0) exit
@@ -129,6 +132,7 @@ contains
          tw(nrow) = tt
          pw(nrow) = pp
       end do
+      call fp_traps_restore(traps)
       close(u)
       if (allocated(err)) return
       if (nrow < 2) then

@@ -6,6 +6,7 @@
 module spb_prescan
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, lower
+   use spb_kinds, only: path_len
    implicit none
    private
    public :: deck_scan_t, scan_deck, scan_text, has_group, has_var
@@ -59,16 +60,18 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err
       integer :: i, n, line, j, group_line, depth, string_line
       character :: c, quote
-      character(len=:), allocatable :: group, word
-      logical :: in_group
+      character(len=:), allocatable :: group, word, var
+      character(len=key_len), allocatable :: whole(:)   ! 'group:variable' set without subscript
+      logical :: in_group, subscripted
 
-      allocate(scan%groups(0), scan%keys(0))
+      allocate(scan%groups(0), scan%keys(0), whole(0))
       n = len(text)
       i = 1
       line = 1
       group_line = 0
       in_group = .false.
       group = ''
+      var = ''
       do while (i <= n)
          c = text(i:i)
          if (c == achar(10)) then
@@ -77,6 +80,16 @@ contains
          else if (c == '!') then
             do while (i <= n)
                if (text(i:i) == achar(10)) exit
+               if (is_control(text(i:i))) then
+                  if (in_group) then
+                     call make_error(err, '&' // group // ': line ' // itoa(line) // &
+                        ': character code ' // itoa(iachar(text(i:i))) // ' in a comment is not deck text')
+                  else
+                     call make_error(err, 'deck: line ' // itoa(line) // ': character code ' // &
+                        itoa(iachar(text(i:i))) // ' in a comment is not deck text')
+                  end if
+                  return
+               end if
                i = i + 1
             end do
          else if (c == '''' .or. c == '"') then
@@ -87,7 +100,15 @@ contains
             quote = c
             string_line = line
             i = i + 1
+            j = i
             do
+               if (i - j > path_len - 1) then
+                  ! longer than any string variable: gfortran would cut it with a warning
+                  call make_error(err, '&' // group // ': ' // var // ': a string longer than ' &
+                                  // itoa(path_len - 1) // ' characters (line ' // &
+                                  itoa(string_line) // ')')
+                  return
+               end if
                if (i > n) then
                   call make_error(err, '&' // group // ': unterminated string starting at line ' &
                                   // itoa(string_line))
@@ -104,6 +125,12 @@ contains
                   exit
                end if
                if (text(i:i) == achar(10)) line = line + 1
+               if (is_control(text(i:i))) then
+                  call make_error(err, '&' // group // ': line ' // itoa(line) // &
+                                  ': character code ' // itoa(iachar(text(i:i))) // &
+                                  ' in a string is not deck text')
+                  return
+               end if
                i = i + 1
             end do
          else if (c == '&' .or. c == '$') then
@@ -162,8 +189,10 @@ contains
                if (text(i:i) /= ' ' .and. text(i:i) /= achar(9)) exit
                i = i + 1
             end do
+            subscripted = .false.
             if (i <= n) then
                if (text(i:i) == '(') then
+                  subscripted = .true.
                   depth = 0
                   do while (i <= n)
                      if (text(i:i) == '(') depth = depth + 1
@@ -180,6 +209,17 @@ contains
             end if
             if (i <= n) then
                if (text(i:i) == '=') then
+                  ! a whole variable set twice is a typo somewhere (the namelist read would
+                  ! silently keep the last value); elements, var(2) = ..., may be set apart
+                  var = word
+                  if (.not. subscripted) then
+                     if (any(whole == group // ':' // word)) then
+                        call make_error(err, '&' // group // ': ' // word // ': given twice ' // &
+                                        '(again at line ' // itoa(line) // ')')
+                        return
+                     end if
+                     whole = [character(len=key_len) :: whole, group // ':' // word]
+                  end if
                   scan%keys = [character(len=key_len) :: scan%keys, group // ':' // word]
                   i = i + 1
                end if
@@ -218,6 +258,13 @@ contains
       character(len=*), intent(in) :: group, var
       has_var = any(scan%keys == group // ':' // var)
    end function has_var
+
+   !> A control character other than tab, line feed and carriage return (binary junk).
+   pure logical function is_control(c)
+      character, intent(in) :: c
+      is_control = (iachar(c) < 32 .and. c /= achar(9) .and. c /= achar(10) .and. &
+                    c /= achar(13)) .or. iachar(c) == 127
+   end function is_control
 
    pure logical function is_letter(c)
       character, intent(in) :: c

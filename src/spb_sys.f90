@@ -1,9 +1,15 @@
 !> The few operating-system services Fortran 2008 lacks, through C interoperability.
 module spb_sys
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc
+   use, intrinsic :: ieee_exceptions, only: ieee_flag_type, ieee_overflow, ieee_invalid, &
+      ieee_divide_by_zero, ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag
    implicit none
    private
    public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
+   public :: fp_traps_off, fp_traps_restore
+
+   type(ieee_flag_type), parameter :: read_traps(3) = [ieee_overflow, ieee_invalid, &
+      ieee_divide_by_zero]
 
    integer(c_int), parameter :: sigint = 2_c_int, sigterm = 15_c_int   ! Linux numbers
 
@@ -54,6 +60,22 @@ contains
       logical, intent(out) :: ok            !! true on success
       ok = c_rename(old // c_null_char, new // c_null_char) == 0_c_int
    end subroutine sys_rename
+
+   !> Hold off floating-point traps (the debug build's -ffpe-trap) while text is read: a
+   !> value like 1e999 reads as +Inf, which validation then rejects with a message, instead
+   !> of stopping the program inside the runtime library.
+   subroutine fp_traps_off(saved)
+      logical, intent(out) :: saved(3)   !! the halting modes to restore
+      call ieee_get_halting_mode(read_traps, saved)
+      call ieee_set_halting_mode(read_traps, .false.)
+   end subroutine fp_traps_off
+
+   !> Clear what reading raised and restore the halting modes fp_traps_off saved.
+   subroutine fp_traps_restore(saved)
+      logical, intent(in) :: saved(3)
+      call ieee_set_flag(read_traps, .false.)
+      call ieee_set_halting_mode(read_traps, saved)
+   end subroutine fp_traps_restore
 
    !> From now on SIGTERM and SIGINT only set a flag (stop_signal reads it): the run ends
    !> its step, writes and closes its outputs, and exits with 128 + the signal number.
