@@ -201,7 +201,7 @@ contains
       parent_up = st%frag_id(j)
       parent_dn = st%frag_id(i)
       st%frag_id(i) = 0
-      call new_fragment_id(st, parent_up, st%frag_id(j))
+      call new_fragment_id(st, parent_up, j)
       call finish_event(mesh, st, ev, i, at_n, corr, shift_amount, st%frag_id(j), parent_dn, events)
    end subroutine collide
 

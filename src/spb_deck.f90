@@ -9,7 +9,7 @@ module spb_deck
    use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, lower, ltoa
-   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var
+   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment
    use spb_sys, only: fp_traps_off, fp_traps_restore
    implicit none
    private
@@ -73,7 +73,8 @@ module spb_deck
    type :: load_cfg
       character(len=name_len) :: kind = 'none'         !! 'none' | 'power' | 'exponential' | 'table'
       character(len=name_len) :: face = 'top'          !! 'top' | 'bottom'
-      real(wp) :: p0 = 0.0_wp                          !! pressure scale [Pa]
+      real(wp) :: p0 = unset                           !! pressure scale [Pa]; required by
+                                                       !! 'power' and 'exponential'
       real(wp) :: t_k = unset                          !! decay time [s]
       real(wp) :: exponent = 0.0_wp                    !! power-law exponent [-]
       real(wp) :: t_cut = unset                        !! p = 0 after t_cut [s]
@@ -141,10 +142,11 @@ contains
       if (.not. allocated(err)) call read_ends(u, deck, err)
       if (.not. allocated(err)) call read_load(u, deck, err)
       if (.not. allocated(err)) call read_initial(u, deck, err)
-      call fp_traps_restore(traps)
       close(u)
-      if (allocated(err)) return
-      call validate_deck(deck, err)
+      ! validation compares values the user gave, NaN and Inf among them, before it rejects
+      ! them: the traps stay off until it is done
+      if (.not. allocated(err)) call validate_deck(deck, err)
+      call fp_traps_restore(traps)
    end subroutine read_deck
 
    !> A keyword value longer than any keyword is an error here (the deck keeps name_len
@@ -158,6 +160,41 @@ contains
          ' characters at most)')
    end subroutine check_word
 
+   !> The error for the one assignment (record, '&group var = value /') that does not read.
+   subroutine blame(err, group, var, record, msg)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: group, var, record, msg
+      character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
+      character(len=:), allocatable :: value, name
+      integer :: k
+      k = index(msg, nomatch)
+      if (k > 0) then
+         ! the reader could not match a name: the variable itself, or a word in its value
+         name = lower(trim(adjustl(msg(k + len(nomatch):))))
+         k = scan(name, '(')
+         if (k > 1) name = name(:k - 1)
+         if (name == var .or. name == '''' // var // '''') then
+            call make_error(err, '&' // group // ': ' // var // ': unknown variable in this group')
+            return
+         end if
+      end if
+      k = index(record, '=')
+      value = record(k + 1:len(record) - 2)
+      do k = 1, len(value)
+         if (iachar(value(k:k)) < 32) value(k:k) = ' '
+      end do
+      value = trim(adjustl(value))
+      if (len(value) > 0) then
+         if (value(len(value):) == ',') value = trim(value(:len(value) - 1))
+      end if
+      if (len(value) > 40) value = value(1:37) // '...'
+      if (len(value) > 0) then
+         if (value(1:1) /= '''' .and. value(1:1) /= '"') value = '''' // value // ''''
+      end if
+      call make_error(err, '&' // group // ': ' // var // ': cannot read the value ' // &
+                      value // ' (wrong type, unquoted text, or more values than it holds?)')
+   end subroutine blame
+
    !> Turn a namelist read status into an error naming the group (and the variable).
    subroutine read_status(deck, group, ios, msg, err)
       type(deck_t), intent(in) :: deck
@@ -167,7 +204,7 @@ contains
       character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
       character(len=:), allocatable :: name
       integer :: k
-      if (ios == 0) return
+      if (ios == 0 .or. allocated(err)) return
       if (ios == iostat_end) then
          if (has_group(deck%scan, group)) call make_error(err, '&' // group // &
             ': the group could not be read to its end (unbalanced quotes or a missing ''/''?)')
@@ -204,6 +241,9 @@ contains
       logical :: hdf5
       real(wp) :: energy_guard
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
          profile_times, hdf5, model, energy_guard, field_every
       title = deck%run%title
@@ -220,6 +260,18 @@ contains
       energy_guard = deck%run%energy_guard
       rewind(u)
       read(u, nml=run, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'run', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=run, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'run', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'run', ios, msg, err)
       call check_word(err, 'run', 'timing', timing)
       call check_word(err, 'run', 'shift', shift)
@@ -251,6 +303,9 @@ contains
       real(wp) :: dt
       character(len=path_len) :: fit
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /mesh/ cells, ref_segment, dt, fit
       cells = deck%mesh%cells
       ref_segment = deck%mesh%ref_segment
@@ -258,6 +313,18 @@ contains
       fit = deck%mesh%fit
       rewind(u)
       read(u, nml=mesh, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'mesh', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=mesh, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'mesh', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'mesh', ios, msg, err)
       call check_word(err, 'mesh', 'fit', fit)
       if (allocated(err)) return
@@ -275,6 +342,9 @@ contains
       real(wp), dimension(max_segments) :: length, young, density, strength, velocity, gap
       character(len=path_len) :: interface(max_segments)
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /segments/ n, length, young, density, strength, interface, velocity, gap
       n = deck%seg%n
       length = deck%seg%length
@@ -286,6 +356,18 @@ contains
       gap = deck%seg%gap
       rewind(u)
       read(u, nml=segments, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'segments', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=segments, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'segments', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'segments', ios, msg, err)
       do j = 1, max_segments
          call check_word(err, 'segments', 'interface(' // itoa(j) // ')', interface(j))
@@ -311,12 +393,27 @@ contains
       real(wp) :: base_gap
       integer :: ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /ends/ top, bottom, base_gap
       top = deck%ends%top
       bottom = deck%ends%bottom
       base_gap = deck%ends%base_gap
       rewind(u)
       read(u, nml=ends, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'ends', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=ends, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'ends', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'ends', ios, msg, err)
       call check_word(err, 'ends', 'top', top)
       call check_word(err, 'ends', 'bottom', bottom)
@@ -335,6 +432,9 @@ contains
       character(len=path_len) :: table
       integer :: ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /load/ kind, face, p0, t_k, exponent, t_cut, table
       kind = deck%load%kind
       face = deck%load%face
@@ -345,6 +445,18 @@ contains
       table = deck%load%table
       rewind(u)
       read(u, nml=load, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'load', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=load, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'load', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'load', ios, msg, err)
       call check_word(err, 'load', 'kind', kind)
       call check_word(err, 'load', 'face', face)
@@ -370,10 +482,25 @@ contains
       character(len=path_len) :: state
       integer :: ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /initial/ state
       state = deck%init%state
       rewind(u)
       read(u, nml=initial, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'initial', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=initial, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'initial', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'initial', ios, msg, err)
       call check_word(err, 'initial', 'state', state)
       if (allocated(err)) return
@@ -639,6 +766,10 @@ contains
                          '(or enters as an incident wave through a transmitting one)')
          return
       end if
+      if ((load%kind == 'power' .or. load%kind == 'exponential') .and. .not. is_set(load%p0)) then
+         call make_error(err, '&load: p0 is required for kind = ''' // trim(load%kind) // '''')
+         return
+      end if
       if (load%kind == 'power') then
          call need_finite(err, 'load', 'p0', load%p0)
          call need_finite(err, 'load', 'exponent', load%exponent)
@@ -758,7 +889,7 @@ contains
 
       call item('load', 'kind', quote(deck%load%kind), '')
       call item('load', 'face', quote(deck%load%face), '')
-      call item('load', 'p0', rtoa(deck%load%p0), 'Pa')
+      call item('load', 'p0', opt(deck%load%p0), 'Pa')
       call item('load', 't_k', opt(deck%load%t_k), 's')
       call item('load', 'exponent', rtoa(deck%load%exponent), '-')
       call item('load', 't_cut', opt(deck%load%t_cut), 's')

@@ -81,8 +81,8 @@ contains
          end do
          whole_bot = bot == mesh%n .or. st%joined(bot)
          list(f)%id = st%frag_id(top)
-         list(f)%parent = st%frag_parent(list(f)%id)
-         list(f)%birth_step = st%frag_birth(list(f)%id)
+         list(f)%parent = st%frag_parent(top)
+         list(f)%birth_step = st%frag_birth(top)
          list(f)%top = top
          list(f)%bot = bot
          list(f)%x_top = mesh%x(top) + st%ub(top)

@@ -80,16 +80,16 @@ contains
       de_pot = -g * span_mass(mesh, top, bot) * delta
    end subroutine shift_span
 
-   !> Issue a new fragment id with its parent and birth step.
-   pure subroutine new_fragment_id(st, parent, id)
+   !> Issue a new fragment id for the fragment whose top node is `node`, with its parent and
+   !> birth step (kept per node like the id: memory does not grow with the events).
+   pure subroutine new_fragment_id(st, parent, node)
       type(state_t), intent(inout) :: st
       integer, intent(in) :: parent
-      integer, intent(out) :: id
-      integer :: n
-      n = st%n_frag_ids
-      call append(st%frag_parent, n, parent)
-      call append(st%frag_birth, st%n_frag_ids, st%n)
-      id = st%n_frag_ids
+      integer, intent(in) :: node
+      st%n_frag_ids = st%n_frag_ids + 1
+      st%frag_id(node) = st%n_frag_ids
+      st%frag_parent(node) = parent
+      st%frag_birth(node) = st%n
    end subroutine new_fragment_id
 
    !> Test every joined interior node at t^{n+1} = st%n dt and break those in tension
@@ -176,8 +176,8 @@ contains
          st%e_fracture = st%e_fracture - de
          ! genealogy: both pieces are new fragments born of the one that broke
          parent = st%frag_id(j)
-         call new_fragment_id(st, parent, st%frag_id(j))
-         call new_fragment_id(st, parent, st%frag_id(i))
+         call new_fragment_id(st, parent, j)
+         call new_fragment_id(st, parent, i)
          ev%kind = ev_fracture
          if (st%cracked(i)) ev%kind = ev_separation
          st%cracked(i) = .true.
@@ -266,8 +266,8 @@ contains
             j = j - 1
          end do
          parent = st%frag_id(j)
-         call new_fragment_id(st, parent, st%frag_id(j))
-         call new_fragment_id(st, parent, st%frag_id(k))
+         call new_fragment_id(st, parent, j)
+         call new_fragment_id(st, parent, k)
          ev%kind = ev_fracture
          ev%step = st%n
          ev%node = k - 1

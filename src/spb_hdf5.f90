@@ -15,7 +15,8 @@ module spb_hdf5
       h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
       H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
       H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
-      H5T_NATIVE_CHARACTER
+      H5T_NATIVE_CHARACTER, H5P_FILE_CREATE_F
+   use, intrinsic :: iso_c_binding, only: c_int, c_bool, c_int64_t, c_long_long
    use spb_kinds, only: wp
    implicit none
    private
@@ -24,6 +25,20 @@ module spb_hdf5
 
    integer, parameter :: buffer_rows = 1024     !! rows held before a table is written
    integer, parameter :: deflate_level = 4
+   integer(c_int), parameter :: fspace_strategy_none = 3   !! H5F_FSPACE_STRATEGY_NONE
+
+   interface
+      !> C API (the 1.10 Fortran API lacks it): how the file reuses freed space.
+      function h5pset_file_space_strategy(fcpl, strategy, persist, threshold) &
+            bind(c, name='H5Pset_file_space_strategy') result(status)
+         import :: c_int, c_bool, c_int64_t, c_long_long
+         integer(c_int64_t), value :: fcpl           ! hid_t
+         integer(c_int), value :: strategy
+         logical(c_bool), value :: persist
+         integer(c_long_long), value :: threshold    ! hsize_t
+         integer(c_int) :: status
+      end function h5pset_file_space_strategy
+   end interface
 
    !> One table: a group with one extendible dataset per column.
    type :: table_t
@@ -78,14 +93,24 @@ contains
       type(h5file_t), intent(out) :: h5
       character(len=*), intent(in) :: path
       integer :: hdferr
+      integer(hid_t) :: fcpl
       h5%path = path
       allocate(h5%tables(0))
       call h5open_f(hdferr)
       call check(h5, hdferr, 'h5open_f')
       ! failures are reported once, through check(), not by the library's own printing
       call h5eset_auto_f(0, hdferr)
-      call h5fcreate_f(path, H5F_ACC_TRUNC_F, h5%file, hdferr)
+      ! Freed file space is never reused: a table chunk that grows on rewrite moves, and its
+      ! old copy stays intact, so the index written at the last flush still points at valid
+      ! data when the run is killed (SIGKILL) before the next one. Costs a little file size.
+      call h5pcreate_f(H5P_FILE_CREATE_F, fcpl, hdferr)
+      call check(h5, hdferr, 'h5pcreate_f (file creation)')
+      if (h5pset_file_space_strategy(int(fcpl, c_int64_t), fspace_strategy_none, &
+                                     .false._c_bool, 1_c_long_long) < 0) call check(h5, -1, &
+                                     'H5Pset_file_space_strategy')
+      call h5fcreate_f(path, H5F_ACC_TRUNC_F, h5%file, hdferr, creation_prp=fcpl)
       call check(h5, hdferr, 'h5fcreate_f')
+      call h5pclose_f(fcpl, hdferr)
       if (hdferr < 0) h5%file = -1
    end subroutine h5_create
 

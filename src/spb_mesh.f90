@@ -77,6 +77,11 @@ contains
       a = sqrt(deck%seg%young(1:nseg) / deck%seg%density(1:nseg))
       zz = deck%seg%density(1:nseg) * a
       r = deck%mesh%ref_segment
+      if (.not. (deck%mesh%dt > 0.0_wp) .and. deck%mesh%cells > max_cells) then
+         call make_error(err, '&mesh: cells = ' // itoa(deck%mesh%cells) // '; the limit is ' // &
+                         itoa(max_cells))
+         return
+      end if
       if (deck%mesh%dt > 0.0_wp) then
          dt = deck%mesh%dt
       else
@@ -100,8 +105,12 @@ contains
                   '(&mesh fit = ''strict''; use fit = ''stretch'' or change the length)')
                return
             end if
-         else
-            cells(j) = max(1, cells(j))
+         else if (cells(j) < 1) then
+            call make_error(err, '&segments: length(' // itoa(j) // ') = ' // &
+               rtoa(deck%seg%length(j)) // ' m is less than half a cell of dx = a dt = ' // &
+               rtoa(a(j) * dt) // ' m (&mesh fit = ''stretch'' would make it a whole cell; ' // &
+               'use a smaller dt or more cells)')
+            return
          end if
       end do
       if (sum(int(cells, kind=8)) > max_cells) then
@@ -110,6 +119,11 @@ contains
          return
       end if
       steps_real = deck%run%t_end / dt
+      if (steps_real < 0.5_wp) then
+         call make_error(err, '&run: t_end = ' // rtoa(deck%run%t_end) // ' s is shorter than ' // &
+                         'half a step of dt = ' // rtoa(dt) // ' s')
+         return
+      end if
       if (steps_real > real(max_steps, wp)) then
          call make_error(err, '&run: t_end = ' // rtoa(deck%run%t_end) // ' s needs ' // &
             rtoa(steps_real) // ' steps of dt = ' // rtoa(dt) // ' s; the limit is ' // itoa(max_steps))

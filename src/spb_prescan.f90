@@ -9,13 +9,15 @@ module spb_prescan
    use spb_kinds, only: path_len
    implicit none
    private
-   public :: deck_scan_t, scan_deck, scan_text, has_group, has_var
+   public :: deck_scan_t, scan_deck, scan_text, has_group, has_var, assignment
 
    integer, parameter :: key_len = 64
 
    type :: deck_scan_t
       character(len=key_len), allocatable :: groups(:)   !! group names in order of appearance
       character(len=key_len), allocatable :: keys(:)     !! 'group:variable' for every assignment
+      integer, allocatable :: first(:), last(:)          !! each assignment's text in `text`
+      character(len=:), allocatable :: text              !! the deck
    end type deck_scan_t
 
 contains
@@ -58,13 +60,14 @@ contains
       character(len=*), intent(in) :: known_groups(:)    !! accepted group names
       type(deck_scan_t), intent(out) :: scan
       type(spb_error_t), allocatable, intent(out) :: err
-      integer :: i, n, line, j, group_line, depth, string_line
+      integer :: i, n, line, j, group_line, depth, string_line, name_start
       character :: c, quote
       character(len=:), allocatable :: group, word, var
       character(len=key_len), allocatable :: whole(:)   ! 'group:variable' set without subscript
       logical :: in_group, subscripted
 
-      allocate(scan%groups(0), scan%keys(0), whole(0))
+      allocate(scan%groups(0), scan%keys(0), whole(0), scan%first(0), scan%last(0))
+      scan%text = text
       n = len(text)
       i = 1
       line = 1
@@ -146,6 +149,7 @@ contains
                   return
                end if
                in_group = .false.
+               call close_assignment(scan, i - 1)
             else
                if (in_group) then
                   call make_error(err, '&' // group // ': not terminated by ''/'' before &' // word &
@@ -174,8 +178,10 @@ contains
                return
             end if
             in_group = .false.
+            call close_assignment(scan, i - 1)
             i = i + 1
          else if (is_letter(c)) then
+            name_start = i
             j = i
             call read_word(text, j, word)
             if (.not. in_group) then
@@ -221,6 +227,9 @@ contains
                      whole = [character(len=key_len) :: whole, group // ':' // word]
                   end if
                   scan%keys = [character(len=key_len) :: scan%keys, group // ':' // word]
+                  call close_assignment(scan, name_start - 1)
+                  scan%first = [scan%first, name_start]
+                  scan%last = [scan%last, 0]
                   i = i + 1
                end if
             end if
@@ -244,6 +253,33 @@ contains
                          // ' is not terminated by ''/''')
       end if
    end subroutine scan_text
+
+   !> End the open assignment (if any) at text position last.
+   pure subroutine close_assignment(scan, last)
+      type(deck_scan_t), intent(inout) :: scan
+      integer, intent(in) :: last
+      integer :: k
+      k = size(scan%last)
+      if (k == 0) return
+      if (scan%last(k) == 0) scan%last(k) = last
+   end subroutine close_assignment
+
+   !> Assignment k as a one-assignment namelist record '&group var = value /' (empty when
+   !> it belongs to another group): reading these one by one finds the one that fails.
+   function assignment(scan, group, k, var) result(record)
+      type(deck_scan_t), intent(in) :: scan
+      character(len=*), intent(in) :: group
+      integer, intent(in) :: k                          !! 1 .. size(scan%keys)
+      character(len=:), allocatable, intent(out) :: var !! its variable name
+      character(len=:), allocatable :: record
+      integer :: c
+      record = ''
+      c = index(scan%keys(k), ':')
+      var = trim(scan%keys(k)(c + 1:))
+      if (scan%keys(k)(:c - 1) /= group) return
+      record = '&' // group // ' ' // scan%text(scan%first(k):max(scan%first(k), scan%last(k))) &
+               // ' /'
+   end function assignment
 
    !> True when the group appears in the deck.
    logical function has_group(scan, group)

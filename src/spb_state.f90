@@ -32,8 +32,9 @@ module spb_state
       real(wp) :: s_scale = 0.0_wp            !! largest stress magnitude so far [Pa]
       integer, allocatable :: frag_id(:)      !! (0:n) id of the fragment whose top node is i,
                                               !! 0 at joined interior nodes
-      integer, allocatable :: frag_parent(:)  !! parent id of each fragment id (0: none)
-      integer, allocatable :: frag_birth(:)   !! step at which each fragment id was born
+      integer, allocatable :: frag_parent(:)  !! (0:n) parent id of the fragment whose top node
+                                              !! is i (0: none)
+      integer, allocatable :: frag_birth(:)   !! (0:n) step at which that fragment was born
       integer :: n_frag_ids = 0               !! fragment ids issued
       ! full-mass (naive) model: springs break instead of nodes; a cut spring carries
       ! compression only
@@ -96,12 +97,12 @@ contains
          st%n_breakable = count(st%cell_strength >= 0.0_wp)
          st%strength = -1.0_wp
       end if
-      allocate(st%frag_id(0:n), st%frag_parent(16), st%frag_birth(16))
+      allocate(st%frag_id(0:n), st%frag_parent(0:n), st%frag_birth(0:n))
+      st%frag_parent = 0
+      st%frag_birth = 0
       st%frag_id = 0
       st%frag_id(0) = 1
       st%n_frag_ids = 1
-      st%frag_parent(1) = 0
-      st%frag_birth(1) = 0
       if (deck%init%state == 'static') then
          call static_state(mesh, g, u, s, st%s_static_top, st%s_static_bot)
       else

@@ -34,7 +34,7 @@ BAD = [
     ("missing_table", GOOD.replace("kind = 'power', p0 = 1e6", "kind = 'table', table = 'nope.txt'"),
      "spallbar: &load: table = 'nope.txt': cannot open"),
     ("binary", "&run t_end = 1 \x01\x02 /\n", "spallbar: &run: line 1: character code 1"),
-    ("wrong_type", GOOD.replace("cells = 10", "cells = 'ten'"), "spallbar: &mesh: cannot read"),
+    ("wrong_type", GOOD.replace("cells = 10", "cells = 'ten'"), "spallbar: &mesh: cells: cannot read the value 'ten'"),
 ]
 
 
