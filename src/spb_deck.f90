@@ -85,6 +85,14 @@ module spb_deck
       character(len=name_len) :: state = 'unstressed'  !! 'unstressed' | 'static'
    end type initial_cfg
 
+   !> &strength_field: random strength per cell (issue 8).
+   type :: strength_field_cfg
+      character(len=name_len) :: kind = 'uniform'      !! 'uniform' (segment strengths) | 'weibull'
+      real(wp) :: modulus = unset                      !! Weibull modulus m [-]
+      real(wp) :: scale = unset                        !! Weibull scale [Pa]
+      integer :: seed = 1                              !! generator seed (spb_random)
+   end type strength_field_cfg
+
    type :: deck_t
       character(len=path_len) :: path = '(built in memory)'   !! where the deck came from
       type(run_cfg) :: run
@@ -93,6 +101,7 @@ module spb_deck
       type(ends_cfg) :: ends
       type(load_cfg) :: load
       type(initial_cfg) :: init
+      type(strength_field_cfg) :: field
       type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
    end type deck_t
 
@@ -120,11 +129,6 @@ contains
          call make_error(err, '&run: required group is missing (it must give t_end)')
          return
       end if
-      if (has_group(deck%scan, 'strength_field')) then
-         call make_error(err, '&strength_field: random strength fields are not available in '&
-                         // 'this version of spallbar')
-         return
-      end if
       if (has_group(deck%scan, 'sweep')) then
          call make_error(err, '&sweep: sweeps are run with --sweep, which this version of '&
                          // 'spallbar does not have yet')
@@ -142,6 +146,7 @@ contains
       if (.not. allocated(err)) call read_ends(u, deck, err)
       if (.not. allocated(err)) call read_load(u, deck, err)
       if (.not. allocated(err)) call read_initial(u, deck, err)
+      if (.not. allocated(err)) call read_strength_field(u, deck, err)
       close(u)
       ! validation compares values the user gave, NaN and Inf among them, before it rejects
       ! them: the traps stay off until it is done
@@ -507,6 +512,45 @@ contains
       deck%init%state = lower(state)
    end subroutine read_initial
 
+   subroutine read_strength_field(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=path_len) :: kind
+      real(wp) :: modulus, scale
+      integer :: seed, ios
+      character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
+      namelist /strength_field/ kind, modulus, scale, seed
+      kind = deck%field%kind
+      modulus = deck%field%modulus
+      scale = deck%field%scale
+      seed = deck%field%seed
+      rewind(u)
+      read(u, nml=strength_field, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'strength_field', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=strength_field, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'strength_field', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
+      call read_status(deck, 'strength_field', ios, msg, err)
+      call check_word(err, 'strength_field', 'kind', kind)
+      if (allocated(err)) return
+      deck%field%kind = lower(kind)
+      deck%field%modulus = modulus
+      deck%field%scale = scale
+      deck%field%seed = seed
+   end subroutine read_strength_field
+
    ! ---------------------------------------------------------------- validation
 
    !> Check every value; the first violation becomes the error. Fills derived counts.
@@ -519,6 +563,7 @@ contains
       if (.not. allocated(err)) call validate_ends(deck%ends, err)
       if (.not. allocated(err)) call validate_load(deck%load, deck%ends, err)
       if (.not. allocated(err)) call validate_initial(deck, err)
+      if (.not. allocated(err)) call validate_field(deck, err)
    end subroutine validate_deck
 
    !> Error unless x is a finite number; name is the variable as the user writes it.
@@ -807,6 +852,22 @@ contains
       end if
    end subroutine validate_load
 
+   !> &strength_field: a Weibull field needs its modulus and scale and a breakable segment
+   !> (it replaces the strength of the segments whose strength is >= 0).
+   subroutine validate_field(deck, err)
+      type(deck_t), intent(in) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      call need_choice(err, 'strength_field', 'kind', deck%field%kind, [character(len=8) :: &
+                       'uniform', 'weibull'])
+      if (allocated(err) .or. deck%field%kind /= 'weibull') return
+      call need_positive(err, 'strength_field', 'modulus', deck%field%modulus)
+      call need_positive(err, 'strength_field', 'scale', deck%field%scale)
+      if (allocated(err)) return
+      if (.not. any(deck%seg%strength(1:deck%seg%n) >= 0.0_wp)) call make_error(err, &
+         '&strength_field: kind = ''weibull'' applies to segments with strength >= 0 ' // &
+         '(&segments strength), and there is none')
+   end subroutine validate_field
+
    subroutine validate_initial(deck, err)
       type(deck_t), intent(in) :: deck
       type(spb_error_t), allocatable, intent(inout) :: err
@@ -896,6 +957,10 @@ contains
       call item('load', 'table', quote(deck%load%table), '')
 
       call item('initial', 'state', quote(deck%init%state), '')
+      call item('strength_field', 'kind', quote(deck%field%kind), '')
+      call item('strength_field', 'modulus', opt(deck%field%modulus), '-')
+      call item('strength_field', 'scale', opt(deck%field%scale), 'Pa')
+      call item('strength_field', 'seed', itoa(deck%field%seed), '')
    contains
       subroutine item(g, name, value, unit)
          character(len=*), intent(in) :: g, name, value, unit

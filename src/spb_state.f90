@@ -9,9 +9,10 @@ module spb_state
    use spb_deck, only: deck_t
    use spb_mesh, only: mesh_t, end_fixed, end_free, end_base, end_transmit
    use spb_static, only: static_state
+   use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
    implicit none
    private
-   public :: state_t, init_state, fragment_count, open_node, close_node
+   public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths
 
    type :: state_t
       integer :: n = 0                        !! step index: the state is at t^n = n dt
@@ -91,7 +92,7 @@ contains
       call init_strength(deck, mesh, st)
       allocate(st%cell_strength(n), st%cut(16), st%is_cut(n))
       st%is_cut = .false.
-      st%cell_strength = deck%seg%strength(mesh%seg)
+      st%cell_strength = cell_strengths(deck, mesh)
       if (mesh%full_mass) then
          ! breaking happens in springs: no node ever splits
          st%n_breakable = count(st%cell_strength >= 0.0_wp)
@@ -208,19 +209,20 @@ contains
       st%s_scale = maxval(abs(s))
    end subroutine init_state
 
-   !> Node strengths: a segment's strength inside it; the weaker one at a bonded interface
-   !> (seed section 2); ends never break.
+   !> Node strengths: the weaker of the two cells' strengths at each interior node (a
+   !> segment's strength inside it, the weaker one at a bonded interface, seed section 2);
+   !> one cell breakable: its strength; ends never break.
    subroutine init_strength(deck, mesh, st)
       type(deck_t), intent(in) :: deck
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
-      integer :: i, j
-      real(wp) :: ra, rb
+      integer :: i
+      real(wp) :: ra, rb, cs(mesh%n)
+      cs = cell_strengths(deck, mesh)
       st%strength = -1.0_wp
       do i = 1, mesh%n - 1
-         j = mesh%seg(i)
-         ra = deck%seg%strength(j)
-         rb = deck%seg%strength(mesh%seg(i + 1))
+         ra = cs(i)
+         rb = cs(i + 1)
          if (ra >= 0.0_wp .and. rb >= 0.0_wp) then
             st%strength(i) = min(ra, rb)
          else if (ra >= 0.0_wp) then
@@ -231,6 +233,26 @@ contains
       end do
       st%n_breakable = count(st%strength(1:mesh%n-1) >= 0.0_wp)
    end subroutine init_strength
+
+   !> Tensile strength of every cell [Pa] (< 0 unbreakable): its segment's, or with
+   !> &strength_field kind = 'weibull' a Weibull sample (spb_random, the deck's seed) for
+   !> every cell of a segment whose strength is >= 0, drawn from the top cell down.
+   function cell_strengths(deck, mesh) result(cs)
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(in) :: mesh
+      real(wp) :: cs(mesh%n)
+      type(rng_t) :: g
+      real(wp) :: u
+      integer :: k
+      cs = deck%seg%strength(mesh%seg)
+      if (deck%field%kind /= 'weibull') return
+      g = rng_seed(deck%field%seed)
+      do k = 1, mesh%n
+         if (cs(k) < 0.0_wp) cycle
+         call rng_uniform(g, u)
+         cs(k) = weibull(u, deck%field%modulus, deck%field%scale)
+      end do
+   end function cell_strengths
 
    !> Number of fragments: pieces between split interior nodes.
    pure integer function fragment_count(st) result(nf)
