@@ -12,7 +12,7 @@ program spallbar
    use spb_deck, only: deck_t, read_deck
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
    use spb_output, only: write_mesh_summary
-   use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals
+   use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    implicit none
 
    type(deck_t) :: deck
@@ -22,6 +22,7 @@ program spallbar
    character(len=:), allocatable :: deck_path, prefix
    logical :: quiet
 
+   call heap_for_large_arrays()
    call parse_command_line(deck_path, prefix, quiet, err)
    if (allocated(err)) call fail(err)
    call read_deck(deck_path, deck, err)

@@ -13,7 +13,7 @@ module spb_sim
    use spb_mesh, only: mesh_t, build_mesh
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
-   use spb_step, only: advance, end_stresses
+   use spb_step, only: advance, advance_joined, joined_only, end_stresses
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
    use spb_events, only: event_list_t
    use spb_fracture, only: fracture_step
@@ -89,7 +89,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err
       type(outputs_t) :: out
       type(event_list_t) :: events
-      integer :: ip, nprof, every, n
+      integer :: ip, nprof, every, n, k
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
       real(wp) :: g, e_mech0, guard_scale
@@ -114,7 +114,16 @@ contains
       call row()
       call profiles()
       if (sim%deck%run%field_every > 0) call write_field(out, sim%mesh, sim%st)
-      do n = 1, sim%mesh%nsteps
+      n = 0
+      do while (n < sim%mesh%nsteps)
+         ! steps with nothing to write, check or break are taken in one cache-blocked call,
+         ! up to the step before the next one that has work of its own
+         k = next_stop(n) - n
+         if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
+            call advance_joined(sim%mesh, sim%load, g, sim%st, k - 1)
+            n = n + k - 1
+         end if
+         n = n + 1
          events%n = 0
          call sim_step(sim, events)
          if (events%n > 0) then
@@ -173,6 +182,21 @@ contains
       summary%steps = sim%st%n
       summary%wall = real(c_now - c0, wp) / real(max(rate, 1_int64), wp)
    contains
+      !> The first step after n that writes, checks or reports something (a multiple of 64
+      !> for the guard and the progress line, a history row, a profile, a field row, the end).
+      integer function next_stop(n_now) result(m)
+         integer, intent(in) :: n_now
+         integer(int64) :: m8
+         m8 = min(int(sim%mesh%nsteps, int64), (n_now / 64 + 1) * 64_int64, &
+                  (n_now / every + 1) * int(every, int64))
+         if (ip <= nprof) then
+            if (prof_step(ip) > n_now) m8 = min(m8, int(prof_step(ip), int64))
+         end if
+         associate (fe => sim%deck%run%field_every)
+            if (fe > 0) m8 = min(m8, (n_now / fe + 1) * int(fe, int64))
+         end associate
+         m = int(m8)
+      end function next_stop
       subroutine row()
          type(energies_t) :: e
          real(wp) :: s_top, s_bot

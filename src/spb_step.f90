@@ -7,7 +7,20 @@ module spb_step
    use spb_section, only: section_stress_a, section_stress_b
    implicit none
    private
-   public :: advance, end_stresses
+   public :: advance, advance_joined, joined_only, end_stresses
+
+   !> What one step did at the two end nodes: what the end stresses' impulse and work, the
+   !> supports' impulse and the support section stresses of that step are booked from.
+   type :: end_step_t
+      real(wp) :: s_top = 0.0_wp, s_bot = 0.0_wp           !! end stresses of the step [Pa]
+      real(wp) :: du_top_old = 0.0_wp, du_bot_old = 0.0_wp !! increments of B_0, A_n before it [m]
+      real(wp) :: du_top = 0.0_wp, du_bot = 0.0_wp         !! the same after it [m]
+      logical :: held_top = .false., held_bot = .false.    !! a support stopped the end node
+      real(wp) :: p_top = 0.0_wp, p_bot = 0.0_wp           !! ma du_A + mb du_B it stopped [kg/m]
+      real(wp) :: s_1 = 0.0_wp, s_n = 0.0_wp               !! s^n of the end cells [Pa]
+   end type end_step_t
+
+   integer, parameter :: block_default = 2048   !! nodes per block of advance_joined
 
 contains
 
@@ -16,14 +29,18 @@ contains
    !> outgoing wave and, when the load acts on that end, 2 P^n for the incident wave of
    !> stress p(t) arriving through it; 0 otherwise. s_top pushes node 0 like a cell above
    !> it; s_bot pushes node n like a cell below it.
-   pure subroutine end_stresses(mesh, load, st, s_top, s_bot)
+   pure subroutine end_stresses(mesh, load, st, s_top, s_bot, step)
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
       type(state_t), intent(in) :: st
       real(wp), intent(out) :: s_top, s_bot   !! [Pa]
+      integer, intent(in), optional :: step   !! the step index n (default st%n)
       real(wp) :: p
+      integer :: m
+      m = st%n
+      if (present(step)) m = step
       p = 0.0_wp
-      if (load%kind /= load_none) p = step_load(load, st%n, mesh%dt)
+      if (load%kind /= load_none) p = step_load(load, m, mesh%dt)
       s_top = 0.0_wp
       s_bot = 0.0_wp
       select case (mesh%top)
@@ -52,18 +69,19 @@ contains
       type(state_t), intent(inout) :: st
       real(wp), allocatable :: swap(:), du_cut_old(:)
       real(wp) :: old_a(st%n_split), old_b(st%n_split), old_sec(st%n_split)
-      real(wp) :: dt, dt2, d, du_top_old, du_bot_old, s_top, s_bot, w_cut, strain_cut
+      real(wp) :: dt, dt2, d, w_cut, strain_cut
       integer :: split(st%n_split)
       integer :: i, n, c, k, n_split
+      type(end_step_t) :: r
 
       n = mesh%n
       dt = mesh%dt
       dt2 = dt * dt
-      call end_stresses(mesh, load, st, s_top, s_bot)
-      st%s(0) = s_top
-      st%s(n + 1) = s_bot
-      du_top_old = st%dub(0)
-      du_bot_old = st%dua(n)
+      call end_stresses(mesh, load, st, r%s_top, r%s_bot)
+      st%s(0) = r%s_top
+      st%s(n + 1) = r%s_bot
+      r%du_top_old = st%dub(0)
+      r%du_bot_old = st%dua(n)
       if (st%n_cut > 0) then
          allocate(du_cut_old(st%n_cut))
          do c = 1, st%n_cut
@@ -92,90 +110,19 @@ contains
                         0.5_wp * mesh%dm(i) * g) / mesh%z(i) - d / dt) + 0.5_wp * mesh%dm(i) * g
          end do
       end if
-      if (abs(g) > 0.0_wp) then
-         do i = 0, n
-            d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
-                * mesh%inv_m(i) * dt2
-            st%dua(i) = d
-            st%dub(i) = d
-         end do
-      else
-         ! the same expression with g = 0 (x + 0 = x): two fewer arrays streamed
-         do i = 0, n
-            d = st%dua(i) + (st%s(i) - st%s(i + 1)) * mesh%inv_m(i) * dt2
-            st%dua(i) = d
-            st%dub(i) = d
-         end do
-      end if
+      call joined_increments(mesh, g, st%s, st%dua, 0, n)
+      st%dub = st%dua
       do c = 1, n_split
          i = split(c)
          st%dua(i) = old_a(c) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
          st%dub(i) = old_b(c) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
          st%sec(i) = old_sec(c)
       end do
-      ! momentum balance: the end stresses act on the end nodes, supports take what reaches
-      ! them
-      st%i_ends = st%i_ends + (s_top - s_bot) * dt
-      if (mesh%top == end_fixed) then
-         st%i_support = st%i_support - (mesh%ma(0) * st%dua(0) + mesh%mb(0) * st%dub(0)) / dt
-         st%dua(0) = 0.0_wp
-         st%dub(0) = 0.0_wp
-      end if
-      if (mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%base_contact)) then
-         st%i_support = st%i_support - (mesh%ma(n) * st%dua(n) + mesh%mb(n) * st%dub(n)) / dt
-         st%dua(n) = 0.0_wp
-         st%dub(n) = 0.0_wp
-      end if
-      ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
-      ! the discrete energy ledger exact
-      associate (w_top => st%s(0) * 0.5_wp * (st%dub(0) + du_top_old), &
-                 w_bot => -st%s(n + 1) * 0.5_wp * (st%dua(n) + du_bot_old))
-         if (mesh%top == end_transmit) then
-            st%w_transmit = st%w_transmit + w_top
-         else
-            st%w_load = st%w_load + w_top
-         end if
-         if (mesh%bottom == end_transmit) then
-            st%w_transmit = st%w_transmit + w_bot
-         else
-            st%w_load = st%w_load + w_bot
-         end if
-      end associate
-
-      ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
-      ! a support just hit by a moving half starts from that half's velocity
-      if (st%landing_top) du_top_old = st%v_land_top * dt
-      if (st%landing_bot) du_bot_old = st%v_land_bot * dt
-      st%landing_top = .false.
-      st%landing_bot = .false.
-      select case (mesh%top)
-      case (end_fixed)
-         st%sec(0) = section_stress_b(st%s(1), st%sec(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
-                                       mesh%dm(1), g)
-      case (end_transmit)
-         st%sec(0) = section_stress_b(st%s(1), st%sec(0), du_top_old / dt, st%dub(0) / dt, &
-                                       mesh%z(1), mesh%dm(1), g)
-      end select
-      select case (mesh%bottom)
-      case (end_fixed)
-         st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
-                                       mesh%dm(n), g)
-      case (end_transmit)
-         st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, st%dua(n) / dt, &
-                                       mesh%z(n), mesh%dm(n), g)
-      case (end_base)
-         ! resting on the rigid base: the base side does not move; v^n is the bottom half's
-         ! velocity before the step (0 while it rests)
-         if (st%base_contact .and. mesh%full_mass) then
-            ! full-mass model: no section stresses; the base takes the force on the node
-            st%sec(n) = st%s(n) + mesh%ma(n) * g
-         else if (st%base_contact) then
-            st%sec(n) = section_stress_a(st%s(n), st%sec(n), du_bot_old / dt, 0.0_wp, &
-                                          mesh%z(n), mesh%dm(n), g)
-         else
-            st%sec(n) = 0.0_wp
-         end if
-      end select
+      call hold_top(mesh, st, r)
+      call hold_bottom(mesh, st, r)
+      r%s_1 = st%s(1)
+      r%s_n = st%s(n)
+      call book_ends(mesh, g, st, r)
 
       ! (2.3)4: s^{n+1} = E (u_{k-1} - u_k)/dx, advanced by the increments of this step:
       ! algebraically the same, but it never subtracts two large displacements, so a bar
@@ -207,4 +154,229 @@ contains
       end if
       st%n = st%n + 1
    end subroutine advance
+
+   !> advance_joined may stand in for nsteps calls of the whole step (advance, contact_step,
+   !> fracture_step): every node is joined, none can break (no node, no spring), no rigid
+   !> base to land on or leave, and no support is being hit.
+   pure logical function joined_only(mesh, st)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%n_cut == 0 .and. &
+                    mesh%bottom /= end_base .and. .not. (st%landing_top .or. st%landing_bot)
+   end function joined_only
+
+   !> nsteps steps of a bar that is joined_only, bit-identical to as many calls of advance,
+   !> but cache-blocked in space and time: the nodes are cut into blocks of block_nodes, and
+   !> each block is taken through all nsteps steps before the next, its range sliding one
+   !> node towards the top per step (a node at step t needs only its neighbours at step
+   !> t - 1, and the block above has already taken them there). The end nodes' bookkeeping
+   !> is recorded per step and booked in step order at the end. s_old is not kept: the
+   !> caller ends with an ordinary step (a history row reads s^{n-1}).
+   pure subroutine advance_joined(mesh, load, g, st, nsteps, block_nodes)
+      type(mesh_t), intent(in) :: mesh
+      type(load_t), intent(in) :: load
+      real(wp), intent(in) :: g                     !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st
+      integer, intent(in) :: nsteps
+      integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
+      type(end_step_t) :: r(nsteps)
+      real(wp) :: unused
+      integer :: n, n0, bw, nblk, kb, lo, hi, t, a, e, i, k
+      logical :: same_u
+
+      n = mesh%n
+      n0 = st%n
+      ! where both halves of every node sit at the same place to the bit (an intact bar), one
+      ! displacement array is advanced and copied: the sums are the same
+      same_u = .true.
+      do i = 0, n
+         if (abs(st%ua(i) - st%ub(i)) > 0.0_wp .or. &
+             sign(1.0_wp, st%ua(i)) * sign(1.0_wp, st%ub(i)) < 0.0_wp) then
+            same_u = .false.
+            exit
+         end if
+      end do
+      bw = block_default
+      if (present(block_nodes)) bw = block_nodes
+      bw = max(bw, nsteps + 2)     ! block 0 holds nodes 0 and 1 at every step
+      nblk = n / bw + 1            ! the last block starts at or above node n
+      do kb = 0, nblk - 1
+         lo = kb * bw
+         hi = lo + bw
+         if (kb == nblk - 1) hi = n + 1 + nsteps
+         do t = 1, nsteps
+            a = max(0, lo - t + 1)
+            e = min(n + 1, hi - t + 1)
+            if (a >= e) cycle
+            if (a == 0) then
+               call end_stresses(mesh, load, st, r(t)%s_top, unused, step=n0 + t - 1)
+               st%s(0) = r(t)%s_top
+               r(t)%du_top_old = st%dub(0)
+            end if
+            if (e == n + 1) then
+               call end_stresses(mesh, load, st, unused, r(t)%s_bot, step=n0 + t - 1)
+               st%s(n + 1) = r(t)%s_bot
+               r(t)%du_bot_old = st%dua(n)
+            end if
+            call joined_increments(mesh, g, st%s, st%dua, a, e - 1)
+            if (a == 0) then
+               st%dub(0) = st%dua(0)
+               call hold_top(mesh, st, r(t))
+               r(t)%s_1 = st%s(1)
+            end if
+            if (e == n + 1) then
+               st%dub(n) = st%dua(n)
+               call hold_bottom(mesh, st, r(t))
+               r(t)%s_n = st%s(n)
+            end if
+            ! (2.3)4 and (2.3)3 in one pass: cell k lies between nodes k - 1 and k
+            if (a == 0) then
+               st%ua(0) = st%ua(0) + st%dua(0)
+               if (.not. same_u) st%ub(0) = st%ub(0) + st%dua(0)
+            end if
+            if (same_u) then
+               do k = max(a, 1), e - 1
+                  st%s(k) = st%s(k) + mesh%stiff(k) * (st%dua(k - 1) - st%dua(k))
+                  st%ua(k) = st%ua(k) + st%dua(k)
+               end do
+            else
+               do k = max(a, 1), e - 1
+                  st%s(k) = st%s(k) + mesh%stiff(k) * (st%dua(k - 1) - st%dua(k))
+                  st%ua(k) = st%ua(k) + st%dua(k)
+                  st%ub(k) = st%ub(k) + st%dua(k)
+               end do
+            end if
+         end do
+      end do
+      st%dub = st%dua
+      if (same_u) st%ub = st%ua
+      do t = 1, nsteps
+         call book_ends(mesh, g, st, r(t))
+      end do
+      st%n = n0 + nsteps
+      st%n_skip = 0
+   end subroutine advance_joined
+
+   !> (2.3)1-2 for joined nodes i0..i1: du += (forces of both halves) / (their mass) dt^2.
+   pure subroutine joined_increments(mesh, g, s, du, i0, i1)
+      type(mesh_t), intent(in) :: mesh
+      real(wp), intent(in) :: g
+      real(wp), intent(in) :: s(0:)       !! cell stresses s^n, ends included [Pa]
+      real(wp), intent(inout) :: du(0:)   !! increments [m]
+      integer, intent(in) :: i0, i1
+      real(wp) :: dt2
+      integer :: i
+      dt2 = mesh%dt * mesh%dt
+      if (abs(g) > 0.0_wp) then
+         do i = i0, i1
+            du(i) = du(i) + ((s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - s(i + 1))) &
+                    * mesh%inv_m(i) * dt2
+         end do
+      else
+         ! the same expression with g = 0 (x + 0 = x): two fewer arrays streamed
+         do i = i0, i1
+            du(i) = du(i) + (s(i) - s(i + 1)) * mesh%inv_m(i) * dt2
+         end do
+      end if
+   end subroutine joined_increments
+
+   !> A fixed top stops node 0; the momentum it takes is recorded.
+   pure subroutine hold_top(mesh, st, r)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      type(end_step_t), intent(inout) :: r
+      r%held_top = mesh%top == end_fixed
+      if (r%held_top) then
+         r%p_top = mesh%ma(0) * st%dua(0) + mesh%mb(0) * st%dub(0)
+         st%dua(0) = 0.0_wp
+         st%dub(0) = 0.0_wp
+      end if
+      r%du_top = st%dub(0)
+   end subroutine hold_top
+
+   !> A fixed bottom, or the base the bar rests on, stops node n.
+   pure subroutine hold_bottom(mesh, st, r)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      type(end_step_t), intent(inout) :: r
+      integer :: n
+      n = mesh%n
+      r%held_bot = mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%base_contact)
+      if (r%held_bot) then
+         r%p_bot = mesh%ma(n) * st%dua(n) + mesh%mb(n) * st%dub(n)
+         st%dua(n) = 0.0_wp
+         st%dub(n) = 0.0_wp
+      end if
+      r%du_bot = st%dua(n)
+   end subroutine hold_bottom
+
+   !> The end nodes' part of one step, in the order the step makes it: impulse of the end
+   !> stresses and of the supports, work of the end stresses, section stresses at the supports.
+   pure subroutine book_ends(mesh, g, st, r)
+      type(mesh_t), intent(in) :: mesh
+      real(wp), intent(in) :: g
+      type(state_t), intent(inout) :: st
+      type(end_step_t), intent(in) :: r
+      real(wp) :: dt, du_top_old, du_bot_old
+      integer :: n
+      n = mesh%n
+      dt = mesh%dt
+      ! momentum balance: the end stresses act on the end nodes, supports take what reaches
+      ! them
+      st%i_ends = st%i_ends + (r%s_top - r%s_bot) * dt
+      if (r%held_top) st%i_support = st%i_support - r%p_top / dt
+      if (r%held_bot) st%i_support = st%i_support - r%p_bot / dt
+      ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
+      ! the discrete energy ledger exact
+      associate (w_top => r%s_top * 0.5_wp * (r%du_top + r%du_top_old), &
+                 w_bot => -r%s_bot * 0.5_wp * (r%du_bot + r%du_bot_old))
+         if (mesh%top == end_transmit) then
+            st%w_transmit = st%w_transmit + w_top
+         else
+            st%w_load = st%w_load + w_top
+         end if
+         if (mesh%bottom == end_transmit) then
+            st%w_transmit = st%w_transmit + w_bot
+         else
+            st%w_load = st%w_load + w_bot
+         end if
+      end associate
+
+      ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
+      ! a support just hit by a moving half starts from that half's velocity
+      du_top_old = r%du_top_old
+      du_bot_old = r%du_bot_old
+      if (st%landing_top) du_top_old = st%v_land_top * dt
+      if (st%landing_bot) du_bot_old = st%v_land_bot * dt
+      st%landing_top = .false.
+      st%landing_bot = .false.
+      select case (mesh%top)
+      case (end_fixed)
+         st%sec(0) = section_stress_b(r%s_1, st%sec(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
+                                       mesh%dm(1), g)
+      case (end_transmit)
+         st%sec(0) = section_stress_b(r%s_1, st%sec(0), du_top_old / dt, r%du_top / dt, &
+                                       mesh%z(1), mesh%dm(1), g)
+      end select
+      select case (mesh%bottom)
+      case (end_fixed)
+         st%sec(n) = section_stress_a(r%s_n, st%sec(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
+                                       mesh%dm(n), g)
+      case (end_transmit)
+         st%sec(n) = section_stress_a(r%s_n, st%sec(n), du_bot_old / dt, r%du_bot / dt, &
+                                       mesh%z(n), mesh%dm(n), g)
+      case (end_base)
+         ! resting on the rigid base: the base side does not move; v^n is the bottom half's
+         ! velocity before the step (0 while it rests)
+         if (st%base_contact .and. mesh%full_mass) then
+            ! full-mass model: no section stresses; the base takes the force on the node
+            st%sec(n) = r%s_n + mesh%ma(n) * g
+         else if (st%base_contact) then
+            st%sec(n) = section_stress_a(r%s_n, st%sec(n), du_bot_old / dt, 0.0_wp, &
+                                          mesh%z(n), mesh%dm(n), g)
+         else
+            st%sec(n) = 0.0_wp
+         end if
+      end select
+   end subroutine book_ends
 end module spb_step

@@ -6,7 +6,7 @@ module spb_sys
    implicit none
    private
    public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
-   public :: fp_traps_off, fp_traps_restore
+   public :: fp_traps_off, fp_traps_restore, heap_for_large_arrays
 
    type(ieee_flag_type), parameter :: read_traps(3) = [ieee_overflow, ieee_invalid, &
       ieee_divide_by_zero]
@@ -32,6 +32,11 @@ module spb_sys
          character(kind=c_char), intent(in) :: old(*), new(*)
          integer(c_int) :: r
       end function c_rename
+      function c_mallopt(param, value) bind(c, name='mallopt') result(r)
+         import :: c_int
+         integer(c_int), value :: param, value
+         integer(c_int) :: r
+      end function c_mallopt
       function c_signal(signum, handler) bind(c, name='signal') result(previous)
          import :: c_int, c_funptr
          integer(c_int), value :: signum
@@ -41,6 +46,17 @@ module spb_sys
    end interface
 
 contains
+
+   !> Large arrays from the heap, not each from its own mmap (glibc: M_MMAP_THRESHOLD = -3,
+   !> raised to its largest, 32 MiB). Every mmap starts at the same offset of a 4 KiB page,
+   !> so the state's arrays would share their addresses modulo 4 KiB, and a load from one
+   !> stalls behind a store to another at the same index (4K aliasing): measured 20% of the
+   !> stepping time of a 1e5-node bar (doc/benchmarks.md). Heap arrays lie one after the
+   !> other at staggered offsets. A performance hint only: ignored where it fails.
+   subroutine heap_for_large_arrays()
+      integer(c_int) :: rc
+      rc = c_mallopt(-3_c_int, 33554432_c_int)
+   end subroutine heap_for_large_arrays
 
    !> Terminate with an exit status and no runtime banner (error stop prints one).
    subroutine sys_exit(status)
