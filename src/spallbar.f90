@@ -13,6 +13,8 @@ program spallbar
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
    use spb_output, only: write_mesh_summary
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
+   use spb_sweep, only: run_sweep, sweep_summary_t
+   use spb_par, only: par_init, par_finalize, par_rank, par_kind
    implicit none
 
    type(deck_t) :: deck
@@ -20,11 +22,12 @@ program spallbar
    type(run_summary_t) :: summary
    type(spb_error_t), allocatable :: err
    character(len=:), allocatable :: deck_path, prefix
-   logical :: quiet
+   logical :: quiet, sweep
 
    call heap_for_large_arrays()
-   call parse_command_line(deck_path, prefix, quiet, err)
+   call parse_command_line(deck_path, prefix, quiet, sweep, err)
    if (allocated(err)) call fail(err)
+   if (sweep) call sweep_main()
    call read_deck(deck_path, deck, err)
    if (allocated(err)) call fail(err)
    call sim_setup(deck, sim, err)
@@ -57,21 +60,57 @@ contains
       call sys_exit(e%code)
    end subroutine fail
 
+   !> --sweep: every rank reads and checks the deck (the same answer everywhere), runs its
+   !> cases; rank 0 reports and writes the outputs. Exits: 0, 2 bad input, 3 some case went
+   !> wrong, 128 + signal.
+   subroutine sweep_main()
+      type(sweep_summary_t) :: ssum
+      integer :: rank
+      call par_init()
+      rank = par_rank()
+      call read_deck(deck_path, deck, err, sweep=.true.)
+      if (.not. allocated(err)) then
+         if (rank == 0 .and. .not. quiet) write(output_unit, '(a)') 'spallbar ' // version // &
+            ' sweep: ' // trim(deck%run%title)
+         call catch_stop_signals()
+         call run_sweep(deck, prefix, rank == 0 .and. (.not. quiet) .and. stderr_is_terminal(), &
+                        ssum, err)
+      end if
+      if (rank == 0 .and. .not. quiet .and. ssum%cases > 0) then
+         write(output_unit, '(a,i0,a,i0,a,a,a,a,a,f0.3,a)') '  done: ', ssum%cases, ' cases on ', &
+            ssum%ranks, ' rank(s) (', trim(ssum%distribution), ', ', par_kind, ') in ', &
+            ssum%wall, ' s wall'
+         write(output_unit, '(a,i0,a,i0,a,i0,a)') '  cases done: ', ssum%done, ', went wrong: ', &
+            ssum%failed, ', not run: ', ssum%not_run, '; wrote ' // prefix // '.sweep, ' // &
+            prefix // '_sweep.h5'
+      end if
+      flush(output_unit)
+      call par_finalize()
+      if (allocated(err)) then
+         if (rank == 0) call fail(err)
+         call sys_exit(err%code)
+      end if
+      call sys_exit(0)
+   end subroutine sweep_main
+
    subroutine usage()
       write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet]'
+      write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
+         'PREFIX] [--quiet]   (PREFIX.sweep, PREFIX_sweep.h5; ' // par_kind // ')'
       write(output_unit, '(a)') '       spallbar --version | --help'
       write(output_unit, '(a)') 'Reads the namelist deck, writes PREFIX.his, PREFIX.prf, ' // &
          'PREFIX.evt (PREFIX defaults to the deck path without .nml).'
       write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
    end subroutine usage
 
-   subroutine parse_command_line(path, pre, q, e)
+   subroutine parse_command_line(path, pre, q, sw, e)
       character(len=:), allocatable, intent(out) :: path, pre
-      logical, intent(out) :: q
+      logical, intent(out) :: q, sw            !! --quiet, --sweep
       type(spb_error_t), allocatable, intent(out) :: e
       integer :: k, nargs, lenarg
       character(len=path_len) :: arg
       q = .false.
+      sw = .false.
       path = ''
       pre = ''
       nargs = command_argument_count()
@@ -100,7 +139,9 @@ contains
             k = k + 1
             call get_command_argument(k, arg)
             pre = trim(arg)
-         case ('--restart', '--sweep')
+         case ('--sweep')
+            sw = .true.
+         case ('--restart')
             call make_error(e, 'command line: ' // trim(arg) // ' is not available in this ' // &
                             'version of spallbar')
             return

@@ -6,7 +6,8 @@
 module spb_deck
    use, intrinsic :: iso_fortran_env, only: iostat_end
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len
+   use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len, max_sweep_values, &
+      max_realizations
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, lower, ltoa
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment
@@ -15,7 +16,7 @@ module spb_deck
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
    public :: read_deck, validate_deck, write_echo, deck_items, echo_item_t, unset, is_set, &
-      known_groups
+      known_groups, sweep_cfg, set_deck_value
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
@@ -93,6 +94,19 @@ module spb_deck
       integer :: seed = 1                              !! generator seed (spb_random)
    end type strength_field_cfg
 
+   !> &sweep (only read with --sweep): Monte-Carlo realizations of the strength field, a
+   !> parameter sweep over values of one deck variable, or both (every value x every
+   !> realization).
+   type :: sweep_cfg
+      integer :: realizations = 0                      !! per value; 0: the deck's own field
+      integer :: seed = 1                              !! realization i: realization_seed(seed, i)
+      character(len=name_len) :: vary = ''             !! deck variable, e.g. 'p0', 'velocity(1)'
+      real(wp) :: values(max_sweep_values) = unset     !! its values
+      integer :: n_values = 0                          !! how many values were given
+      character(len=name_len) :: distribution = 'static'  !! 'static' | 'dynamic' over ranks
+      integer :: bins = 50                             !! fragment-length histogram bins
+   end type sweep_cfg
+
    type :: deck_t
       character(len=path_len) :: path = '(built in memory)'   !! where the deck came from
       type(run_cfg) :: run
@@ -102,6 +116,8 @@ module spb_deck
       type(load_cfg) :: load
       type(initial_cfg) :: init
       type(strength_field_cfg) :: field
+      type(sweep_cfg) :: sweep
+      logical :: is_sweep = .false.   !! read for --sweep: &sweep is required and echoed
       type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
    end type deck_t
 
@@ -114,10 +130,11 @@ contains
    end function is_set
 
    !> Read and validate a deck file.
-   subroutine read_deck(path, deck, err)
+   subroutine read_deck(path, deck, err, sweep)
       character(len=*), intent(in) :: path       !! deck file
       type(deck_t), intent(out) :: deck
       type(spb_error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: sweep     !! a sweep deck (--sweep): &sweep required
       integer :: u, ios
       character(len=256) :: msg
       logical :: traps(3)
@@ -129,9 +146,15 @@ contains
          call make_error(err, '&run: required group is missing (it must give t_end)')
          return
       end if
-      if (has_group(deck%scan, 'sweep')) then
-         call make_error(err, '&sweep: sweeps are run with --sweep, which this version of '&
-                         // 'spallbar does not have yet')
+      if (present(sweep)) deck%is_sweep = sweep
+      if (has_group(deck%scan, 'sweep') .and. .not. deck%is_sweep) then
+         call make_error(err, '&sweep: this deck is a sweep; run it with spallbar --sweep ' // &
+                         trim(path) // ' (under mpirun for several ranks)')
+         return
+      end if
+      if (deck%is_sweep .and. .not. has_group(deck%scan, 'sweep')) then
+         call make_error(err, '&sweep: required group is missing (--sweep needs realizations ' &
+                         // 'or vary and values)')
          return
       end if
       open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
@@ -147,10 +170,12 @@ contains
       if (.not. allocated(err)) call read_load(u, deck, err)
       if (.not. allocated(err)) call read_initial(u, deck, err)
       if (.not. allocated(err)) call read_strength_field(u, deck, err)
+      if (.not. allocated(err) .and. deck%is_sweep) call read_sweep(u, deck, err)
       close(u)
       ! validation compares values the user gave, NaN and Inf among them, before it rejects
       ! them: the traps stay off until it is done
       if (.not. allocated(err)) call validate_deck(deck, err)
+      if (.not. allocated(err) .and. deck%is_sweep) call validate_sweep(deck, err)
       call fp_traps_restore(traps)
    end subroutine read_deck
 
@@ -550,6 +575,197 @@ contains
       deck%field%scale = scale
       deck%field%seed = seed
    end subroutine read_strength_field
+
+   subroutine read_sweep(u, deck, err)
+      integer, intent(in) :: u
+      type(deck_t), intent(inout) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=path_len) :: vary, distribution
+      real(wp) :: values(max_sweep_values)
+      integer :: realizations, seed, bins, ios, k, ios2
+      character(len=256) :: msg, msg2
+      character(len=:), allocatable :: record, var
+      namelist /sweep/ realizations, seed, vary, values, distribution, bins
+      realizations = deck%sweep%realizations
+      seed = deck%sweep%seed
+      vary = deck%sweep%vary
+      values = deck%sweep%values
+      distribution = deck%sweep%distribution
+      bins = deck%sweep%bins
+      rewind(u)
+      read(u, nml=sweep, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'sweep', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=sweep, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'sweep', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
+      call read_status(deck, 'sweep', ios, msg, err)
+      call check_word(err, 'sweep', 'vary', vary)
+      call check_word(err, 'sweep', 'distribution', distribution)
+      if (allocated(err)) return
+      deck%sweep%realizations = realizations
+      deck%sweep%seed = seed
+      deck%sweep%vary = lower(vary)
+      deck%sweep%values = values
+      deck%sweep%distribution = lower(distribution)
+      deck%sweep%bins = bins
+      deck%sweep%n_values = 0
+      do k = 1, max_sweep_values
+         if (.not. is_set(values(k))) exit
+         deck%sweep%n_values = k
+      end do
+   end subroutine read_sweep
+
+   !> &sweep: what to vary and how often; every case's deck must itself be valid.
+   subroutine validate_sweep(deck, err)
+      type(deck_t), intent(in) :: deck
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t) :: trial
+      integer :: k
+      associate (sw => deck%sweep)
+         if (sw%realizations < 0 .or. sw%realizations > max_realizations) then
+            call make_error(err, '&sweep: realizations must be 0 .. ' // itoa(max_realizations) &
+                            // ', got ' // itoa(sw%realizations))
+            return
+         end if
+         if (sw%bins < 1 .or. sw%bins > 100000) then
+            call make_error(err, '&sweep: bins must be 1 .. 100000, got ' // itoa(sw%bins))
+            return
+         end if
+         call need_choice(err, 'sweep', 'distribution', sw%distribution, [character(len=8) :: &
+                          'static', 'dynamic'])
+         if (allocated(err)) return
+         if (len_trim(sw%vary) == 0) then
+            if (sw%realizations == 0) then
+               call make_error(err, '&sweep: nothing to sweep: give realizations > 0, or vary ' &
+                               // 'and values')
+               return
+            end if
+            if (sw%n_values > 0) then
+               call make_error(err, '&sweep: values are given but vary is not')
+               return
+            end if
+         else
+            if (sw%n_values == 0) then
+               call make_error(err, '&sweep: vary = ''' // trim(sw%vary) // ''' needs values')
+               return
+            end if
+            do k = sw%n_values + 1, max_sweep_values
+               if (is_set(sw%values(k))) then
+                  call make_error(err, '&sweep: values(' // itoa(k) // ') is given but values(' &
+                                  // itoa(sw%n_values + 1) // ') is not')
+                  return
+               end if
+            end do
+            do k = 1, sw%n_values
+               call need_finite(err, 'sweep', 'values(' // itoa(k) // ')', sw%values(k))
+            end do
+            if (allocated(err)) return
+         end if
+         if (sw%realizations > 0 .and. deck%field%kind /= 'weibull') then
+            call make_error(err, '&sweep: realizations need &strength_field kind = ''weibull'' ' &
+                            // '(else every realization is the same run)')
+            return
+         end if
+         ! every value must make a valid deck
+         do k = 1, sw%n_values
+            trial = deck
+            call set_deck_value(trial, sw%vary, sw%values(k), err)
+            if (allocated(err)) return
+            call validate_deck(trial, err)
+            if (allocated(err)) then
+               err%message = '&sweep: values(' // itoa(k) // ') = ' // rtoa(sw%values(k)) // &
+                             ' for ' // trim(sw%vary) // ': ' // err%message
+               return
+            end if
+         end do
+      end associate
+   end subroutine validate_sweep
+
+   !> Set the deck variable a sweep varies: name as in the deck, 'p0' or 'velocity(2)'.
+   subroutine set_deck_value(deck, name, value, err)
+      type(deck_t), intent(inout) :: deck
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: value
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=:), allocatable :: base
+      integer :: j, p, ios
+      base = trim(name)
+      j = 0
+      p = index(base, '(')
+      if (p > 0) then
+         if (base(len(base):) /= ')') then
+            call make_error(err, '&sweep: vary = ''' // base // ''' is not a deck variable')
+            return
+         end if
+         read(base(p + 1:len(base) - 1), *, iostat=ios) j
+         if (ios /= 0 .or. j < 1 .or. j > deck%seg%n) then
+            call make_error(err, '&sweep: vary = ''' // base // ''': the index must be a ' // &
+                            'segment 1 .. ' // itoa(deck%seg%n))
+            return
+         end if
+         base = base(:p - 1)
+      end if
+      select case (base)
+      case ('velocity', 'strength', 'young', 'density', 'length', 'gap')
+         if (j == 0) then
+            call make_error(err, '&sweep: vary = ''' // base // ''' needs a segment index, ' // &
+                            'e.g. ''' // base // '(1)''')
+            return
+         end if
+      case default
+         if (j /= 0) then
+            call make_error(err, '&sweep: vary = ''' // trim(name) // ''': ' // base // &
+                            ' takes no index')
+            return
+         end if
+      end select
+      select case (base)
+      case ('velocity')
+         deck%seg%velocity(j) = value
+      case ('strength')
+         deck%seg%strength(j) = value
+      case ('young')
+         deck%seg%young(j) = value
+      case ('density')
+         deck%seg%density(j) = value
+      case ('length')
+         deck%seg%length(j) = value
+      case ('gap')
+         deck%seg%gap(j) = value
+      case ('p0')
+         deck%load%p0 = value
+      case ('t_k')
+         deck%load%t_k = value
+      case ('t_cut')
+         deck%load%t_cut = value
+      case ('exponent')
+         deck%load%exponent = value
+      case ('gravity')
+         deck%run%gravity = value
+      case ('t_end')
+         deck%run%t_end = value
+      case ('eps_rel')
+         deck%run%eps_rel = value
+      case ('base_gap')
+         deck%ends%base_gap = value
+      case ('modulus')
+         deck%field%modulus = value
+      case ('scale')
+         deck%field%scale = value
+      case default
+         call make_error(err, '&sweep: vary = ''' // trim(name) // ''' is not a variable a ' &
+            // 'sweep can vary (p0, t_k, t_cut, exponent, gravity, t_end, eps_rel, base_gap, ' &
+            // 'modulus, scale, velocity(j), strength(j), young(j), density(j), length(j), gap(j))')
+      end select
+   end subroutine set_deck_value
 
    ! ---------------------------------------------------------------- validation
 
@@ -961,6 +1177,18 @@ contains
       call item('strength_field', 'modulus', opt(deck%field%modulus), '-')
       call item('strength_field', 'scale', opt(deck%field%scale), 'Pa')
       call item('strength_field', 'seed', itoa(deck%field%seed), '')
+      if (deck%is_sweep) then
+         call item('sweep', 'realizations', itoa(deck%sweep%realizations), '')
+         call item('sweep', 'seed', itoa(deck%sweep%seed), '')
+         call item('sweep', 'vary', quote(deck%sweep%vary), '')
+         if (deck%sweep%n_values > 0) then
+            call item('sweep', 'values', rlist(deck%sweep%values(1:deck%sweep%n_values)), '')
+         else
+            call item('sweep', 'values', '(none)', '')
+         end if
+         call item('sweep', 'distribution', quote(deck%sweep%distribution), '')
+         call item('sweep', 'bins', itoa(deck%sweep%bins), '')
+      end if
    contains
       subroutine item(g, name, value, unit)
          character(len=*), intent(in) :: g, name, value, unit

@@ -18,7 +18,7 @@ module spb_output
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
-   public :: write_field, flush_outputs, history_units_of
+   public :: write_field, flush_outputs, history_units_of, h5_deck_header
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
@@ -178,6 +178,37 @@ contains
       if (out%hdf5) call h5_flush(out%h5)
    end subroutine flush_outputs
 
+   !> Root attributes (program, title, deck path, layout, conventions) and /deck: one group
+   !> per namelist group, one string attribute per variable (the echoed value), with
+   !> name:units and name:from ('input' or 'default'). PREFIX.h5 and PREFIX_sweep.h5 share it.
+   subroutine h5_deck_header(h5, deck)
+      type(h5file_t), intent(inout) :: h5
+      type(deck_t), intent(in) :: deck
+      type(echo_item_t), allocatable :: items(:)
+      integer :: k
+      call h5_attr(h5, '/', 'program', 'spallbar ' // version)
+      call h5_attr(h5, '/', 'title', trim(deck%run%title))
+      call h5_attr(h5, '/', 'deck_path', trim(deck%path))
+      call h5_attr(h5, '/', 'layout', 'doc/outputs.md; h5py shows a Fortran a(nx, nt) ' // &
+                   'as (nt, nx)')
+      call h5_attr(h5, '/', 'conventions', 'SI units; x down from the top end; ' // &
+                   'stress > 0 in compression')
+      call h5_group(h5, '/deck')
+      call deck_items(deck, items)
+      do k = 1, size(items)
+         if (k == 1) then
+            call h5_group(h5, '/deck/' // items(k)%group)
+         else if (items(k)%group /= items(k - 1)%group) then
+            call h5_group(h5, '/deck/' // items(k)%group)
+         end if
+         associate (g => '/deck/' // items(k)%group, nm => items(k)%name)
+            call h5_attr(h5, g, nm, unquote(items(k)%value))
+            if (len_trim(items(k)%unit) > 0) call h5_attr(h5, g, nm // ':units', items(k)%unit)
+            call h5_attr(h5, g, nm // ':from', trim(merge('input  ', 'default', items(k)%given)))
+         end associate
+      end do
+   end subroutine h5_deck_header
+
    !> PREFIX.h5: root attributes, /deck, /mesh, the /history and /events tables, /fields
    !> (profiles, and x-t rows when field_every > 0), /fragments.
    subroutine open_h5(prefix, deck, mesh, report, out, err)
@@ -192,29 +223,7 @@ contains
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5')
       out%hdf5 = .true.
-      call h5_attr(out%h5, '/', 'program', 'spallbar ' // version)
-      call h5_attr(out%h5, '/', 'title', trim(deck%run%title))
-      call h5_attr(out%h5, '/', 'deck_path', trim(deck%path))
-      call h5_attr(out%h5, '/', 'layout', 'doc/outputs.md; h5py shows a Fortran a(nx, nt) ' // &
-                   'as (nt, nx)')
-      call h5_attr(out%h5, '/', 'conventions', 'SI units; x down from the top end; ' // &
-                   'stress > 0 in compression')
-      ! the deck: one group per namelist group, one string attribute per variable (the
-      ! echoed value), with name:units and name:from ('input' or 'default')
-      call h5_group(out%h5, '/deck')
-      call deck_items(deck, items)
-      do k = 1, size(items)
-         if (k == 1) then
-            call h5_group(out%h5, '/deck/' // items(k)%group)
-         else if (items(k)%group /= items(k - 1)%group) then
-            call h5_group(out%h5, '/deck/' // items(k)%group)
-         end if
-         associate (g => '/deck/' // items(k)%group, nm => items(k)%name)
-            call h5_attr(out%h5, g, nm, unquote(items(k)%value))
-            if (len_trim(items(k)%unit) > 0) call h5_attr(out%h5, g, nm // ':units', items(k)%unit)
-            call h5_attr(out%h5, g, nm // ':from', trim(merge('input  ', 'default', items(k)%given)))
-         end associate
-      end do
+      call h5_deck_header(out%h5, deck)
       ! the mesh
       n = mesh%n
       call h5_group(out%h5, '/mesh')

@@ -13,7 +13,7 @@ module spb_random
    use spb_kinds, only: wp
    implicit none
    private
-   public :: rng_t, rng_seed, rng_uniform, weibull
+   public :: rng_t, rng_seed, rng_uniform, weibull, realization_seed
 
    integer(int64), parameter :: m1 = 4294967087_int64, m2 = 4294944443_int64
    integer(int64), parameter :: a12 = 1403580_int64, a13n = 810728_int64
@@ -66,4 +66,17 @@ contains
       real(wp), intent(in) :: u, modulus, scale
       x = scale * (-log(1.0_wp - u))**(1.0_wp / modulus)
    end function weibull
+
+   !> Seed of realization i (1, 2, ...) of a sweep with base seed `seed`:
+   !> 1 + mod(mod(seed, p) * 69621 + i * 48271, p - 1) with p = 2^31 - 1, in 64-bit integers
+   !> (no overflow, no compiler dependence). 48271 is prime and does not divide p - 1, so for
+   !> one base seed the realizations 1 .. p - 1 all get different seeds; rng_seed scrambles
+   !> each further. The .sweep table prints it: any realization re-runs
+   !> alone as an ordinary deck with &strength_field seed = that value.
+   pure integer function realization_seed(seed, i) result(s)
+      integer, intent(in) :: seed, i
+      integer(int64), parameter :: p = 2147483647_int64
+      s = int(1_int64 + modulo(modulo(int(seed, int64), p) * 69621_int64 + &
+                               int(i, int64) * 48271_int64, p - 1_int64))
+   end function realization_seed
 end module spb_random

@@ -15,7 +15,7 @@ module spb_sim
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
-   use spb_events, only: event_list_t
+   use spb_events, only: event_list_t, ev_fracture
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
@@ -42,6 +42,12 @@ module spb_sim
       real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
       real(wp) :: max_excess = 0.0_wp      !! largest (E - E0) - w_ext, relative to the guard's
                                            !! scale [-]
+      integer :: n_kind(4) = 0             !! events by kind (ev_fracture .. ev_base_collision)
+      real(wp) :: first_fracture_t = -1.0_wp   !! time of the first fracture; -1: none [s]
+      real(wp) :: max_reaction_bottom = 0.0_wp !! largest section stress at the bottom node
+                                               !! over all steps (compression > 0) [Pa]
+      real(wp) :: e_kin_end = 0.0_wp       !! kinetic energy at the end [J/m^2]
+      real(wp) :: w_ext_end = 0.0_wp       !! work of the loads and ends at the end [J/m^2]
    end type run_summary_t
 
 contains
@@ -80,22 +86,26 @@ contains
       call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events)
    end subroutine sim_step
 
-   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg.
-   subroutine sim_run(sim, prefix, progress, summary, err)
+   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
+   !> only the summary, as a sweep's cases do).
+   subroutine sim_run(sim, prefix, progress, summary, err, files)
       type(sim_t), intent(inout) :: sim
       character(len=*), intent(in) :: prefix
       logical, intent(in) :: progress          !! show a progress line on stderr
       type(run_summary_t), intent(out) :: summary
       type(spb_error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: files   !! write the outputs (default .true.)
       type(outputs_t) :: out
       type(event_list_t) :: events
-      integer :: ip, nprof, every, n, k
+      integer :: ip, nprof, every, n, k, j
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
-      real(wp) :: g, e_mech0, guard_scale
-      logical :: wrote_row
+      real(wp) :: g, e_mech0, guard_scale, sec_max
+      logical :: wrote_row, to_files
 
-      call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
+      to_files = .true.
+      if (present(files)) to_files = files
+      if (to_files) call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
       if (allocated(err)) return
       g = sim%deck%run%gravity
       every = sim%deck%run%history_every
@@ -111,24 +121,34 @@ contains
          e_mech0 = e0%e_kin + e0%e_strain + e0%e_pot
          guard_scale = e0%e_kin + abs(e0%e_strain)
       end block
+      summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
       call row()
       call profiles()
-      if (sim%deck%run%field_every > 0) call write_field(out, sim%mesh, sim%st)
+      if (sim%deck%run%field_every > 0 .and. to_files) call write_field(out, sim%mesh, sim%st)
       n = 0
       do while (n < sim%mesh%nsteps)
          ! steps with nothing to write, check or break are taken in one cache-blocked call,
          ! up to the step before the next one that has work of its own
          k = next_stop(n) - n
          if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
-            call advance_joined(sim%mesh, sim%load, g, sim%st, k - 1)
+            call advance_joined(sim%mesh, sim%load, g, sim%st, k - 1, max_sec_bottom=sec_max)
+            summary%max_reaction_bottom = max(summary%max_reaction_bottom, sec_max)
             n = n + k - 1
          end if
          n = n + 1
          events%n = 0
          call sim_step(sim, events)
+         summary%max_reaction_bottom = max(summary%max_reaction_bottom, sim%st%sec(sim%mesh%n))
          if (events%n > 0) then
-            call write_events(out, events)
+            if (to_files) call write_events(out, events)
             summary%events = summary%events + events%n
+            do j = 1, events%n
+               associate (ev => events%e(j))
+                  summary%n_kind(ev%kind) = summary%n_kind(ev%kind) + 1
+                  if (ev%kind == ev_fracture .and. summary%first_fracture_t < 0.0_wp) &
+                     summary%first_fracture_t = ev%t
+               end associate
+            end do
          end if
          wrote_row = .false.
          if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
@@ -161,24 +181,27 @@ contains
          end if
          call profiles()
          if (sim%deck%run%field_every > 0) then
-            if (mod(n, sim%deck%run%field_every) == 0) call write_field(out, sim%mesh, sim%st)
+            if (mod(n, sim%deck%run%field_every) == 0 .and. to_files) &
+               call write_field(out, sim%mesh, sim%st)
          end if
          if (mod(n, 1024) == 0) then
             call system_clock(c_now)
             if (real(c_now - c_last, wp) > 0.5_wp * real(rate, wp)) then
                c_last = c_now
-               call flush_outputs(out)
+               if (to_files) call flush_outputs(out)
                if (progress) call show_progress(n, real(c_now - c0, wp) / real(rate, wp))
             end if
          end if
       end do
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
-      block
-         type(spb_error_t), allocatable :: err_close
-         call close_outputs(out, err_close)
-         if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
-      end block
+      if (to_files) then
+         block
+            type(spb_error_t), allocatable :: err_close
+            call close_outputs(out, err_close)
+            if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
+         end block
+      end if
       summary%steps = sim%st%n
       summary%wall = real(c_now - c0, wp) / real(max(rate, 1_int64), wp)
    contains
@@ -213,10 +236,12 @@ contains
             call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
                ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &
                itoa(min(i, sim%mesh%n)), code=exit_runtime)
-            call flush_outputs(out)
+            if (to_files) call flush_outputs(out)
             return
          end if
-         call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
+         summary%e_kin_end = e%e_kin
+         summary%w_ext_end = e%w_ext
+         if (to_files) call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
             sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
             e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
@@ -254,6 +279,10 @@ contains
          type(frag_info_t), allocatable :: list(:)
          do while (ip <= nprof)
             if (prof_step(ip) /= sim%st%n) exit
+            if (.not. to_files) then
+               ip = ip + 1
+               cycle
+            end if
             call write_profile(out, sim%mesh, sim%st, sim%deck%run%profile_times(ip))
             call fragment_list(sim%mesh, sim%st, list)
             call write_fragments(out, real(sim%st%n, wp) * sim%mesh%dt, sim%mesh%dt, list)

@@ -172,13 +172,14 @@ contains
    !> t - 1, and the block above has already taken them there). The end nodes' bookkeeping
    !> is recorded per step and booked in step order at the end. s_old is not kept: the
    !> caller ends with an ordinary step (a history row reads s^{n-1}).
-   pure subroutine advance_joined(mesh, load, g, st, nsteps, block_nodes)
+   pure subroutine advance_joined(mesh, load, g, st, nsteps, block_nodes, max_sec_bottom)
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
       real(wp), intent(in) :: g                     !! gravity along +x [m/s^2]
       type(state_t), intent(inout) :: st
       integer, intent(in) :: nsteps
       integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
+      real(wp), intent(out), optional :: max_sec_bottom  !! largest sec(n) of these steps [Pa]
       type(end_step_t) :: r(nsteps)
       real(wp) :: unused
       integer :: n, n0, bw, nblk, kb, lo, hi, t, a, e, i, k
@@ -250,8 +251,10 @@ contains
       end do
       st%dub = st%dua
       if (same_u) st%ub = st%ua
+      if (present(max_sec_bottom)) max_sec_bottom = -huge(1.0_wp)
       do t = 1, nsteps
          call book_ends(mesh, g, st, r(t))
+         if (present(max_sec_bottom)) max_sec_bottom = max(max_sec_bottom, st%sec(n))
       end do
       st%n = n0 + nsteps
       st%n_skip = 0

@@ -1,0 +1,108 @@
+!> The few message-passing operations a sweep needs, on MPI (use mpi_f08). The serial build
+!> compiles spb_par_serial.f90 instead: the same module, one rank, no messages.
+!>
+!> MPI is started only by a sweep (par_init); a single run never touches it.
+module spb_par
+   use mpi_f08, only: MPI_Init, MPI_Initialized, MPI_Finalize, MPI_Finalized, MPI_Comm_rank, &
+      MPI_Comm_size, MPI_Send, MPI_Recv, MPI_Status, MPI_COMM_WORLD, MPI_DOUBLE_PRECISION, &
+      MPI_INTEGER, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_Wtime, MPI_Barrier, MPI_Allreduce, MPI_MAX
+   use spb_kinds, only: wp
+   implicit none
+   private
+   public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, par_barrier, &
+      par_max, par_wtime, par_any, par_kind
+
+   integer, parameter :: par_any = -1               !! any source (par_recv)
+   character(len=*), parameter :: par_kind = 'MPI'  !! what this build runs sweeps on
+
+   interface par_send
+      module procedure send_real, send_int
+   end interface par_send
+   interface par_recv
+      module procedure recv_real, recv_int
+   end interface par_recv
+
+contains
+
+   subroutine par_init()
+      logical :: started
+      call MPI_Initialized(started)
+      if (.not. started) call MPI_Init()
+   end subroutine par_init
+
+   subroutine par_finalize()
+      logical :: started, done
+      call MPI_Initialized(started)
+      if (.not. started) return
+      call MPI_Finalized(done)
+      if (.not. done) call MPI_Finalize()
+   end subroutine par_finalize
+
+   integer function par_rank()
+      call MPI_Comm_rank(MPI_COMM_WORLD, par_rank)
+   end function par_rank
+
+   integer function par_size()
+      call MPI_Comm_size(MPI_COMM_WORLD, par_size)
+   end function par_size
+
+   subroutine par_barrier()
+      call MPI_Barrier(MPI_COMM_WORLD)
+   end subroutine par_barrier
+
+   !> The largest value of x over all ranks, on every rank.
+   integer function par_max(x)
+      integer, intent(in) :: x
+      call MPI_Allreduce(x, par_max, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
+   end function par_max
+
+   real(wp) function par_wtime()
+      par_wtime = real(MPI_Wtime(), wp)
+   end function par_wtime
+
+   subroutine send_real(buf, dest, tag)
+      real(wp), intent(in) :: buf(:)
+      integer, intent(in) :: dest, tag
+      call MPI_Send(buf, size(buf), MPI_DOUBLE_PRECISION, dest, tag, MPI_COMM_WORLD)
+   end subroutine send_real
+
+   subroutine send_int(i, dest, tag)
+      integer, intent(in) :: i, dest, tag
+      call MPI_Send(i, 1, MPI_INTEGER, dest, tag, MPI_COMM_WORLD)
+   end subroutine send_int
+
+   !> Receive buf from source (par_any: any rank) with tag (par_any: any tag); who and what
+   !> tag it came with.
+   subroutine recv_real(buf, source, tag, got_source, got_tag)
+      real(wp), intent(out) :: buf(:)
+      integer, intent(in) :: source, tag
+      integer, intent(out), optional :: got_source, got_tag
+      type(MPI_Status) :: status
+      call MPI_Recv(buf, size(buf), MPI_DOUBLE_PRECISION, mpi_source(source), mpi_tag(tag), &
+                    MPI_COMM_WORLD, status)
+      if (present(got_source)) got_source = status%MPI_SOURCE
+      if (present(got_tag)) got_tag = status%MPI_TAG
+   end subroutine recv_real
+
+   subroutine recv_int(i, source, tag, got_source, got_tag)
+      integer, intent(out) :: i
+      integer, intent(in) :: source, tag
+      integer, intent(out), optional :: got_source, got_tag
+      type(MPI_Status) :: status
+      call MPI_Recv(i, 1, MPI_INTEGER, mpi_source(source), mpi_tag(tag), MPI_COMM_WORLD, status)
+      if (present(got_source)) got_source = status%MPI_SOURCE
+      if (present(got_tag)) got_tag = status%MPI_TAG
+   end subroutine recv_int
+
+   integer function mpi_source(source)
+      integer, intent(in) :: source
+      mpi_source = source
+      if (source == par_any) mpi_source = MPI_ANY_SOURCE
+   end function mpi_source
+
+   integer function mpi_tag(tag)
+      integer, intent(in) :: tag
+      mpi_tag = tag
+      if (tag == par_any) mpi_tag = MPI_ANY_TAG
+   end function mpi_tag
+end module spb_par

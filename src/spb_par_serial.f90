@@ -1,0 +1,78 @@
+!> spb_par for a build without MPI: one rank, nothing to send. A sweep then runs its cases
+!> one after the other in this process (spb_par_mpi.f90 is the MPI version).
+module spb_par
+   use, intrinsic :: iso_fortran_env, only: int64
+   use spb_kinds, only: wp
+   implicit none
+   private
+   public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, par_barrier, &
+      par_max, par_wtime, par_any, par_kind
+
+   integer, parameter :: par_any = -1
+   character(len=*), parameter :: par_kind = 'serial (built without MPI)'
+
+   interface par_send
+      module procedure send_real, send_int
+   end interface par_send
+   interface par_recv
+      module procedure recv_real, recv_int
+   end interface par_recv
+
+contains
+
+   subroutine par_init()
+   end subroutine par_init
+
+   subroutine par_finalize()
+   end subroutine par_finalize
+
+   integer function par_rank()
+      par_rank = 0
+   end function par_rank
+
+   integer function par_size()
+      par_size = 1
+   end function par_size
+
+   subroutine par_barrier()
+   end subroutine par_barrier
+
+   integer function par_max(x)
+      integer, intent(in) :: x
+      par_max = x
+   end function par_max
+
+   real(wp) function par_wtime()
+      integer(int64) :: c, rate
+      call system_clock(c, rate)
+      par_wtime = real(c, wp) / real(max(rate, 1_int64), wp)
+   end function par_wtime
+
+   ! One rank never sends or receives: the sweep driver does not call these with size 1.
+   subroutine send_real(buf, dest, tag)
+      real(wp), intent(in) :: buf(:)
+      integer, intent(in) :: dest, tag
+      error stop 'spb_par: no messages in a serial build'
+   end subroutine send_real
+
+   subroutine send_int(i, dest, tag)
+      integer, intent(in) :: i, dest, tag
+      error stop 'spb_par: no messages in a serial build'
+   end subroutine send_int
+
+   subroutine recv_real(buf, source, tag, got_source, got_tag)
+      real(wp), intent(out) :: buf(:)
+      integer, intent(in) :: source, tag
+      integer, intent(out), optional :: got_source, got_tag
+      buf = 0.0_wp
+      error stop 'spb_par: no messages in a serial build'
+   end subroutine recv_real
+
+   subroutine recv_int(i, source, tag, got_source, got_tag)
+      integer, intent(out) :: i
+      integer, intent(in) :: source, tag
+      integer, intent(out), optional :: got_source, got_tag
+      i = 0
+      error stop 'spb_par: no messages in a serial build'
+   end subroutine recv_int
+end module spb_par

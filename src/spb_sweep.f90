@@ -1,0 +1,417 @@
+!> Sweeps (spallbar --sweep DECK, under mpirun for several ranks): the cases of &sweep —
+!> Monte-Carlo realizations of the strength field, values of one deck variable, or both —
+!> run without per-case files, distributed over the ranks; rank 0 writes one table
+!> PREFIX.sweep and PREFIX_sweep.h5 (per-case summaries, fragment-length histograms).
+!>
+!> Case c (1-based) is value iv = (c - 1) / R + 1 and realization ir = mod(c - 1, R) + 1,
+!> R = max(1, realizations). Every case is computed by one rank from its own deck, start to
+!> end, and its row does not depend on which rank or how many there are: the table is the
+!> same for any number of ranks and either distribution.
+module spb_sweep
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use spb_kinds, only: wp, version
+   use spb_error, only: spb_error_t, make_error, exit_runtime
+   use spb_strings, only: itoa, rtoa
+   use spb_sys, only: stop_signal, sys_rename
+   use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo
+   use spb_mesh, only: mesh_t, build_mesh
+   use spb_load, only: load_t, build_load
+   use spb_random, only: realization_seed
+   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
+   use spb_diag, only: frag_info_t, fragment_list
+   use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
+   use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
+   use spb_output, only: h5_deck_header
+   use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_any, par_kind
+   implicit none
+   private
+   public :: run_sweep, sweep_case_count, case_deck, run_case, sweep_columns, n_columns, &
+      col_status, col_fragments, col_first_fracture, col_seed, col_mean_length, &
+      status_not_run, sweep_summary_t
+
+   character(len=*), parameter :: sweep_columns = 'id fragments mean_fragment_length ' // &
+      'max_reaction_bottom first_fracture_t value realization seed status fractures ' // &
+      'collisions separations base_collisions e_kin_end w_ext_end max_excess ledger_drift steps'
+   character(len=*), parameter :: sweep_units = 'id, fragments, realization, seed, status, ' // &
+      'fractures .. base_collisions, steps [-]; mean_fragment_length [m] (reference length); ' // &
+      'max_reaction_bottom [Pa] (compression > 0); first_fracture_t [s] (-1: none); value: ' // &
+      'the varied variable''s (0 without vary); e_kin_end, w_ext_end, ledger_drift [J/m^2]; ' // &
+      'max_excess [-] (of the energy scale)'
+   integer, parameter :: n_columns = 18
+   logical, parameter :: col_is_int(n_columns) = [.true., .true., .false., .false., .false., &
+      .false., .true., .true., .true., .true., .true., .true., .true., .false., .false., &
+      .false., .false., .true.]
+   integer, parameter :: col_id = 1, col_fragments = 2, col_mean_length = 3, col_max_reaction = 4, &
+      col_first_fracture = 5, col_value = 6, col_realization = 7, col_seed = 8, col_status = 9, &
+      col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, col_steps = 18
+   integer, parameter :: status_not_run = -1
+   integer, parameter :: tag_request = 1000000001, tag_work = 1000000002
+
+   !> What a sweep did (printed by the main program; the closing note's wall times).
+   type :: sweep_summary_t
+      integer :: cases = 0, ranks = 1
+      integer :: done = 0, failed = 0, not_run = 0
+      real(wp) :: wall = 0.0_wp          !! [s]
+      character(len=16) :: distribution = ''
+   end type sweep_summary_t
+
+contains
+
+   !> Number of cases: values x realizations (at least one of each).
+   pure integer function sweep_case_count(deck) result(nc)
+      type(deck_t), intent(in) :: deck
+      nc = max(1, deck%sweep%n_values) * max(1, deck%sweep%realizations)
+   end function sweep_case_count
+
+   !> The deck of case c: the varied variable set to its value, the realization's seed.
+   subroutine case_deck(deck, c, cdeck, value, realization, err)
+      type(deck_t), intent(in) :: deck
+      integer, intent(in) :: c
+      type(deck_t), intent(out) :: cdeck
+      real(wp), intent(out) :: value
+      integer, intent(out) :: realization
+      type(spb_error_t), allocatable, intent(out) :: err
+      integer :: nrep, iv
+      nrep = max(1, deck%sweep%realizations)
+      iv = (c - 1) / nrep + 1
+      cdeck = deck
+      cdeck%is_sweep = .false.
+      value = 0.0_wp
+      if (deck%sweep%n_values > 0) then
+         value = deck%sweep%values(iv)
+         call set_deck_value(cdeck, deck%sweep%vary, value, err)
+         if (allocated(err)) return
+      end if
+      realization = 0
+      if (deck%sweep%realizations > 0) then
+         realization = mod(c - 1, nrep) + 1
+         cdeck%field%seed = realization_seed(deck%sweep%seed, realization)
+      end if
+      call validate_deck(cdeck, err)
+   end subroutine case_deck
+
+   !> Run case c without files: its table row and fragment-length histogram over
+   !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin).
+   subroutine run_case(deck, c, nbins, l_hist, row, hist)
+      type(deck_t), intent(in) :: deck
+      integer, intent(in) :: c, nbins
+      real(wp), intent(in) :: l_hist         !! histogram range [m]
+      real(wp), intent(out) :: row(n_columns)
+      integer, intent(out) :: hist(nbins)
+      type(deck_t) :: cdeck
+      type(sim_t) :: sim
+      type(run_summary_t) :: summary
+      type(spb_error_t), allocatable :: err
+      type(frag_info_t), allocatable :: list(:)
+      real(wp) :: value, length
+      integer :: realization, f, b
+      row = 0.0_wp
+      hist = 0
+      row(col_id) = real(c, wp)
+      row(col_status) = real(status_not_run, wp)
+      call case_deck(deck, c, cdeck, value, realization, err)
+      row(col_value) = value
+      row(col_realization) = real(realization, wp)
+      row(col_seed) = real(cdeck%field%seed, wp)
+      if (allocated(err)) return              ! checked before any case runs
+      call sim_setup(cdeck, sim, err)
+      if (allocated(err)) return
+      call sim_run(sim, '', .false., summary, err, files=.false.)
+      row(col_status) = 0.0_wp
+      if (allocated(err)) row(col_status) = real(err%code, wp)
+      call fragment_list(sim%mesh, sim%st, list)
+      row(col_fragments) = real(size(list), wp)
+      do f = 1, size(list)
+         length = sim%mesh%x(list(f)%bot) - sim%mesh%x(list(f)%top)
+         row(col_mean_length) = row(col_mean_length) + length
+         b = min(nbins, max(1, int(length / l_hist * real(nbins, wp)) + 1))
+         hist(b) = hist(b) + 1
+      end do
+      row(col_mean_length) = row(col_mean_length) / real(max(1, size(list)), wp)
+      row(col_max_reaction) = summary%max_reaction_bottom
+      row(col_first_fracture) = summary%first_fracture_t
+      row(col_kinds:col_kinds + 3) = real(summary%n_kind([ev_fracture, ev_collision, &
+                                                          ev_separation, ev_base_collision]), wp)
+      row(col_e_kin) = summary%e_kin_end
+      row(col_w_ext) = summary%w_ext_end
+      row(col_excess) = summary%max_excess
+      row(col_drift) = summary%ledger_drift
+      row(col_steps) = real(summary%steps, wp)
+   end subroutine run_case
+
+   !> Check every case's deck and mesh (every rank, the same answer), then run the cases
+   !> over the ranks; rank 0 writes PREFIX.sweep and PREFIX_sweep.h5.
+   subroutine run_sweep(deck, prefix, progress, summary, err)
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: prefix
+      logical, intent(in) :: progress          !! progress line on stderr (rank 0)
+      type(sweep_summary_t), intent(out) :: summary
+      type(spb_error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: rows(:, :)
+      integer, allocatable :: hists(:, :)
+      real(wp) :: l_hist, t0
+      integer :: nc, nbins, rank, nranks, c
+
+      t0 = par_wtime()
+      nc = sweep_case_count(deck)
+      nbins = deck%sweep%bins
+      rank = par_rank()
+      nranks = par_size()
+      call check_cases(deck, l_hist, err)
+      if (allocated(err)) return
+      allocate(rows(n_columns, nc), hists(nbins, nc))
+      do c = 1, nc
+         rows(:, c) = 0.0_wp
+         rows(col_id, c) = real(c, wp)
+         rows(col_status, c) = real(status_not_run, wp)
+      end do
+      hists = 0
+      summary%cases = nc
+      summary%ranks = nranks
+      summary%distribution = deck%sweep%distribution
+      if (nranks == 1) then
+         summary%distribution = 'serial'
+         call run_static(1, 0)
+      else if (deck%sweep%distribution == 'dynamic') then
+         call run_dynamic()
+      else
+         call run_static(nranks, rank)
+      end if
+      summary%wall = par_wtime() - t0
+      if (rank /= 0) return
+      summary%done = count(nint(rows(col_status, :)) == 0)
+      summary%not_run = count(nint(rows(col_status, :)) == status_not_run)
+      summary%failed = nc - summary%done - summary%not_run
+      call write_table(deck, prefix, rows, err)
+      if (.not. allocated(err)) call write_h5(deck, prefix, rows, hists, l_hist, err)
+      if (allocated(err)) return
+      if (summary%not_run > 0 .and. stop_signal() /= 0) then
+         call make_error(err, 'sweep: stopped by signal ' // itoa(stop_signal()) // ' with ' // &
+            itoa(summary%not_run) // ' of ' // itoa(nc) // ' cases not run (status -1); ' // &
+            prefix // '.sweep and ' // prefix // '_sweep.h5 are written', code=128 + stop_signal())
+      else if (summary%failed > 0) then
+         call make_error(err, 'sweep: ' // itoa(summary%failed) // ' of ' // itoa(nc) // &
+            ' cases went wrong (status column); ' // prefix // '.sweep and ' // prefix // &
+            '_sweep.h5 are written', code=exit_runtime)
+      end if
+   contains
+      !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
+      !> case order (rank 0 receives in the same order: no deadlock).
+      subroutine run_static(k, me)
+         integer, intent(in) :: k, me
+         integer :: c, done
+         real(wp) :: buf(n_columns + nbins)
+         done = 0
+         do c = me + 1, nc, k
+            if (stop_signal() /= 0) exit
+            call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
+            done = done + 1
+            if (me == 0 .and. progress) call show(done * k, nc)
+         end do
+         if (k == 1) return
+         if (me /= 0) then
+            do c = me + 1, nc, k
+               buf(1:n_columns) = rows(:, c)
+               buf(n_columns + 1:) = real(hists(:, c), wp)
+               call par_send(buf, 0, c)
+            end do
+         else
+            do c = 1, nc
+               if (mod(c - 1, k) == 0) cycle
+               call par_recv(buf, mod(c - 1, k), c)
+               rows(:, c) = buf(1:n_columns)
+               hists(:, c) = nint(buf(n_columns + 1:))
+            end do
+         end if
+      end subroutine run_static
+      !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
+      !> the other ranks compute. Case 0 means stop.
+      subroutine run_dynamic()
+         integer :: c, next, active, worker, finished
+         real(wp) :: buf(n_columns + nbins)
+         if (rank == 0) then
+            next = 1
+            active = nranks - 1
+            finished = 0
+            do while (active > 0)
+               call par_recv(c, par_any, tag_request, got_source=worker)
+               if (c > 0) then
+                  call par_recv(buf, worker, c)
+                  rows(:, c) = buf(1:n_columns)
+                  hists(:, c) = nint(buf(n_columns + 1:))
+                  finished = finished + 1
+                  if (progress) call show(finished, nc)
+               end if
+               if (next <= nc .and. stop_signal() == 0) then
+                  call par_send(next, worker, tag_work)
+                  next = next + 1
+               else
+                  call par_send(0, worker, tag_work)
+                  active = active - 1
+               end if
+            end do
+         else
+            c = 0
+            do
+               call par_send(c, 0, tag_request)
+               if (c > 0) then
+                  buf(1:n_columns) = rows(:, c)
+                  buf(n_columns + 1:) = real(hists(:, c), wp)
+                  call par_send(buf, 0, c)
+               end if
+               call par_recv(c, 0, tag_work)
+               if (c == 0) exit
+               call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
+            end do
+         end if
+      end subroutine run_dynamic
+      subroutine show(n_done, n_all)
+         integer, intent(in) :: n_done, n_all
+         character(len=100) :: line
+         write(line, '(a,i0,a,i0,a,f8.1,a)') 'spallbar sweep: ', min(n_done, n_all), ' of ', &
+            n_all, ' cases, ', par_wtime() - t0, ' s'
+         write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+         if (n_done >= n_all) write(error_unit, '(a)') ''
+         flush(error_unit)
+      end subroutine show
+   end subroutine run_sweep
+
+   !> Every value's deck and mesh must build (bad input: exit 2 before anything runs); the
+   !> histogram range is the longest bar of the cases.
+   subroutine check_cases(deck, l_hist, err)
+      type(deck_t), intent(in) :: deck
+      real(wp), intent(out) :: l_hist
+      type(spb_error_t), allocatable, intent(out) :: err
+      type(deck_t) :: cdeck
+      type(mesh_t) :: mesh
+      type(load_t) :: load
+      character(len=200), allocatable :: report(:)
+      real(wp) :: value
+      integer :: iv, realization, nrep
+      nrep = max(1, deck%sweep%realizations)
+      l_hist = 0.0_wp
+      do iv = 1, max(1, deck%sweep%n_values)
+         call case_deck(deck, (iv - 1) * nrep + 1, cdeck, value, realization, err)
+         if (.not. allocated(err)) call build_mesh(cdeck, mesh, report, err)
+         if (.not. allocated(err)) call build_load(cdeck%load, load, err)
+         if (allocated(err)) then
+            if (deck%sweep%n_values > 0) err%message = '&sweep: values(' // itoa(iv) // ') = ' &
+               // rtoa(value) // ' for ' // trim(deck%sweep%vary) // ': ' // err%message
+            return
+         end if
+         l_hist = max(l_hist, mesh%x(mesh%n) - mesh%x(0))
+      end do
+   end subroutine check_cases
+
+   !> PREFIX.sweep: header (deck echo with &sweep, columns, units), one row per case, in
+   !> case order; written to PREFIX.sweep.part and renamed when complete.
+   subroutine write_table(deck, prefix, rows, err)
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: prefix
+      real(wp), intent(in) :: rows(:, :)
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=24) :: cell
+      character(len=:), allocatable :: line
+      integer :: u, ios, c, k
+      logical :: ok
+      character(len=256) :: msg
+      open(newunit=u, file=prefix // '.sweep.part', status='replace', action='write', &
+           iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // trim(msg))
+         return
+      end if
+      write(u, '(a)') '# spallbar ' // version // ' -- sweep: one row per case, in case order'
+      write(u, '(a)') '# title: ' // trim(deck%run%title)
+      call write_echo(u, deck, '# ')
+      write(u, '(a)') '# cases: ' // itoa(size(rows, 2)) // ' = ' // &
+         itoa(max(1, deck%sweep%n_values)) // ' value(s) x ' // &
+         itoa(max(1, deck%sweep%realizations)) // ' realization(s); case c is value ' // &
+         '(c-1)/R+1 and realization mod(c-1,R)+1 (R = realizations)'
+      write(u, '(a)') '# seed: the &strength_field seed of the case (re-run one case alone ' // &
+         'with it); status: 0 done, 3 the run went wrong, 128+s stopped by signal s, -1 not run'
+      write(u, '(a)') '# fragments at t_end; mean_fragment_length = mean reference length ' // &
+         'of those fragments; max_reaction_bottom over every step'
+      write(u, '(a)') '# units: ' // sweep_units
+      write(u, '(a)') '# ' // sweep_columns
+      do c = 1, size(rows, 2)
+         line = ''
+         do k = 1, n_columns
+            if (col_is_int(k)) then
+               write(cell, '(1x,i12)') nint(rows(k, c))
+            else
+               write(cell, '(1x,es20.12e3)') rows(k, c)
+            end if
+            line = line // trim(cell)
+            if (k < n_columns) line = line // ' '
+         end do
+         write(u, '(a)') line
+      end do
+      close(u, iostat=ios)
+      call sys_rename(prefix // '.sweep.part', prefix // '.sweep', ok)
+      if (ios /= 0 .or. .not. ok) call make_error(err, '--output: cannot write ''' // prefix // &
+         '.sweep''')
+   end subroutine write_table
+
+   !> PREFIX_sweep.h5: the deck (attributes), /cases/<column> (one dataset per column of
+   !> the table), /histogram/edges [m] and /histogram/counts (bins x cases; h5py: cases x
+   !> bins). Written to PREFIX_sweep.h5.part and renamed when complete.
+   subroutine write_h5(deck, prefix, rows, hists, l_hist, err)
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: prefix
+      real(wp), intent(in) :: rows(:, :)
+      integer, intent(in) :: hists(:, :)
+      real(wp), intent(in) :: l_hist
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(h5file_t) :: h5
+      character(len=32) :: names(n_columns)
+      character(len=len(sweep_columns)) :: columns
+      integer :: k, nb
+      logical :: ok
+      columns = sweep_columns
+      read(columns, *) names
+      call h5_create(h5, prefix // '_sweep.h5.part')
+      call h5_deck_header(h5, deck)
+      call h5_group(h5, '/cases')
+      call h5_attr(h5, '/cases', 'count', size(rows, 2))
+      call h5_attr(h5, '/cases', 'vary', trim(deck%sweep%vary))
+      call h5_attr(h5, '/cases', 'units', sweep_units)
+      do k = 1, n_columns
+         if (col_is_int(k)) then
+            call h5_write(h5, '/cases/' // trim(names(k)), nint(rows(k, :)), '-')
+         else
+            call h5_write(h5, '/cases/' // trim(names(k)), rows(k, :), unit_of(names(k)))
+         end if
+      end do
+      nb = size(hists, 1)
+      call h5_group(h5, '/histogram')
+      call h5_attr(h5, '/histogram', 'quantity', 'reference lengths of the fragments at ' // &
+                   't_end, bins of equal width on (0, l_hist]; the last bin also holds longer ones')
+      call h5_write(h5, '/histogram/edges', [(l_hist * real(k, wp) / real(nb, wp), k = 0, nb)], 'm')
+      call h5_write(h5, '/histogram/counts', hists, '-')
+      call h5_close(h5)
+      if (allocated(h5%error)) then
+         call make_error(err, h5%error)
+         return
+      end if
+      call sys_rename(prefix // '_sweep.h5.part', prefix // '_sweep.h5', ok)
+      if (.not. ok) call make_error(err, '--output: cannot write ''' // prefix // '_sweep.h5''')
+   contains
+      pure function unit_of(name) result(unit)
+         character(len=*), intent(in) :: name
+         character(len=:), allocatable :: unit
+         select case (trim(name))
+         case ('mean_fragment_length')
+            unit = 'm'
+         case ('max_reaction_bottom')
+            unit = 'Pa'
+         case ('first_fracture_t')
+            unit = 's'
+         case ('e_kin_end', 'w_ext_end', 'ledger_drift')
+            unit = 'J/m^2'
+         case default
+            unit = '-'
+         end select
+      end function unit_of
+   end subroutine write_h5
+end module spb_sweep

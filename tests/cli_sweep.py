@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""Sweeps (issue 8): spallbar --sweep on 1 and 2 MPI ranks, static and dynamic, gives the
+same PREFIX.sweep to the byte and the same PREFIX_sweep.h5 datasets; the realizations
+differ; one realization re-run alone as an ordinary deck (its seed from the table) gives
+its row; bad &sweep input exits 2 with one line naming &sweep and writes nothing.
+
+usage: cli_sweep.py SPALLBAR INPUT_DIR WORK_DIR MPIEXEC|-
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+from clitools import Checks, run
+
+exe, indir, work, mpiexec = sys.argv[1:5]
+check = Checks()
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+deck = os.path.join(indir, "sweeps", "weibull_spall.nml")
+# a smaller copy for speed in the Debug build: 2 values x 6 realizations
+small = open(deck).read().replace("values       = 1.6e8, 2.0e8, 3.0e8", "values = 1.6e8, 2.0e8")
+small = small.replace("realizations = 32", "realizations = 6")
+small_deck = os.path.join(work, "small.nml")
+open(small_deck, "w").write(small)
+
+
+def rows(prefix):
+    data = [l.split() for l in open(prefix + ".sweep") if not l.startswith("#")]
+    cols = [l for l in open(prefix + ".sweep") if l.startswith("# id ")][0][2:].split()
+    return cols, data
+
+
+def sweep(tag, ranks, extra_deck_text=None):
+    d = small_deck
+    if extra_deck_text:
+        d = os.path.join(work, tag + ".nml")
+        open(d, "w").write(small.replace("&sweep", "&sweep\n" + extra_deck_text))
+    prefix = os.path.join(work, tag)
+    if ranks == 0:
+        cmd = [exe, "--sweep", d, "-o", prefix]
+    else:
+        cmd = [mpiexec, "--oversubscribe", "-np", str(ranks), exe, "--sweep", d, "-o", prefix]
+    p = subprocess.run(cmd, cwd=work, capture_output=True, text=True, timeout=600,
+                       stdin=subprocess.DEVNULL)
+    check(p.returncode == 0, f"{tag}: exit {p.returncode}: {p.stderr.strip()[:400]}")
+    print(f"{tag}: {p.stdout.strip()}")
+    return prefix
+
+
+# -- the same table for any number of ranks and either distribution
+ref = sweep("serial", 0)
+cols, ref_rows = rows(ref)
+check(len(ref_rows) == 12, f"12 cases, got {len(ref_rows)}")
+check(cols[:5] == ["id", "fragments", "mean_fragment_length", "max_reaction_bottom",
+                   "first_fracture_t"], f"INTERFACE.md columns first: {cols[:5]}")
+others = []
+if mpiexec != "-":
+    others = [sweep("np1", 1), sweep("np2_static", 2),
+              sweep("np2_dynamic", 2, "distribution = 'dynamic'"),
+              sweep("np3_dynamic", 3, "distribution = 'dynamic'")]
+else:
+    print("no mpiexec: MPI runs skipped (serial build)")
+ref_text = [l for l in open(ref + ".sweep") if not l.startswith("#")]
+for p in others:
+    text = [l for l in open(p + ".sweep") if not l.startswith("#")]
+    check(text == ref_text, f"{os.path.basename(p)}.sweep rows equal the serial ones")
+    with h5py.File(ref + "_sweep.h5") as a, h5py.File(p + "_sweep.h5") as b:
+        for name in a["cases"]:
+            check(np.array_equal(a["cases"][name][()], b["cases"][name][()]),
+                  f"{os.path.basename(p)}_sweep.h5 /cases/{name} equal")
+        check(np.array_equal(a["histogram/counts"][()], b["histogram/counts"][()]),
+              f"{os.path.basename(p)}_sweep.h5 histograms equal")
+
+# -- the HDF5 file holds the table
+with h5py.File(ref + "_sweep.h5") as h:
+    for k, name in enumerate(cols):
+        col = np.array([float(r[k]) for r in ref_rows])
+        # the text keeps 13 significant digits (ES20.12)
+        check(np.allclose(h["cases"][name][()].astype(float), col, rtol=1e-12, atol=0),
+              f"h5 /cases/{name} = text")
+    counts = h["histogram/counts"][()]
+    edges = h["histogram/edges"][()]
+    check(counts.shape == (12, 50) and edges.shape == (51,), f"histogram shapes {counts.shape}")
+    check(np.array_equal(counts.sum(axis=1), h["cases/fragments"][()]),
+          "each case's histogram counts its fragments")
+    check(abs(edges[-1] - 1.0) < 1e-12, f"histogram range = bar length 1 m, got {edges[-1]}")
+
+# -- realizations differ; seeds are distinct; each value is the one asked
+k = {c: i for i, c in enumerate(cols)}
+seeds = [int(r[k["seed"]]) for r in ref_rows]
+check(len(set(seeds)) == 6 and seeds[:6] == seeds[6:], "6 distinct seeds, the same for each value")
+outcomes = {(r[k["fragments"]], r[k["first_fracture_t"]]) for r in ref_rows[:6]}
+check(len(outcomes) > 1, f"realizations give different results: {outcomes}")
+check([float(r[k["value"]]) for r in ref_rows] == [1.6e8] * 6 + [2.0e8] * 6, "values in order")
+check(all(r[k["status"]] == "0" for r in ref_rows), "every case done")
+
+# -- one realization alone as an ordinary deck gives its row
+r = ref_rows[3]
+alone = re.sub(r"&sweep.*?/", "", small, flags=re.S).replace(
+    "scale   = 1.5e8", f"scale   = 1.5e8\n  seed = {r[k['seed']]}").replace(
+    "p0       = 2.0e8", "p0       = 1.6e8")
+open(os.path.join(work, "alone.nml"), "w").write(alone)
+p = run(exe, ["alone.nml", "-q"], work)
+check(p.returncode == 0, f"alone: exit {p.returncode} {p.stderr}")
+his = [l.split() for l in open(os.path.join(work, "alone.his")) if not l.startswith("#")]
+evt = [l.split() for l in open(os.path.join(work, "alone.evt")) if not l.startswith("#")]
+check(his[-1][3] == r[k["fragments"]], f"fragments alone {his[-1][3]} = row {r[k['fragments']]}")
+first = [e for e in evt if e[2] == "fracture"]
+check(first and float(first[0][0]) == float(r[k["first_fracture_t"]]),
+      "first fracture time alone = row")
+check(sum(1 for e in evt if e[2] == "fracture") == int(r[k["fractures"]]), "fracture count alone = row")
+
+# -- bad input: exit 2, one line naming &sweep (and the variable), no file
+bad = {  # (what the &sweep group gets instead, the variable the message must name)
+    "vary = 'nonsense'": "vary",
+    "vary = 'velocity(7)'": "velocity(7)",
+    "vary = 'young(1)'\n  values = 2.0e11, -1.0": "values(2)",
+    "bins = 0": "bins",
+    "distribution = 'random'": "distribution",
+    "realizations = -3": "realizations",
+    "realizations = 'x'": "realizations",
+}
+base_sweep = re.search(r"&sweep.*?/", small, flags=re.S).group(0)
+for text, var in bad.items():
+    name = "bad_" + re.sub(r"\W", "", text)
+    d = os.path.join(work, name + ".nml")
+    group = base_sweep
+    for line in text.split("\n"):
+        key = line.split("=")[0].strip()
+        group = re.sub(rf"\n\s*{key}\s*=[^\n]*", "", group)
+    group = group.replace("&sweep", "&sweep\n  " + text)
+    open(d, "w").write(small.replace(base_sweep, group))
+    before = set(os.listdir(work))
+    p = run(exe, ["--sweep", d], work)
+    lines = p.stderr.strip().splitlines()
+    check(p.returncode == 2, f"{text}: exit {p.returncode}")
+    check(len(lines) == 1 and lines[0].startswith("spallbar: &sweep: ") and var in lines[0],
+          f"{text}: one line naming &sweep and {var}: {lines}")
+    check(set(os.listdir(work)) - before == set(), f"{text}: no file left")
+no_weibull = small.replace("kind    = 'weibull'", "kind    = 'uniform'")
+open(os.path.join(work, "bad_uniform.nml"), "w").write(no_weibull)
+p = run(exe, ["--sweep", "bad_uniform.nml"], work)
+check(p.returncode == 2 and "realizations need &strength_field kind = 'weibull'" in p.stderr,
+      f"realizations without a Weibull field: {p.returncode} {p.stderr.strip()}")
+p = run(exe, [small_deck], work)
+check(p.returncode == 2 and "spallbar --sweep" in p.stderr, f"a sweep deck without --sweep: {p.stderr}")
+plain = os.path.join(indir, "example1.nml")
+p = run(exe, ["--sweep", plain, "-o", os.path.join(work, "plain")], work)
+check(p.returncode == 2 and "&sweep: required group is missing" in p.stderr,
+      f"--sweep without &sweep: {p.stderr}")
+sys.exit(check.finish())
