@@ -366,6 +366,7 @@ contains
       type(h5file_t) :: h5
       character(len=32) :: names(n_columns)
       character(len=len(sweep_columns)) :: columns
+      real(wp) :: col(size(rows, 2))
       integer :: k, nb
       logical :: ok
       columns = sweep_columns
@@ -380,7 +381,8 @@ contains
          if (col_is_int(k)) then
             call h5_write(h5, '/cases/' // trim(names(k)), nint(rows(k, :)), '-')
          else
-            call h5_write(h5, '/cases/' // trim(names(k)), rows(k, :), unit_of(names(k)))
+            col = rows(k, :)    ! contiguous
+            call h5_write(h5, '/cases/' // trim(names(k)), col, unit_of(names(k)))
          end if
       end do
       nb = size(hists, 1)
