@@ -247,21 +247,7 @@ contains
       type(h5file_t), intent(inout) :: h5
       character(len=*), intent(in) :: path, units
       integer, intent(in) :: values(:)
-      integer(hid_t) :: space, dset
-      integer(hsize_t) :: dims(1)
-      integer :: hdferr
-      if (h5%file < 0) return
-      dims = size(values)
-      call h5screate_simple_f(1, dims, space, hdferr)
-      call h5dcreate_f(h5%file, path, H5T_NATIVE_INTEGER, space, dset, hdferr)
-      call check(h5, hdferr, 'h5dcreate_f ' // path)
-      if (hdferr >= 0) then
-         call h5dwrite_f(dset, H5T_NATIVE_INTEGER, values, dims, hdferr)
-         call check(h5, hdferr, 'h5dwrite_f ' // path)
-         call h5dclose_f(dset, hdferr)
-      end if
-      call h5sclose_f(space, hdferr)
-      call attr_string(h5, path, 'units', units)
+      call write_int_shaped(h5, path, values, [size(values, kind=hsize_t)], units)
    end subroutine write_int_1d
 
    !> A fixed 2-D integer dataset values(nx, ny) (h5py: shape (ny, nx)) with units.
@@ -269,12 +255,20 @@ contains
       type(h5file_t), intent(inout) :: h5
       character(len=*), intent(in) :: path, units
       integer, intent(in) :: values(:, :)
+      call write_int_shaped(h5, path, reshape(values, [size(values)]), &
+                            shape(values, kind=hsize_t), units)
+   end subroutine write_int_2d
+
+   !> An integer dataset of the given dims from its values in Fortran (column-major) order.
+   subroutine write_int_shaped(h5, path, values, dims, units)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, units
+      integer, intent(in) :: values(:)
+      integer(hsize_t), intent(in) :: dims(:)
       integer(hid_t) :: space, dset
-      integer(hsize_t) :: dims(2)
       integer :: hdferr
       if (h5%file < 0) return
-      dims = shape(values, kind=hsize_t)
-      call h5screate_simple_f(2, dims, space, hdferr)
+      call h5screate_simple_f(size(dims), dims, space, hdferr)
       call h5dcreate_f(h5%file, path, H5T_NATIVE_INTEGER, space, dset, hdferr)
       call check(h5, hdferr, 'h5dcreate_f ' // path)
       if (hdferr >= 0) then
@@ -284,7 +278,7 @@ contains
       end if
       call h5sclose_f(space, hdferr)
       call attr_string(h5, path, 'units', units)
-   end subroutine write_int_2d
+   end subroutine write_int_shaped
 
    !> An extendible, chunked, deflated dataset of rank 1 (nrow = 0) or 2 (nrow rows).
    subroutine create_extendible(h5, path, dtype, nrow, dset)
