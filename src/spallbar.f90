@@ -10,7 +10,8 @@ program spallbar
    use spb_error, only: spb_error_t, make_error, exit_input
    use spb_strings, only: itoa
    use spb_deck, only: deck_t, read_deck
-   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
+   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, checkpoint_t
+   use spb_checkpoint, only: read_checkpoint
    use spb_output, only: write_mesh_summary
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
@@ -21,23 +22,40 @@ program spallbar
    type(sim_t) :: sim
    type(run_summary_t) :: summary
    type(spb_error_t), allocatable :: err
-   character(len=:), allocatable :: deck_path, prefix
+   character(len=:), allocatable :: deck_path, prefix, restart_path
    logical :: quiet, sweep
 
    call heap_for_large_arrays()
-   call parse_command_line(deck_path, prefix, quiet, sweep, err)
+   call parse_command_line(deck_path, prefix, quiet, sweep, restart_path, err)
    if (allocated(err)) call fail(err)
    if (sweep) call sweep_main()
    call read_deck(deck_path, deck, err)
    if (allocated(err)) call fail(err)
    call sim_setup(deck, sim, err)
    if (allocated(err)) call fail(err)
-   if (.not. quiet) then
-      write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
-      call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
+   if (len(restart_path) > 0) then
+      block
+         type(checkpoint_t) :: ck
+         call read_checkpoint(restart_path, deck, sim%mesh, sim%load, ck, err)
+         if (allocated(err)) call fail(err)
+         if (.not. quiet) then
+            write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
+            call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
+            write(output_unit, '(a,i0,a,es12.5,a)') '  restart from ' // restart_path // &
+               ' at step ', ck%st%n, ' (t = ', real(ck%st%n, wp) * sim%mesh%dt, ' s)'
+         end if
+         call catch_stop_signals()
+         call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
+                      resume=ck)
+      end block
+   else
+      if (.not. quiet) then
+         write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
+         call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
+      end if
+      call catch_stop_signals()
+      call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err)
    end if
-   call catch_stop_signals()
-   call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err)
    if (allocated(err)) call fail(err)
    if (.not. quiet) then
       write(output_unit, '(a,i0,a,es9.2,a,es9.2,a,es9.2,a)') '  done: ', summary%steps, &
@@ -48,6 +66,8 @@ program spallbar
          'work: ', summary%max_excess, ' of the energy scale'
       write(output_unit, '(a)') '  events: ' // itoa(summary%events) // '; wrote ' // prefix // &
          '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
+      if (summary%checkpoints > 0) write(output_unit, '(a)') '  checkpoint: ' // &
+         trim(deck%run%checkpoint) // ' (step ' // itoa(summary%steps) // ')'
    end if
 
 contains
@@ -94,7 +114,8 @@ contains
    end subroutine sweep_main
 
    subroutine usage()
-      write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet]'
+      write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet] ' // &
+         '[--restart CHECKPOINT.h5]'
       write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
          'PREFIX] [--quiet]   (PREFIX.sweep, PREFIX_sweep.h5; ' // par_kind // ')'
       write(output_unit, '(a)') '       spallbar --version | --help'
@@ -103,8 +124,9 @@ contains
       write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
    end subroutine usage
 
-   subroutine parse_command_line(path, pre, q, sw, e)
+   subroutine parse_command_line(path, pre, q, sw, rst, e)
       character(len=:), allocatable, intent(out) :: path, pre
+      character(len=:), allocatable, intent(out) :: rst   !! --restart FILE ('' none)
       logical, intent(out) :: q, sw            !! --quiet, --sweep
       type(spb_error_t), allocatable, intent(out) :: e
       integer :: k, nargs, lenarg
@@ -113,6 +135,7 @@ contains
       sw = .false.
       path = ''
       pre = ''
+      rst = ''
       nargs = command_argument_count()
       k = 1
       do while (k <= nargs)
@@ -142,9 +165,13 @@ contains
          case ('--sweep')
             sw = .true.
          case ('--restart')
-            call make_error(e, 'command line: ' // trim(arg) // ' is not available in this ' // &
-                            'version of spallbar')
-            return
+            if (k == nargs) then
+               call make_error(e, 'command line: --restart needs a CHECKPOINT file')
+               return
+            end if
+            k = k + 1
+            call get_command_argument(k, arg)
+            rst = trim(arg)
          case default
             if (arg(1:1) == '-') then
                call make_error(e, 'command line: unknown option ''' // trim(arg) // &
@@ -163,6 +190,10 @@ contains
       if (len(path) == 0) then
          call make_error(e, 'command line: no deck given (usage: spallbar DECK.nml ' // &
                          '[--output PREFIX] [--quiet])', code=exit_input)
+         return
+      end if
+      if (sw .and. len(rst) > 0) then
+         call make_error(e, 'command line: --restart is for one run, not with --sweep')
          return
       end if
       if (len(pre) == 0) then

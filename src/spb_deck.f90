@@ -45,6 +45,8 @@ module spb_deck
       character(len=name_len) :: model = 'half-mass'    !! 'half-mass' | 'full-mass' (naive)
       real(wp) :: energy_guard = 0.5_wp                 !! stop (exit 3) when mechanical energy
                                                         !! exceeds initial + work by this share
+      character(len=path_len) :: checkpoint = ''        !! restart file written at t_end ('': none)
+      integer :: checkpoint_every = 0                   !! and every so many steps (0: at the end)
    end type run_cfg
 
    type :: mesh_cfg
@@ -270,13 +272,17 @@ contains
       integer :: history_every, field_every, ios
       logical :: hdf5
       real(wp) :: energy_guard
+      character(len=path_len) :: checkpoint
+      integer :: checkpoint_every
       character(len=256) :: msg
       character(len=256) :: msg2
       character(len=:), allocatable :: record, var
       integer :: k, ios2
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
-         profile_times, hdf5, model, energy_guard, field_every
+         profile_times, hdf5, model, energy_guard, field_every, checkpoint, checkpoint_every
       title = deck%run%title
+      checkpoint = deck%run%checkpoint
+      checkpoint_every = deck%run%checkpoint_every
       t_end = deck%run%t_end
       gravity = deck%run%gravity
       timing = deck%run%timing
@@ -311,7 +317,14 @@ contains
          call make_error(err, '&run: title: longer than ' // itoa(len(title) - 1) // ' characters')
          return
       end if
+      if (len_trim(checkpoint) == len(checkpoint)) then
+         call make_error(err, '&run: checkpoint: longer than ' // itoa(len(checkpoint) - 1) // &
+                         ' characters')
+         return
+      end if
       deck%run%title = title
+      deck%run%checkpoint = checkpoint
+      deck%run%checkpoint_every = checkpoint_every
       deck%run%t_end = t_end
       deck%run%gravity = gravity
       deck%run%timing = lower(timing)
@@ -642,6 +655,12 @@ contains
          call need_choice(err, 'sweep', 'distribution', sw%distribution, [character(len=8) :: &
                           'static', 'dynamic'])
          if (allocated(err)) return
+         if (len_trim(deck%run%checkpoint) > 0) then
+            call make_error(err, '&run: checkpoint = ''' // trim(deck%run%checkpoint) // &
+                            ''' is not used by --sweep (a sweep''s cases write no files); ' // &
+                            'remove it from the sweep deck')
+            return
+         end if
          if (len_trim(sw%vary) == 0) then
             if (sw%realizations == 0) then
                call make_error(err, '&sweep: nothing to sweep: give realizations > 0, or vary ' &
@@ -865,6 +884,16 @@ contains
       if (run%field_every < 0) then
          call make_error(err, '&run: field_every must be >= 0 (0: no x-t fields), got ' // &
                          itoa(run%field_every))
+         return
+      end if
+      if (run%checkpoint_every < 0) then
+         call make_error(err, '&run: checkpoint_every must be >= 0 (0: at t_end only), got ' // &
+                         itoa(run%checkpoint_every))
+         return
+      end if
+      if (run%checkpoint_every > 0 .and. len_trim(run%checkpoint) == 0) then
+         call make_error(err, '&run: checkpoint_every = ' // itoa(run%checkpoint_every) // &
+                         ' needs checkpoint = ''file.h5'' (the restart file to write)')
          return
       end if
       if (run%field_every > 0 .and. .not. run%hdf5) then
@@ -1139,6 +1168,8 @@ contains
       call item('run', 'field_every', itoa(deck%run%field_every), 'steps (0: none)')
       call item('run', 'model', quote(deck%run%model), '')
       call item('run', 'energy_guard', rtoa(deck%run%energy_guard), '- (0: off)')
+      call item('run', 'checkpoint', quote(deck%run%checkpoint), '(restart file; '''': none)')
+      call item('run', 'checkpoint_every', itoa(deck%run%checkpoint_every), 'steps (0: at t_end)')
 
       call item('mesh', 'cells', itoa(deck%mesh%cells), '')
       call item('mesh', 'ref_segment', itoa(deck%mesh%ref_segment), '')

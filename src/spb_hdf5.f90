@@ -7,12 +7,13 @@
 !> flush leaves a file that reads up to it. Every hdferr goes through check(), which names
 !> the operation, the file and the object. h5py sees a Fortran a(nx, nt) as (nt, nx).
 module spb_hdf5
-   use hdf5, only: hid_t, hsize_t, h5open_f, h5fcreate_f, h5fopen_f, h5fclose_f, h5fflush_f, &
+   use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fcreate_f, h5fopen_f, h5fclose_f, h5fflush_f, &
       h5gcreate_f, h5gopen_f, h5gclose_f, h5screate_f, h5screate_simple_f, h5sclose_f, &
       h5sselect_hyperslab_f, h5pcreate_f, h5pset_chunk_f, h5pset_deflate_f, h5pclose_f, &
       h5dcreate_f, h5dopen_f, h5dclose_f, h5dwrite_f, h5dread_f, h5dget_space_f, &
       h5dset_extent_f, h5sget_simple_extent_dims_f, h5acreate_f, h5awrite_f, h5aclose_f, &
       h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
+      h5aopen_f, h5aread_f, h5aget_type_f, h5tget_size_f, h5aexists_f, h5ocopy_f, &
       H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
       H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       H5T_NATIVE_CHARACTER, H5P_FILE_CREATE_F
@@ -22,6 +23,8 @@ module spb_hdf5
    private
    public :: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_read, h5_read_size
+   public :: h5_open_read, h5_exists, h5_dims, h5_get, h5_get_attr, h5_get_columns, h5_copy, &
+      h5_table_rows, h5_xt_rows
 
    integer, parameter :: buffer_rows = 1024     !! rows held before a table is written
    integer, parameter :: deflate_level = 4
@@ -66,6 +69,7 @@ module spb_hdf5
       type(table_t), allocatable :: tables(:)
       type(xt_t) :: xt
       logical :: has_xt = .false.
+      logical :: read_only = .false.            !! opened by h5_open_read
       character(len=:), allocatable :: error    !! first failure, if any
    end type h5file_t
 
@@ -76,6 +80,14 @@ module spb_hdf5
    interface h5_write
       module procedure write_real_1d, write_int_1d, write_int_2d
    end interface h5_write
+
+   interface h5_get
+      module procedure get_real_1d, get_int_1d
+   end interface h5_get
+
+   interface h5_get_attr
+      module procedure get_attr_real, get_attr_int, get_attr_string
+   end interface h5_get_attr
 
 contains
 
@@ -469,7 +481,7 @@ contains
    subroutine h5_flush(h5)
       type(h5file_t), intent(inout) :: h5
       integer :: k, hdferr
-      if (h5%file < 0) return
+      if (h5%file < 0 .or. h5%read_only) return
       do k = 1, size(h5%tables)
          call write_table(h5, k)
       end do
@@ -497,6 +509,240 @@ contains
       call check(h5, hdferr, 'h5fclose_f')
       h5%file = -1
    end subroutine h5_close
+
+   !> Open an existing file read-only (the h5_get* readers, h5_copy's source; h5_close).
+   subroutine h5_open_read(h5, path)
+      type(h5file_t), intent(out) :: h5
+      character(len=*), intent(in) :: path
+      integer :: hdferr
+      h5%path = path
+      h5%read_only = .true.
+      allocate(h5%tables(0))
+      call h5open_f(hdferr)
+      call check(h5, hdferr, 'h5open_f')
+      call h5eset_auto_f(0, hdferr)
+      call h5fopen_f(path, H5F_ACC_RDONLY_F, h5%file, hdferr)
+      call check(h5, hdferr, 'h5fopen_f (read)')
+      if (hdferr < 0) h5%file = -1
+   end subroutine h5_open_read
+
+   !> True when the object path (absolute) exists; parents are checked first, as
+   !> h5lexists_f needs them.
+   logical function h5_exists(h5, path)
+      type(h5file_t), intent(in) :: h5
+      character(len=*), intent(in) :: path
+      integer :: j, k, hdferr
+      logical :: ok
+      h5_exists = .false.
+      if (h5%file < 0) return
+      j = 1
+      do
+         k = index(path(j+1:), '/')
+         if (k == 0) exit
+         j = j + k
+         call h5lexists_f(h5%file, path(:j-1), ok, hdferr)
+         if (.not. ok .or. hdferr < 0) return
+      end do
+      call h5lexists_f(h5%file, path, ok, hdferr)
+      h5_exists = ok .and. hdferr >= 0
+   end function h5_exists
+
+   !> Dimensions of a dataset (Fortran order; rank <= 2); rank = -1 when it is absent.
+   subroutine h5_dims(h5, path, dims, rank)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer(hsize_t), intent(out) :: dims(2)
+      integer, intent(out) :: rank
+      integer(hid_t) :: dset, space
+      integer(hsize_t) :: maxdims(2)
+      integer :: hdferr
+      dims = 0
+      rank = -1
+      if (.not. h5_exists(h5, path)) return
+      call h5dopen_f(h5%file, path, dset, hdferr)
+      call check(h5, hdferr, 'h5dopen_f ' // path)
+      if (hdferr < 0) return
+      call h5dget_space_f(dset, space, hdferr)
+      call h5sget_simple_extent_dims_f(space, dims, maxdims, rank)
+      call h5sclose_f(space, hdferr)
+      call h5dclose_f(dset, hdferr)
+   end subroutine h5_dims
+
+   !> A whole 1-D float64 dataset, allocated to its length (unallocated if absent).
+   subroutine get_real_1d(h5, path, values)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      real(wp), allocatable, intent(out) :: values(:)
+      integer(hid_t) :: dset
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr, rank
+      call h5_dims(h5, path, dims, rank)
+      if (rank /= 1) return
+      allocate(values(dims(1)))
+      call h5dopen_f(h5%file, path, dset, hdferr)
+      call h5dread_f(dset, H5T_NATIVE_DOUBLE, values, dims(1:1), hdferr)
+      call check(h5, hdferr, 'h5dread_f ' // path)
+      call h5dclose_f(dset, hdferr)
+   end subroutine get_real_1d
+
+   !> A whole 1-D integer dataset, allocated to its length (unallocated if absent).
+   subroutine get_int_1d(h5, path, values)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer, allocatable, intent(out) :: values(:)
+      integer(hid_t) :: dset
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr, rank
+      call h5_dims(h5, path, dims, rank)
+      if (rank /= 1) return
+      allocate(values(dims(1)))
+      call h5dopen_f(h5%file, path, dset, hdferr)
+      call h5dread_f(dset, H5T_NATIVE_INTEGER, values, dims(1:1), hdferr)
+      call check(h5, hdferr, 'h5dread_f ' // path)
+      call h5dclose_f(dset, hdferr)
+   end subroutine get_int_1d
+
+   !> Columns c0+1 .. c0+size(values, 2) of a 2-D float64 dataset (rows = size(values, 1)).
+   subroutine h5_get_columns(h5, path, c0, values)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: c0
+      real(wp), intent(out) :: values(:, :)
+      integer(hid_t) :: dset, fspace, mspace
+      integer(hsize_t) :: off(2), cnt(2)
+      integer :: hdferr
+      values = 0.0_wp
+      if (h5%file < 0) return
+      off = [0_hsize_t, int(c0, hsize_t)]
+      cnt = shape(values, kind=hsize_t)
+      call h5dopen_f(h5%file, path, dset, hdferr)
+      call check(h5, hdferr, 'h5dopen_f ' // path)
+      if (hdferr < 0) return
+      call h5dget_space_f(dset, fspace, hdferr)
+      call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off, cnt, hdferr)
+      call check(h5, hdferr, 'h5sselect_hyperslab_f ' // path)
+      call h5screate_simple_f(2, cnt, mspace, hdferr)
+      call h5dread_f(dset, H5T_NATIVE_DOUBLE, values, cnt, hdferr, mem_space_id=mspace, &
+                     file_space_id=fspace)
+      call check(h5, hdferr, 'h5dread_f ' // path)
+      call h5sclose_f(mspace, hdferr)
+      call h5sclose_f(fspace, hdferr)
+      call h5dclose_f(dset, hdferr)
+   end subroutine h5_get_columns
+
+   !> Open the attribute name of the object path (attr < 0 and an error if absent).
+   subroutine open_attr(h5, path, name, obj, attr)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name
+      integer(hid_t), intent(out) :: obj, attr
+      integer :: hdferr
+      logical :: is_dset, exists
+      attr = -1
+      obj = -1
+      if (h5%file < 0) return
+      if (.not. h5_exists(h5, path)) then
+         call check(h5, -1, 'finding ' // path)
+         return
+      end if
+      call open_obj(h5, path, obj, is_dset)
+      if (allocated(h5%error)) return
+      call h5aexists_f(obj, name, exists, hdferr)
+      if (.not. exists) then
+         call check(h5, -1, 'finding attribute ' // path // ':' // name)
+         call close_obj(obj, is_dset)
+         obj = -1
+         return
+      end if
+      call h5aopen_f(obj, name, attr, hdferr)
+      call check(h5, hdferr, 'h5aopen_f ' // path // ':' // name)
+   end subroutine open_attr
+
+   subroutine close_attr(obj, attr)
+      integer(hid_t), intent(in) :: obj, attr
+      integer :: hdferr
+      if (attr >= 0) call h5aclose_f(attr, hdferr)
+      if (obj >= 0) call h5oclose_f(obj, hdferr)
+   end subroutine close_attr
+
+   subroutine get_attr_real(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name
+      real(wp), intent(out) :: value
+      integer(hid_t) :: obj, attr
+      integer :: hdferr
+      value = 0.0_wp
+      call open_attr(h5, path, name, obj, attr)
+      if (attr >= 0) then
+         call h5aread_f(attr, H5T_NATIVE_DOUBLE, value, [1_hsize_t], hdferr)
+         call check(h5, hdferr, 'h5aread_f ' // path // ':' // name)
+      end if
+      call close_attr(obj, attr)
+   end subroutine get_attr_real
+
+   subroutine get_attr_int(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name
+      integer, intent(out) :: value
+      integer(hid_t) :: obj, attr
+      integer :: hdferr
+      value = 0
+      call open_attr(h5, path, name, obj, attr)
+      if (attr >= 0) then
+         call h5aread_f(attr, H5T_NATIVE_INTEGER, value, [1_hsize_t], hdferr)
+         call check(h5, hdferr, 'h5aread_f ' // path // ':' // name)
+      end if
+      call close_attr(obj, attr)
+   end subroutine get_attr_int
+
+   !> A fixed-length string attribute as written by h5_attr (trailing blanks dropped).
+   subroutine get_attr_string(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path, name
+      character(len=:), allocatable, intent(out) :: value
+      integer(hid_t) :: obj, attr, atype
+      integer(size_t) :: n
+      integer :: hdferr
+      value = ''
+      call open_attr(h5, path, name, obj, attr)
+      if (attr >= 0) then
+         call h5aget_type_f(attr, atype, hdferr)
+         call h5tget_size_f(atype, n, hdferr)
+         block
+            character(len=n) :: text
+            call h5aread_f(attr, atype, text, [1_hsize_t], hdferr)
+            call check(h5, hdferr, 'h5aread_f ' // path // ':' // name)
+            value = trim(text)
+         end block
+         call h5tclose_f(atype, hdferr)
+      end if
+      call close_attr(obj, attr)
+   end subroutine get_attr_string
+
+   !> Copy an object (a group with everything under it, or a dataset) from src to dst.
+   subroutine h5_copy(src, src_path, dst, dst_path)
+      type(h5file_t), intent(inout) :: src, dst
+      character(len=*), intent(in) :: src_path, dst_path
+      integer :: hdferr
+      if (src%file < 0 .or. dst%file < 0) return
+      call h5ocopy_f(src%file, src_path, dst%file, dst_path, hdferr)
+      call check(dst, hdferr, 'h5ocopy_f ' // src%path // ':' // src_path // ' to ' // dst_path)
+   end subroutine h5_copy
+
+   !> Rows a table holds, buffered ones included.
+   integer function h5_table_rows(h5, handle) result(rows)
+      type(h5file_t), intent(in) :: h5
+      integer, intent(in) :: handle
+      rows = 0
+      if (handle < 1 .or. handle > size(h5%tables)) return
+      rows = int(h5%tables(handle)%rows) + h5%tables(handle)%nbuf
+   end function h5_table_rows
+
+   !> Rows (times) of the x-t fields, buffered ones included.
+   integer function h5_xt_rows(h5) result(rows)
+      type(h5file_t), intent(in) :: h5
+      rows = 0
+      if (h5%has_xt) rows = int(h5%xt%rows) + h5%xt%nbuf
+   end function h5_xt_rows
 
    !> Length of a 1-D dataset (or the last dimension) in an existing file; -1 if absent.
    subroutine h5_read_size(path, dset_path, n)

@@ -4,12 +4,15 @@
 !> Each text file starts with '#' header lines (version, title, the full echoed deck, the
 !> mesh, units); the last header line names the columns. Every writer here writes both.
 module spb_output
+   use, intrinsic :: iso_fortran_env, only: int64
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa, es20_12, int_right
    use spb_deck, only: deck_t, write_echo, deck_items, echo_item_t
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
-      h5_table, h5_append, h5_xt, h5_append_xt
+      h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
+      h5_table_rows, h5_xt_rows, h5_read_size
+   use spb_sys, only: sys_rename
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
    use spb_events, only: event_list_t, event_kind_names
@@ -19,6 +22,7 @@ module spb_output
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, history_units_of, h5_deck_header
+   public :: output_marks_t, mark_outputs, resume_outputs, text_extensions
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
@@ -48,7 +52,22 @@ module spb_output
       type(h5file_t) :: h5
       integer :: h_his = 0, h_evt = 0                     !! its table handles
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
+      integer(int64) :: head(4) = 0                       !! header bytes of .his .prf .evt .frg
    end type outputs_t
+
+   !> The text files, in the order of outputs_t%head and output_marks_t.
+   character(len=4), parameter :: text_extensions(4) = ['.his', '.prf', '.evt', '.frg']
+
+   !> How far the outputs reach at one step: what a restart keeps of them.
+   type :: output_marks_t
+      integer(int64) :: head(4) = 0      !! header bytes of each text file
+      integer(int64) :: bytes(4) = 0     !! bytes written in all (header included)
+      integer :: rows_his = 0            !! rows of PREFIX.h5 /history
+      integer :: rows_evt = 0            !! rows of /events
+      integer :: rows_xt = 0             !! times of /fields/xt
+      integer :: n_prof = 0              !! groups under /fields/profiles
+      integer :: n_frg = 0               !! groups under /fragments
+   end type output_marks_t
 
 contains
 
@@ -104,6 +123,7 @@ contains
       write(out%frg, '(a)') '# units: birth_t [s]; x_* [m]; mass [kg/m^2]; velocity [m/s]; ' &
          // 'e_vib [J/m^2]; ids and nodes [-]'
       write(out%frg, '(a)') '# ' // fragment_columns
+      call text_sizes(out, out%head)
       if (deck%run%hdf5) call open_h5(prefix, deck, mesh, report, out, err)
    contains
       subroutine open_one(ext, u)
@@ -177,6 +197,251 @@ contains
       if (out%evt /= no_unit) flush(out%evt)
       if (out%hdf5) call h5_flush(out%h5)
    end subroutine flush_outputs
+
+   !> Bytes in each text file now (written through to the file first).
+   subroutine text_sizes(out, bytes)
+      type(outputs_t), intent(in) :: out
+      integer(int64), intent(out) :: bytes(4)
+      integer :: k, u(4)
+      u = [out%his, out%prf, out%evt, out%frg]
+      bytes = 0
+      do k = 1, 4
+         if (u(k) == no_unit) cycle
+         flush(u(k))
+         inquire(unit=u(k), size=bytes(k))
+      end do
+   end subroutine text_sizes
+
+   !> Where the outputs stand now (everything written through to the files).
+   subroutine mark_outputs(out, marks)
+      type(outputs_t), intent(inout) :: out
+      type(output_marks_t), intent(out) :: marks
+      call flush_outputs(out)
+      marks%head = out%head
+      call text_sizes(out, marks%bytes)
+      if (.not. out%hdf5) return
+      marks%rows_his = h5_table_rows(out%h5, out%h_his)
+      marks%rows_evt = h5_table_rows(out%h5, out%h_evt)
+      marks%rows_xt = h5_xt_rows(out%h5)
+      marks%n_prof = out%n_prof
+      marks%n_frg = out%n_frg
+   end subroutine mark_outputs
+
+   !> Outputs of a restarted run: fresh headers for this deck, then the body of the previous
+   !> run's files up to the marks (rows written after them are dropped), open for appending.
+   !> The previous files are set aside as PREFIX.ext.restart while this is done and removed
+   !> after; nothing is touched when they do not hold what the marks count.
+   subroutine resume_outputs(prefix, deck, mesh, report, marks, out, err)
+      character(len=*), intent(in) :: prefix
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(in) :: mesh
+      character(len=*), intent(in) :: report(:)
+      type(output_marks_t), intent(in) :: marks
+      type(outputs_t), intent(out) :: out
+      type(spb_error_t), allocatable, intent(out) :: err
+      character(len=*), parameter :: aside = '.restart'
+      character(len=*), parameter :: hint = ' (a restart continues the outputs of the run ' // &
+         'that wrote the checkpoint: same directory and --output PREFIX)'
+      integer(int64) :: sz
+      integer :: k, nrows
+      logical :: there, ok
+      type(h5file_t) :: old     !! the previous PREFIX.h5, read while it is replayed
+      do k = 1, 4
+         associate (f => prefix // text_extensions(k))
+            inquire(file=f, exist=there, size=sz)
+            if (.not. there) then
+               call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
+            else if (sz < marks%bytes(k)) then
+               call make_error(err, '--restart: ''' // f // ''' holds ' // itoa8(sz) // &
+                  ' bytes, the checkpoint counts ' // itoa8(marks%bytes(k)) // hint)
+            end if
+         end associate
+         if (allocated(err)) return
+      end do
+      if (deck%run%hdf5) then
+         call h5_read_size(prefix // '.h5', '/history/t', nrows)
+         if (nrows < marks%rows_his) then
+            call make_error(err, '--restart: ''' // prefix // '.h5'' holds ' // &
+               itoa(max(nrows, 0)) // ' history rows, the checkpoint counts ' // &
+               itoa(marks%rows_his) // hint)
+            return
+         end if
+      end if
+      do k = 1, 5
+         if (k == 5 .and. .not. deck%run%hdf5) exit
+         associate (f => prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)))
+            call sys_rename(f, f // aside, ok)
+            if (.not. ok) call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' &
+                                          // f // aside // '''')
+         end associate
+         if (allocated(err)) return
+      end do
+      call open_outputs(prefix, deck, mesh, report, out, err)
+      if (allocated(err)) return
+      do k = 1, 4
+         call copy_body(k)
+         if (allocated(err)) return
+      end do
+      if (deck%run%hdf5) then
+         call replay_h5()
+         if (allocated(err)) return
+      end if
+      do k = 1, 5
+         if (k == 5 .and. .not. deck%run%hdf5) exit
+         call remove_file(prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)) // aside)
+      end do
+   contains
+      !> Append bytes head+1 .. bytes of the set-aside file k to the fresh one.
+      subroutine copy_body(k)
+         integer, intent(in) :: k
+         integer, parameter :: chunk = 1048576
+         character(len=:), allocatable :: buf
+         integer(int64) :: pos, m
+         integer :: src, dst, ios
+         character(len=256) :: msg
+         associate (f => prefix // text_extensions(k))
+            select case (k)
+            case (1)
+               close(out%his)
+            case (2)
+               close(out%prf)
+            case (3)
+               close(out%evt)
+            case default
+               close(out%frg)
+            end select
+            allocate(character(len=chunk) :: buf)
+            open(newunit=src, file=f // aside, access='stream', form='unformatted', &
+                 status='old', action='read', iostat=ios, iomsg=msg)
+            if (ios == 0) open(newunit=dst, file=f, access='stream', form='unformatted', &
+                 status='old', action='write', position='append', iostat=ios, iomsg=msg)
+            pos = marks%head(k) + 1
+            do while (ios == 0 .and. pos <= marks%bytes(k))
+               m = min(int(chunk, int64), marks%bytes(k) - pos + 1)
+               read(src, pos=pos, iostat=ios, iomsg=msg) buf(1:m)
+               if (ios == 0) write(dst, iostat=ios, iomsg=msg) buf(1:m)
+               pos = pos + m
+            end do
+            close(src)
+            close(dst)
+            if (ios == 0) then
+               open(newunit=dst, file=f, status='old', action='write', position='append', &
+                    iostat=ios, iomsg=msg)
+            end if
+            if (ios /= 0) then
+               call make_error(err, '--restart: copying ''' // f // aside // ''' to ''' // f // &
+                               ''': ' // trim(msg), code=exit_runtime)
+               dst = no_unit
+            end if
+            select case (k)
+            case (1)
+               out%his = dst
+            case (2)
+               out%prf = dst
+            case (3)
+               out%evt = dst
+            case default
+               out%frg = dst
+            end select
+         end associate
+      end subroutine copy_body
+      !> PREFIX.h5: table rows and x-t times up to the marks, profile and fragment groups.
+      subroutine replay_h5()
+         call h5_open_read(old, prefix // '.h5' // aside)
+         call replay_table('/history', history_columns, out%h_his, marks%rows_his)
+         call replay_table('/events', event_columns, out%h_evt, marks%rows_evt)
+         if (marks%rows_xt > 0) call replay_xt()
+         do k = 1, marks%n_prof
+            call h5_copy(old, '/fields/profiles/' // block_name(k), out%h5, &
+                         '/fields/profiles/' // block_name(k))
+         end do
+         out%n_prof = marks%n_prof
+         do k = 1, marks%n_frg
+            call h5_copy(old, '/fragments/' // block_name(k), out%h5, &
+                         '/fragments/' // block_name(k))
+         end do
+         out%n_frg = marks%n_frg
+         call h5_flush(out%h5)
+         if (allocated(old%error)) then
+            call make_error(err, '--restart: ' // old%error, code=exit_runtime)
+         else if (allocated(out%h5%error)) then
+            call make_error(err, '--restart: ' // out%h5%error, code=exit_runtime)
+         end if
+         call h5_close(old)
+      end subroutine replay_h5
+      !> The first rows of every column of a table (integer columns read as float64).
+      subroutine replay_table(path, columns, handle, rows)
+         character(len=*), intent(in) :: path, columns
+         integer, intent(in) :: handle, rows
+         character(len=32), allocatable :: names(:)
+         real(wp), allocatable :: col(:), table(:, :)
+         integer :: c, r
+         if (rows == 0) return
+         call split(columns, names)
+         allocate(table(size(names), rows))
+         do c = 1, size(names)
+            call h5_get(old, path // '/' // trim(names(c)), col)
+            if (.not. allocated(col)) then
+               call make_error(err, '--restart: ''' // prefix // '.h5'' has no ' // path // &
+                               '/' // trim(names(c)), code=exit_runtime)
+               return
+            end if
+            if (size(col) < rows) then
+               call make_error(err, '--restart: ''' // prefix // '.h5'' ' // path // '/' // &
+                  trim(names(c)) // ' holds ' // itoa(size(col)) // ' rows, the ' // &
+                  'checkpoint counts ' // itoa(rows), code=exit_runtime)
+               return
+            end if
+            table(c, :) = col(1:rows)
+         end do
+         do r = 1, rows
+            call h5_append(out%h5, handle, table(:, r))
+         end do
+      end subroutine replay_table
+      subroutine replay_xt()
+         integer, parameter :: width = 64
+         real(wp), allocatable :: t(:), u(:, :), v(:, :), s(:, :)
+         integer :: c0, m, j
+         call h5_get(old, '/fields/xt/t', t)
+         if (.not. allocated(t)) then
+            call make_error(err, '--restart: ''' // prefix // '.h5'' has no /fields/xt', &
+                            code=exit_runtime)
+            return
+         end if
+         if (size(t) < marks%rows_xt) then
+            call make_error(err, '--restart: ''' // prefix // '.h5'' /fields/xt holds ' // &
+               itoa(size(t)) // ' times, the checkpoint counts ' // itoa(marks%rows_xt), &
+               code=exit_runtime)
+            return
+         end if
+         allocate(u(2 * mesh%n, width), v(2 * mesh%n, width), s(2 * mesh%n, width))
+         do c0 = 0, marks%rows_xt - 1, width
+            m = min(width, marks%rows_xt - c0)
+            call h5_get_columns(old, '/fields/xt/u', c0, u(:, 1:m))
+            call h5_get_columns(old, '/fields/xt/v', c0, v(:, 1:m))
+            call h5_get_columns(old, '/fields/xt/stress', c0, s(:, 1:m))
+            do j = 1, m
+               call h5_append_xt(out%h5, t(c0 + j), u(:, j), v(:, j), s(:, j))
+            end do
+         end do
+      end subroutine replay_xt
+   end subroutine resume_outputs
+
+   !> Delete a file if it is there.
+   subroutine remove_file(path)
+      character(len=*), intent(in) :: path
+      integer :: u, ios
+      open(newunit=u, file=path, status='old', iostat=ios)
+      if (ios == 0) close(u, status='delete')
+   end subroutine remove_file
+
+   pure function itoa8(i) result(s)
+      integer(int64), intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write(buf, '(i0)') i
+      s = trim(buf)
+   end function itoa8
 
    !> Root attributes (program, title, deck path, layout, conventions) and /deck: one group
    !> per namelist group, one string attribute per variable (the echoed value), with

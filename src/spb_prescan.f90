@@ -285,14 +285,16 @@ contains
    logical function has_group(scan, group)
       type(deck_scan_t), intent(in) :: scan
       character(len=*), intent(in) :: group
-      has_group = any(scan%groups == group)
+      has_group = .false.
+      if (allocated(scan%groups)) has_group = any(scan%groups == group)
    end function has_group
 
    !> True when the deck assigns the variable (any element of it) in the group.
    logical function has_var(scan, group, var)
       type(deck_scan_t), intent(in) :: scan
       character(len=*), intent(in) :: group, var
-      has_var = any(scan%keys == group // ':' // var)
+      has_var = .false.     ! a deck built in memory has no scan
+      if (allocated(scan%keys)) has_var = any(scan%keys == group // ':' // var)
    end function has_var
 
    !> A control character other than tab, line feed and carriage return (binary junk).

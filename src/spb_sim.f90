@@ -14,16 +14,18 @@ module spb_sim
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses
-   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
+   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t
    use spb_events, only: event_list_t, ev_fracture
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
-      write_events, write_fragments, write_field, flush_outputs
+      write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
+      resume_outputs
+   use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    implicit none
    private
-   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step
+   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t
 
    type :: sim_t
       type(deck_t) :: deck
@@ -33,22 +35,6 @@ module spb_sim
       character(len=200), allocatable :: report(:)   !! mesh fit report
    end type sim_t
 
-   type :: run_summary_t
-      integer :: steps = 0
-      integer :: events = 0                !! events written
-      real(wp) :: wall = 0.0_wp            !! [s]
-      real(wp) :: ledger0 = 0.0_wp         !! ledger at t = 0 [J/m^2]
-      real(wp) :: ledger_drift = 0.0_wp    !! largest |ledger - ledger0| over rows [J/m^2]
-      real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
-      real(wp) :: max_excess = 0.0_wp      !! largest (E - E0) - w_ext, relative to the guard's
-                                           !! scale [-]
-      integer :: n_kind(4) = 0             !! events by kind (ev_fracture .. ev_base_collision)
-      real(wp) :: first_fracture_t = -1.0_wp   !! time of the first fracture; -1: none [s]
-      real(wp) :: max_reaction_bottom = 0.0_wp !! largest section stress at the bottom node
-                                               !! over all steps (compression > 0) [Pa]
-      real(wp) :: e_kin_end = 0.0_wp       !! kinetic energy at the end [J/m^2]
-      real(wp) :: w_ext_end = 0.0_wp       !! work of the loads and ends at the end [J/m^2]
-   end type run_summary_t
 
 contains
 
@@ -87,45 +73,70 @@ contains
    end subroutine sim_step
 
    !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
-   !> only the summary, as a sweep's cases do).
-   subroutine sim_run(sim, prefix, progress, summary, err, files)
+   !> only the summary, as a sweep's cases do). With resume: go on from a checkpoint, the
+   !> outputs continuing those of the run that wrote it (bit-identical to one run).
+   !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
+   !> signal stops the run.
+   subroutine sim_run(sim, prefix, progress, summary, err, files, resume)
       type(sim_t), intent(inout) :: sim
       character(len=*), intent(in) :: prefix
       logical, intent(in) :: progress          !! show a progress line on stderr
       type(run_summary_t), intent(out) :: summary
       type(spb_error_t), allocatable, intent(out) :: err
       logical, intent(in), optional :: files   !! write the outputs (default .true.)
+      type(checkpoint_t), intent(in), optional :: resume   !! continue from this checkpoint
       type(outputs_t) :: out
       type(event_list_t) :: events
-      integer :: ip, nprof, every, n, k, j
+      integer :: ip, nprof, every, n, k, j, ck_every, sig
       integer, allocatable :: prof_step(:)
       integer(int64) :: c0, c_last, c_now, rate
-      real(wp) :: g, e_mech0, guard_scale, sec_max
-      logical :: wrote_row, to_files
+      real(wp) :: g, sec_max
+      logical :: wrote_row, to_files, ck_on
 
       to_files = .true.
       if (present(files)) to_files = files
-      if (to_files) call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
+      ck_on = to_files .and. len_trim(sim%deck%run%checkpoint) > 0
+      ck_every = sim%deck%run%checkpoint_every
+      if (ck_on) call check_checkpoint_path(trim(sim%deck%run%checkpoint), err)
       if (allocated(err)) return
+      if (present(resume)) then
+         call resume_outputs(prefix, sim%deck, sim%mesh, sim%report, resume%marks, out, err)
+         if (allocated(err)) return
+         sim%st = resume%st
+         summary = resume%summary
+      else if (to_files) then
+         call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
+         if (allocated(err)) return
+      end if
       g = sim%deck%run%gravity
       every = sim%deck%run%history_every
       nprof = sim%deck%run%n_profiles
       allocate(prof_step(nprof))
       prof_step = nint(sim%deck%run%profile_times(1:nprof) / sim%mesh%dt)
+      ! the first profile still to write
       ip = 1
+      if (present(resume)) then
+         do while (ip <= nprof)
+            if (prof_step(ip) > sim%st%n) exit
+            ip = ip + 1
+         end do
+      end if
       call system_clock(c0, rate)
       c_last = c0
-      block
-         type(energies_t) :: e0
-         e0 = energies(sim%mesh, sim%st, g)
-         e_mech0 = e0%e_kin + e0%e_strain + e0%e_pot
-         guard_scale = e0%e_kin + abs(e0%e_strain)
-      end block
-      summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
-      call row()
-      call profiles()
-      if (sim%deck%run%field_every > 0 .and. to_files) call write_field(out, sim%mesh, sim%st)
-      n = 0
+      if (.not. present(resume)) then
+         block
+            type(energies_t) :: e0
+            e0 = energies(sim%mesh, sim%st, g)
+            summary%e_mech0 = e0%e_kin + e0%e_strain + e0%e_pot
+            summary%guard_scale = e0%e_kin + abs(e0%e_strain)
+         end block
+         summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
+         call row()
+         call profiles()
+         if (sim%deck%run%field_every > 0 .and. to_files) call write_field(out, sim%mesh, sim%st)
+      end if
+      n = sim%st%n
+      sig = 0
       do while (n < sim%mesh%nsteps)
          ! steps with nothing to write, check or break are taken in one cache-blocked call,
          ! up to the step before the next one that has work of its own
@@ -151,12 +162,11 @@ contains
             end do
          end if
          wrote_row = .false.
-         if (mod(n, every) == 0 .or. n == sim%mesh%nsteps) then
+         if (mod(n, every) == 0) then
             call row()
             wrote_row = .true.
             if (allocated(err)) exit
-         end if
-         if (.not. wrote_row .and. mod(n, 64) == 0) then
+         else if (mod(n, 64) == 0) then
             ! between rows: the state's finiteness and the energy guard every 64 steps
             block
                type(energies_t) :: e
@@ -170,19 +180,27 @@ contains
             end block
             if (allocated(err)) exit
          end if
-         if (stop_signal() /= 0) then
-            ! SIGTERM/SIGINT: end here with the outputs complete up to this step
-            if (.not. wrote_row) call row()
-            call make_error(err, 'run: stopped by signal ' // itoa(stop_signal()) // &
-               ' at step ' // itoa(sim%st%n) // ' (t = ' // &
-               rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
-               'written and closed', code=128 + stop_signal())
-            exit
-         end if
          call profiles()
          if (sim%deck%run%field_every > 0) then
             if (mod(n, sim%deck%run%field_every) == 0 .and. to_files) &
                call write_field(out, sim%mesh, sim%st)
+         end if
+         sig = stop_signal()
+         if (ck_on) then
+            ! the state after everything of step n that an uninterrupted run writes too
+            if (n == sim%mesh%nsteps .or. sig /= 0 .or. &
+                (ck_every > 0 .and. mod(n, max(ck_every, 1)) == 0)) call checkpoint()
+            if (allocated(err)) exit
+         end if
+         if (sig /= 0) then
+            ! SIGTERM/SIGINT: end here with the outputs complete up to this step
+            if (.not. wrote_row) call row()
+            call make_error(err, 'run: stopped by signal ' // itoa(sig) // &
+               ' at step ' // itoa(sim%st%n) // ' (t = ' // &
+               rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
+               'written and closed' // trim(merge(' (and the checkpoint)', '                     ', &
+               ck_on)), code=128 + sig)
+            exit
          end if
          if (mod(n, 1024) == 0) then
             call system_clock(c_now)
@@ -193,6 +211,10 @@ contains
             end if
          end if
       end do
+      ! the last row at t_end when it is not a history_every row (written after the
+      ! checkpoint: a run extended from there does not have it)
+      if (.not. allocated(err) .and. sim%st%n == sim%mesh%nsteps .and. &
+          mod(sim%mesh%nsteps, every) /= 0) call row()
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
       if (to_files) then
@@ -218,8 +240,18 @@ contains
          associate (fe => sim%deck%run%field_every)
             if (fe > 0) m8 = min(m8, (n_now / fe + 1) * int(fe, int64))
          end associate
+         if (ck_on .and. ck_every > 0) m8 = min(m8, (n_now / ck_every + 1) * int(ck_every, int64))
          m = int(m8)
       end function next_stop
+      !> Write the checkpoint of step n (its outputs written through first).
+      subroutine checkpoint()
+         type(output_marks_t) :: marks
+         call mark_outputs(out, marks)
+         summary%checkpoints = summary%checkpoints + 1
+         summary%steps = sim%st%n
+         call write_checkpoint(trim(sim%deck%run%checkpoint), sim%deck, sim%mesh, sim%load, &
+                               sim%st, summary, marks, err)
+      end subroutine checkpoint
       subroutine row()
          type(energies_t) :: e
          real(wp) :: s_top, s_bot
@@ -260,13 +292,15 @@ contains
          real(wp) :: excess
          character(len=16) :: b1, b2
          if (allocated(err)) return
-         guard_scale = max(guard_scale, abs(e%w_ext))
-         excess = (e%e_kin + e%e_strain + e%e_pot - e_mech0) - e%w_ext
-         if (guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, excess / guard_scale)
+         summary%guard_scale = max(summary%guard_scale, abs(e%w_ext))
+         excess = (e%e_kin + e%e_strain + e%e_pot - summary%e_mech0) - e%w_ext
+         if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
+            excess / summary%guard_scale)
          if (sim%deck%run%energy_guard > 0.0_wp .and. &
-             excess > sim%deck%run%energy_guard * guard_scale .and. guard_scale > 0.0_wp) then
+             excess > sim%deck%run%energy_guard * summary%guard_scale .and. &
+             summary%guard_scale > 0.0_wp) then
             write(b1, '(es10.3)') excess
-            write(b2, '(es10.3)') excess / guard_scale
+            write(b2, '(es10.3)') excess / summary%guard_scale
             call make_error(err, 'run: mechanical energy exceeds the initial energy plus the ' // &
                'work of the loads by ' // trim(adjustl(b1)) // ' J/m^2 (' // &
                trim(adjustl(b2)) // ' of the energy scale, above ' // &
