@@ -19,7 +19,7 @@ module spb_checkpoint
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
    use spb_diag, only: run_summary_t
-   use spb_output, only: output_marks_t, h5_deck_header, text_extensions
+   use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
       h5_write, h5_get, h5_get_attr
    use spb_sys, only: sys_rename
@@ -108,8 +108,10 @@ contains
       ! how far the outputs reach (byte counts as float64: exact below 2^53)
       call h5_group(h5, '/outputs')
       do k = 1, 4
-         call h5_attr(h5, '/outputs', 'head' // text_extensions(k), real(marks%head(k), wp))
-         call h5_attr(h5, '/outputs', 'bytes' // text_extensions(k), real(marks%bytes(k), wp))
+         call h5_attr(h5, '/outputs', 'body' // text_extensions(k), real(marks%body(k), wp))
+         call h5_attr(h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
+         call h5_attr(h5, '/outputs', 'tail' // text_extensions(k), &
+                      marks%tail(k)(1:max(0, marks%tail_n(k))))
       end do
       call h5_attr(h5, '/outputs', 'rows_history', marks%rows_his)
       call h5_attr(h5, '/outputs', 'rows_events', marks%rows_evt)
@@ -339,10 +341,17 @@ contains
       call h5_get_attr(h5, '/run', 'e_mech0', ck%summary%e_mech0)
       call h5_get_attr(h5, '/run', 'guard_scale', ck%summary%guard_scale)
       do k = 1, 4
-         call h5_get_attr(h5, '/outputs', 'head' // text_extensions(k), x)
-         ck%marks%head(k) = int(x, kind(ck%marks%head))
-         call h5_get_attr(h5, '/outputs', 'bytes' // text_extensions(k), x)
-         ck%marks%bytes(k) = int(x, kind(ck%marks%bytes))
+         call h5_get_attr(h5, '/outputs', 'body' // text_extensions(k), x)
+         ck%marks%body(k) = int(x, kind(ck%marks%body))
+         call h5_get_attr(h5, '/outputs', 'tail_bytes' // text_extensions(k), ck%marks%tail_n(k))
+         call h5_get_attr(h5, '/outputs', 'tail' // text_extensions(k), text)
+         ! a string attribute comes back without trailing blanks: pad to its length
+         ck%marks%tail(k) = text
+         if (ck%marks%tail_n(k) > tail_len) then
+            call refuse('holds a tail of ' // itoa(ck%marks%tail_n(k)) // ' bytes for ' // &
+                        text_extensions(k) // ' (at most ' // itoa(tail_len) // ')')
+            return
+         end if
       end do
       call h5_get_attr(h5, '/outputs', 'rows_history', ck%marks%rows_his)
       call h5_get_attr(h5, '/outputs', 'rows_events', ck%marks%rows_evt)

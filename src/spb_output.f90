@@ -22,7 +22,7 @@ module spb_output
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, history_units_of, h5_deck_header
-   public :: output_marks_t, mark_outputs, resume_outputs, text_extensions
+   public :: output_marks_t, mark_outputs, resume_outputs, text_extensions, tail_len
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
@@ -58,10 +58,13 @@ module spb_output
    !> The text files, in the order of outputs_t%head and output_marks_t.
    character(len=4), parameter :: text_extensions(4) = ['.his', '.prf', '.evt', '.frg']
 
+   integer, parameter :: tail_len = 240   !! bytes of each text file a mark remembers
+
    !> How far the outputs reach at one step: what a restart keeps of them.
    type :: output_marks_t
-      integer(int64) :: head(4) = 0      !! header bytes of each text file
-      integer(int64) :: bytes(4) = 0     !! bytes written in all (header included)
+      integer(int64) :: body(4) = 0      !! bytes after the header of each text file
+      character(len=tail_len) :: tail(4) = ''   !! the last bytes of each body ...
+      integer :: tail_n(4) = 0           !! ... so many of them (a restart checks them)
       integer :: rows_his = 0            !! rows of PREFIX.h5 /history
       integer :: rows_evt = 0            !! rows of /events
       integer :: rows_xt = 0             !! times of /fields/xt
@@ -212,13 +215,51 @@ contains
       end do
    end subroutine text_sizes
 
-   !> Where the outputs stand now (everything written through to the files).
+   !> Where the outputs stand now (everything written through to the files): the body
+   !> length of each text file and its last bytes, the rows of each PREFIX.h5 table.
    subroutine mark_outputs(out, marks)
       type(outputs_t), intent(inout) :: out
       type(output_marks_t), intent(out) :: marks
+      integer(int64) :: bytes(4)
+      integer :: k, u, r, ios
       call flush_outputs(out)
-      marks%head = out%head
-      call text_sizes(out, marks%bytes)
+      call text_sizes(out, bytes)
+      marks%body = bytes - out%head
+      do k = 1, 4
+         ! the tail is read back through a second connection: close, read, reopen
+         select case (k)
+         case (1)
+            u = out%his
+         case (2)
+            u = out%prf
+         case (3)
+            u = out%evt
+         case default
+            u = out%frg
+         end select
+         if (u == no_unit) cycle
+         close(u)
+         marks%tail_n(k) = int(min(int(tail_len, int64), marks%body(k)))
+         open(newunit=r, file=out%prefix // text_extensions(k), access='stream', &
+              form='unformatted', status='old', action='read', iostat=ios)
+         if (ios == 0 .and. marks%tail_n(k) > 0) &
+            read(r, pos=bytes(k) - marks%tail_n(k) + 1, iostat=ios) marks%tail(k)(1:marks%tail_n(k))
+         if (ios == 0) close(r)
+         if (ios /= 0) marks%tail_n(k) = -1     ! a restart from this mark will refuse
+         open(newunit=u, file=out%prefix // text_extensions(k), status='old', action='write', &
+              position='append', iostat=ios)
+         if (ios /= 0) u = no_unit
+         select case (k)
+         case (1)
+            out%his = u
+         case (2)
+            out%prf = u
+         case (3)
+            out%evt = u
+         case default
+            out%frg = u
+         end select
+      end do
       if (.not. out%hdf5) return
       marks%rows_his = h5_table_rows(out%h5, out%h_his)
       marks%rows_evt = h5_table_rows(out%h5, out%h_evt)
@@ -226,6 +267,54 @@ contains
       marks%n_prof = out%n_prof
       marks%n_frg = out%n_frg
    end subroutine mark_outputs
+
+   !> The column line that ends the header of text file k.
+   pure function column_line(k) result(line)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: line
+      select case (k)
+      case (1)
+         line = '# ' // history_columns
+      case (2)
+         line = '# x u v stress'
+      case (3)
+         line = '# ' // event_columns
+      case default
+         line = '# ' // fragment_columns
+      end select
+   end function column_line
+
+   !> Bytes of the header of a text output (up to its column line), -1 if there is none in
+   !> its first MiBs, and the file's size.
+   subroutine find_header(path, k, head, size_bytes)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: k
+      integer(int64), intent(out) :: head, size_bytes
+      integer, parameter :: scan_max = 4194304
+      character(len=:), allocatable :: buf
+      character(len=:), allocatable :: line
+      integer :: u, ios, m, at
+      head = -1
+      inquire(file=path, size=size_bytes)
+      m = int(min(int(scan_max, int64), size_bytes))
+      if (m <= 0) return
+      open(newunit=u, file=path, access='stream', form='unformatted', status='old', &
+           action='read', iostat=ios)
+      if (ios /= 0) return
+      allocate(character(len=m) :: buf)
+      read(u, pos=1, iostat=ios) buf
+      close(u)
+      if (ios /= 0) return
+      line = column_line(k) // new_line('a')
+      if (len(buf) >= len(line)) then
+         if (buf(1:len(line)) == line) then
+            head = len(line)
+            return
+         end if
+      end if
+      at = index(buf, new_line('a') // line)
+      if (at > 0) head = at + len(line)
+   end subroutine find_header
 
    !> Outputs of a restarted run: fresh headers for this deck, then the body of the previous
    !> run's files up to the marks (rows written after them are dropped), open for appending.
@@ -242,18 +331,43 @@ contains
       character(len=*), parameter :: aside = '.restart'
       character(len=*), parameter :: hint = ' (a restart continues the outputs of the run ' // &
          'that wrote the checkpoint: same directory and --output PREFIX)'
-      integer(int64) :: sz
-      integer :: k, nrows
+      integer(int64) :: sz, head(4)
+      integer :: k, nrows, u, ios
       logical :: there, ok
+      character(len=tail_len) :: tail
       type(h5file_t) :: old     !! the previous PREFIX.h5, read while it is replayed
+      ! the previous outputs: a header, then at least the body the checkpoint counts, ending
+      ! in the bytes it remembers
       do k = 1, 4
          associate (f => prefix // text_extensions(k))
-            inquire(file=f, exist=there, size=sz)
+            inquire(file=f, exist=there)
             if (.not. there) then
                call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
-            else if (sz < marks%bytes(k)) then
-               call make_error(err, '--restart: ''' // f // ''' holds ' // itoa8(sz) // &
-                  ' bytes, the checkpoint counts ' // itoa8(marks%bytes(k)) // hint)
+               return
+            end if
+            call find_header(f, k, head(k), sz)
+            if (head(k) < 0) then
+               call make_error(err, '--restart: ''' // f // ''' has no header line ''' // &
+                  column_line(k) // ''': not a spallbar output' // hint)
+            else if (sz - head(k) < marks%body(k)) then
+               call make_error(err, '--restart: ''' // f // ''' holds ' // &
+                  itoa8(sz - head(k)) // ' bytes after its header, the checkpoint counts ' // &
+                  itoa8(marks%body(k)) // hint)
+            else if (marks%tail_n(k) < 0) then
+               call make_error(err, '--restart: the checkpoint could not read the end of ''' // &
+                  f // ''' when it was written')
+            else if (marks%tail_n(k) > 0) then
+               open(newunit=u, file=f, access='stream', form='unformatted', status='old', &
+                    action='read', iostat=ios)
+               if (ios == 0) read(u, pos=head(k) + marks%body(k) - marks%tail_n(k) + 1, &
+                                  iostat=ios) tail(1:marks%tail_n(k))
+               if (ios == 0) close(u)
+               if (ios /= 0) then
+                  call make_error(err, '--restart: cannot read ''' // f // '''')
+               else if (tail(1:marks%tail_n(k)) /= marks%tail(k)(1:marks%tail_n(k))) then
+                  call make_error(err, '--restart: ''' // f // ''' is not the output of the ' // &
+                     'run that wrote the checkpoint (its rows differ at the checkpoint)' // hint)
+               end if
             end if
          end associate
          if (allocated(err)) return
@@ -291,7 +405,7 @@ contains
          call remove_file(prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)) // aside)
       end do
    contains
-      !> Append bytes head+1 .. bytes of the set-aside file k to the fresh one.
+      !> Append the body up to the mark of the set-aside file k to the fresh one.
       subroutine copy_body(k)
          integer, intent(in) :: k
          integer, parameter :: chunk = 1048576
@@ -315,9 +429,9 @@ contains
                  status='old', action='read', iostat=ios, iomsg=msg)
             if (ios == 0) open(newunit=dst, file=f, access='stream', form='unformatted', &
                  status='old', action='write', position='append', iostat=ios, iomsg=msg)
-            pos = marks%head(k) + 1
-            do while (ios == 0 .and. pos <= marks%bytes(k))
-               m = min(int(chunk, int64), marks%bytes(k) - pos + 1)
+            pos = head(k) + 1
+            do while (ios == 0 .and. pos <= head(k) + marks%body(k))
+               m = min(int(chunk, int64), head(k) + marks%body(k) - pos + 1)
                read(src, pos=pos, iostat=ios, iomsg=msg) buf(1:m)
                if (ios == 0) write(dst, iostat=ios, iomsg=msg) buf(1:m)
                pos = pos + m
@@ -483,7 +597,6 @@ contains
       character(len=*), intent(in) :: report(:)
       type(outputs_t), intent(inout) :: out
       type(spb_error_t), allocatable, intent(inout) :: err
-      type(echo_item_t), allocatable :: items(:)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5')

@@ -168,7 +168,7 @@ contains
       hists = 0
       summary%cases = nc
       summary%ranks = nranks
-      summary%distribution = deck%sweep%distribution
+      summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
          call run_static(1, 0)

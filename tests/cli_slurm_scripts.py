@@ -2,14 +2,18 @@
 """The cluster scripts (scripts/slurm-*.sbatch) run as Slurm would run them, outside Slurm:
 array tasks pick their deck line (comments and blank lines skipped), write their outputs
 and return spallbar's exit status; the MPI sweep script writes the same table as a serial
-sweep.
+sweep; the restart script, stopped by SIGTERM (as Slurm does before the time limit) and
+started again, ends with the outputs of one uninterrupted run.
 
 usage: cli_slurm_scripts.py SPALLBAR SCRIPTS_DIR INPUT_DIR WORK_DIR MPIEXEC|-
 """
 import os
+import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 from clitools import Checks
 
@@ -48,4 +52,41 @@ if mpiexec != "-":
     rows = lambda f: [l for l in open(os.path.join(work, f)) if not l.startswith("#")]
     check(os.path.isfile(os.path.join(work, "mpi.sweep")) and rows("mpi.sweep") == rows("serial.sweep"),
           "the sweep script's table equals the serial sweep's")
+# the restart script: SIGTERM to the script, then the script again
+deck = open(os.path.join(indir, "example3_case2", "min_fragment_h190.nml")).read()
+deck = re.sub(r"(&run\n)", "\\1  checkpoint = 'long.ck.h5'\n  checkpoint_every = 500\n", deck,
+              count=1)
+os.makedirs(os.path.join(work, "long"))
+open(os.path.join(work, "long", "long.nml"), "w").write(deck)
+p = subprocess.run([exe, "long.nml", "-o", "U", "-q"], cwd=os.path.join(work, "long"),
+                   capture_output=True, text=True, timeout=300, stdin=subprocess.DEVNULL)
+check(p.returncode == 0, f"long deck, uninterrupted: {p.stderr.strip()}")
+os.remove(os.path.join(work, "long", "long.ck.h5"))
+script = os.path.join(scripts, "slurm-restart.sbatch")
+proc = subprocess.Popen(["bash", script, "long/long.nml", "long/R"], cwd=work, env=env,
+                        stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                        stderr=subprocess.PIPE, text=True)
+deadline = time.time() + 120
+while (not os.path.exists(os.path.join(work, "long", "long.ck.h5")) and proc.poll() is None
+       and time.time() < deadline):
+    time.sleep(0.005)
+proc.send_signal(signal.SIGTERM)
+out, err = proc.communicate(timeout=300)
+check(proc.returncode == 143, f"restart script stopped by SIGTERM: exit {proc.returncode} "
+      f"({err.strip()[:300]})")
+check("run this script again" in out, f"restart script says how to go on: {out.strip()}")
+p = subprocess.run(["bash", script, "long/long.nml", "long/R"], cwd=work, env=env,
+                   capture_output=True, text=True, timeout=300, stdin=subprocess.DEVNULL)
+check(p.returncode == 0, f"restart script, second job: exit {p.returncode} "
+      f"({p.stderr.strip()[:300]})")
+check("going on from long.ck.h5" in p.stdout, f"second job restarts: {p.stdout.strip()}")
+for ext in ("his", "prf", "evt", "frg"):
+    a = open(os.path.join(work, "long", "U." + ext), "rb").read()
+    b = open(os.path.join(work, "long", "R." + ext), "rb").read()
+    check(a == b, f"restart script: R.{ext} equals the uninterrupted U.{ext}")
+p = subprocess.run(["bash", script, os.path.join(indir, "example1.nml"), "e1"], cwd=work,
+                   env=env, capture_output=True, text=True, timeout=300,
+                   stdin=subprocess.DEVNULL)
+check(p.returncode == 2 and "sets no &run checkpoint" in p.stderr,
+      f"restart script without a checkpoint in the deck: exit 2 ({p.stderr.strip()})")
 sys.exit(check.finish())

@@ -1,0 +1,325 @@
+#!/usr/bin/env python3
+"""Restart (issue 8, item 3): a restarted run is bit-identical to an uninterrupted one.
+
+For eight decks (the paper's Examples 1-3 with a transmitting end and table loads, the
+Goupillaud bar, the suspended bar, Example 3 case 2 with the delay rule and with the
+full-mass model, a Weibull strength field) with PREFIX.h5, x-t fields and a history
+stride that does not divide the step count:
+
+  * extension: a run to about 45 % of t_end writes a checkpoint at its end; the full deck
+    restarted from it (--restart, same --output) gives .his .prf .evt .frg identical byte
+    for byte (cmp) to the uninterrupted run, and PREFIX.h5 with every dataset and
+    attribute equal bit for bit;
+  * truncation: outputs that reach past the checkpoint (a complete later run) are cut back
+    to it and continued: identical again;
+  * SIGTERM: a run stopped by a signal writes its checkpoint; restarted, identical;
+  * refusals, each exit status 2 with one line naming what is wrong, the outputs left as
+    they were and no PREFIX.*.restart left behind: another deck, another t_end before the
+    checkpoint, other earlier profile_times, outputs missing or shorter than the
+    checkpoint counts, a file that is no checkpoint or no HDF5, none at all, --restart
+    without a file or with --sweep, a checkpoint path that cannot be written,
+    checkpoint_every without checkpoint.
+
+usage: cli_restart.py SPALLBAR WORKDIR INPUT_DIR     (needs h5py)
+"""
+import hashlib
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+from clitools import Checks, run
+
+EXTS = [".his", ".prf", ".evt", ".frg"]
+
+WEIBULL = """&run
+  title = 'Weibull strength, restart'
+  t_end = 3.0e-4
+  history_every = 1
+/
+&mesh
+  cells = 200
+/
+&segments
+  n = 1
+  length = 1.0
+  young = 200e9
+  density = 8000
+  strength = 1.0e8
+/
+&ends
+  top = 'free'
+  bottom = 'free'
+/
+&load
+  kind = 'power'
+  face = 'top'
+  p0 = 3.0e8
+  t_k = 2.0e-5
+  exponent = 1.0
+  t_cut = 2.0e-5
+/
+&strength_field
+  kind = 'weibull'
+  modulus = 6.0
+  scale = 1.0e8
+  seed = 7
+/
+"""
+
+
+def set_run(text, **values):
+    """Put name = value lines into &run (replacing those given in the deck)."""
+    lines = text.splitlines()
+    out, in_run = [], False
+    for line in lines:
+        stripped = line.strip().lower()
+        if stripped.startswith("&run"):
+            in_run = True
+            out.append(line)
+            for k, v in values.items():
+                out.append(f"  {k} = {v}")
+            continue
+        if in_run and stripped.startswith("/"):
+            in_run = False
+        if in_run:
+            name = stripped.split("=")[0].strip() if "=" in stripped else ""
+            if name in values:
+                continue
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+def run_value(text, name):
+    m = re.search(r"^\s*" + name + r"\s*=\s*([^!\n]+)", text, re.M | re.I)
+    return m.group(1).strip() if m else None
+
+
+def short_deck(text, fraction, checkpoint):
+    """The deck to fraction * t_end, profile times after it dropped."""
+    t_end = float(run_value(text, "t_end"))
+    t1 = fraction * t_end
+    values = {"t_end": repr(t1), "checkpoint": f"'{checkpoint}'"}
+    prof = run_value(text, "profile_times")
+    if prof is not None:
+        times = [float(x) for x in prof.replace(",", " ").split()]
+        kept = [t for t in times if t <= t1]
+        values["profile_times"] = ", ".join(repr(t) for t in kept) if kept else "-1.0"
+    deck = set_run(text, **values)
+    if prof is not None and not [t for t in times if t <= t1]:
+        deck = re.sub(r"^\s*profile_times\s*=\s*-1.0\n", "", deck, flags=re.M)
+    return deck
+
+
+def sha(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def h5_differences(a_path, b_path):
+    """Objects, attributes or dataset bytes that differ between two HDF5 files."""
+    diffs = []
+    with h5py.File(a_path, "r") as a, h5py.File(b_path, "r") as b:
+        na, nb = [], []
+        a.visit(na.append)
+        b.visit(nb.append)
+        if sorted(na) != sorted(nb):
+            return [f"objects differ: {sorted(set(na) ^ set(nb))[:5]}"]
+        for name in ["/"] + na:
+            oa, ob = a[name], b[name]
+            if sorted(oa.attrs) != sorted(ob.attrs):
+                diffs.append(f"{name}: attribute names")
+                continue
+            for k in oa.attrs:
+                if not np.array_equal(np.asarray(oa.attrs[k]), np.asarray(ob.attrs[k])):
+                    diffs.append(f"{name}:{k}")
+            if isinstance(oa, h5py.Dataset):
+                x, y = oa[()], ob[()]
+                if x.shape != y.shape or x.dtype != y.dtype or x.tobytes() != y.tobytes():
+                    diffs.append(f"{name}: data")
+    return diffs
+
+
+def same_outputs(check, what, work, u, r, hdf5=True):
+    for ext in EXTS:
+        a, b = os.path.join(work, u + ext), os.path.join(work, r + ext)
+        check(os.path.exists(b) and sha(a) == sha(b), f"{what}: {r}{ext} equals {u}{ext}")
+    if hdf5:
+        d = h5_differences(os.path.join(work, u + ".h5"), os.path.join(work, r + ".h5"))
+        check(not d, f"{what}: {r}.h5 equals {u}.h5 ({d[:3]})")
+    left = [f for f in os.listdir(work) if f.endswith(".restart")]
+    check(not left, f"{what}: no .restart files left ({left})")
+
+
+def main():
+    exe, work, input_dir = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3]
+    check = Checks()
+    work = os.path.join(work, "restart")
+    shutil.rmtree(work, ignore_errors=True)
+    shutil.copytree(input_dir, work)
+
+    decks = {
+        "ex1": open(os.path.join(work, "example1.nml")).read(),
+        "ex2": open(os.path.join(work, "example2.nml")).read(),
+        "goupillaud": open(os.path.join(work, "goupillaud.nml")).read(),
+        "suspended": open(os.path.join(work, "suspended_static.nml")).read(),
+        "ex3c1": open(os.path.join(work, "example3_case1_delay.nml")).read(),
+        "c2delay": open(os.path.join(work, "example3_case2", "delay_fragment_h95.nml")).read(),
+        "c2full": open(os.path.join(work, "example3_case2",
+                                    "fullmass_accelerate_fragment_h19.nml")).read(),
+        "weibull": WEIBULL,
+    }
+    for name, text in decks.items():
+        full = set_run(text, hdf5=".true.", field_every="7", history_every="3",
+                       checkpoint=f"'{name}_end.ck.h5'", checkpoint_every="400")
+        with open(os.path.join(work, name + "_full.nml"), "w") as f:
+            f.write(full)
+        with open(os.path.join(work, name + "_short.nml"), "w") as f:
+            f.write(short_deck(full, 0.45, f"{name}.ck.h5"))
+        p = run(exe, [name + "_full.nml", "--output", name + "_U", "-q"], work)
+        check(p.returncode == 0, f"{name}: uninterrupted run exits 0 ({p.stderr.strip()})")
+        p = run(exe, [name + "_short.nml", "--output", name + "_R", "-q"], work)
+        check(p.returncode == 0, f"{name}: short run exits 0 ({p.stderr.strip()})")
+        check(os.path.exists(os.path.join(work, name + ".ck.h5")),
+              f"{name}: the short run wrote its checkpoint")
+        p = run(exe, [name + "_full.nml", "--output", name + "_R", "--restart", name + ".ck.h5"],
+                work)
+        check(p.returncode == 0, f"{name}: restart exits 0 ({p.stderr.strip()})")
+        check("restart from" in p.stdout, f"{name}: restart says where it starts")
+        same_outputs(check, f"{name} extended", work, name + "_U", name + "_R")
+        # the checkpoint at t_end is the same whichever way the run got there
+        with h5py.File(os.path.join(work, name + "_end.ck.h5"), "r") as ck:
+            check(ck.attrs["format"].decode() == "spallbar checkpoint 1" if isinstance(
+                ck.attrs["format"], bytes) else ck.attrs["format"] == "spallbar checkpoint 1",
+                f"{name}: checkpoint format attribute")
+            check("ua" in ck["state"] and "ledger0" in ck["run"].attrs,
+                  f"{name}: checkpoint holds /state/ua and /run ledger0")
+
+    # truncation: outputs that run past the checkpoint are cut back to it
+    name = "c2delay"
+    p = run(exe, [name + "_full.nml", "--output", name + "_T", "-q"], work)
+    check(p.returncode == 0, "truncation: complete run")
+    p = run(exe, [name + "_full.nml", "--output", name + "_T", "--restart", name + ".ck.h5",
+                  "-q"], work)
+    check(p.returncode == 0, f"truncation: restart exits 0 ({p.stderr.strip()})")
+    same_outputs(check, "truncated and continued", work, name + "_U", name + "_T")
+
+    # SIGTERM: the checkpoint of the step where the run stops, then a restart
+    sig_deck = set_run(open(os.path.join(work, "example3_case2", "min_fragment_h190.nml")).read(),
+                       hdf5=".true.", field_every="50", history_every="1",
+                       checkpoint="'sig.ck.h5'", checkpoint_every="500")
+    with open(os.path.join(work, "sig.nml"), "w") as f:
+        f.write(sig_deck)
+    p = run(exe, ["sig.nml", "--output", "sig_U", "-q"], work)
+    check(p.returncode == 0, "signal deck: uninterrupted run")
+    os.remove(os.path.join(work, "sig.ck.h5"))
+    proc = subprocess.Popen([exe, "sig.nml", "--output", "sig_R", "-q"], cwd=work,
+                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    while not os.path.exists(os.path.join(work, "sig.ck.h5")) and time.time() < deadline \
+            and proc.poll() is None:
+        time.sleep(0.005)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=120)
+    check(proc.returncode == 143, f"SIGTERM: exit 143, got {proc.returncode} ({err.strip()})")
+    check("and the checkpoint" in err, "SIGTERM: the message says the checkpoint is written")
+    with h5py.File(os.path.join(work, "sig.ck.h5"), "r") as ck:
+        step = int(ck.attrs["step"])
+    with h5py.File(os.path.join(work, "sig_U.h5"), "r") as h:
+        nsteps = int(h["mesh"].attrs["steps"])
+    check(0 < step < nsteps, f"SIGTERM: stopped inside the run (step {step} of {nsteps})")
+    p = run(exe, ["sig.nml", "--output", "sig_R", "--restart", "sig.ck.h5", "-q"], work)
+    check(p.returncode == 0, f"SIGTERM: restart exits 0 ({p.stderr.strip()})")
+    same_outputs(check, "stopped by SIGTERM and restarted", work, "sig_U", "sig_R")
+
+    # refusals: exit 2, one line, the outputs untouched
+    name = "c2delay"
+    full = open(os.path.join(work, name + "_full.nml")).read()
+
+    def refused(what, args, needle, deck_text=None, prefix=name + "_R"):
+        if deck_text is not None:
+            with open(os.path.join(work, "refused.nml"), "w") as f:
+                f.write(deck_text)
+        before = {e: sha(os.path.join(work, prefix + e)) for e in EXTS + [".h5"]
+                  if os.path.exists(os.path.join(work, prefix + e))}
+        p = run(exe, args, work)
+        lines = p.stderr.strip().splitlines()
+        check(p.returncode == 2, f"{what}: exit 2, got {p.returncode} ({p.stderr.strip()})")
+        check(len(lines) == 1 and needle in p.stderr,
+              f"{what}: one line containing {needle!r}: {p.stderr.strip()!r}")
+        after = {e: sha(os.path.join(work, prefix + e)) for e in EXTS + [".h5"]
+                 if os.path.exists(os.path.join(work, prefix + e))}
+        check(before == after, f"{what}: outputs unchanged")
+        left = [f for f in os.listdir(work) if f.endswith(".restart")]
+        check(not left, f"{what}: no .restart files ({left})")
+
+    ck = name + ".ck.h5"
+    refused("another deck", ["refused.nml", "--output", name + "_R", "--restart", ck],
+            "&load p0", full.replace("p0       = 0.1e6", "p0       = 0.2e6"))
+    refused("t_end before the checkpoint", ["refused.nml", "--output", name + "_R", "--restart",
+            ck], "after this deck's t_end", set_run(full, t_end="0.1",
+                                                    profile_times="0.05, 0.1"))
+    refused("earlier profile times changed", ["refused.nml", "--output", name + "_R",
+            "--restart", ck], "other profile_times",
+            set_run(full, profile_times="0.06, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5"))
+    refused("outputs missing", [name + "_full.nml", "--output", "nowhere", "--restart", ck],
+            "is missing")
+    with open(os.path.join(work, name + "_R.his"), "rb") as f:
+        body = f.read()
+    shutil.copy(os.path.join(work, name + "_R.prf"), os.path.join(work, "cut_R.prf"))
+    shutil.copy(os.path.join(work, name + "_R.evt"), os.path.join(work, "cut_R.evt"))
+    shutil.copy(os.path.join(work, name + "_R.frg"), os.path.join(work, "cut_R.frg"))
+    shutil.copy(os.path.join(work, name + "_R.h5"), os.path.join(work, "cut_R.h5"))
+    with open(os.path.join(work, "cut_R.his"), "wb") as f:
+        f.write(body[:20000])
+    refused("outputs shorter than the checkpoint", [name + "_full.nml", "--output", "cut_R",
+            "--restart", ck], "bytes after its header, the checkpoint counts", prefix="cut_R")
+    # a body that differs just before the checkpoint's mark: another run's outputs
+    with h5py.File(os.path.join(work, ck), "r") as h:
+        body_len = int(h["outputs"].attrs["body.his"])
+    columns = open(os.path.join(work, name + "_R.his")).read().split("\n")
+    head = next(len("\n".join(columns[:i + 1])) + 1 for i, line in enumerate(columns)
+                if line.startswith("# t reaction_bottom"))
+    for e in [".prf", ".evt", ".frg", ".h5"]:
+        shutil.copy(os.path.join(work, name + "_R" + e), os.path.join(work, "other_R" + e))
+    changed = bytearray(body)
+    at = head + body_len - 30
+    changed[at] = ord("7") if changed[at] != ord("7") else ord("3")
+    with open(os.path.join(work, "other_R.his"), "wb") as f:
+        f.write(bytes(changed))
+    refused("rows differ at the checkpoint", [name + "_full.nml", "--output", "other_R",
+            "--restart", ck], "is not the output of the run that wrote the checkpoint",
+            prefix="other_R")
+    refused("an output file, not a checkpoint", [name + "_full.nml", "--output", name + "_R",
+            "--restart", name + "_U.h5"], "is not a spallbar checkpoint")
+    refused("not HDF5", [name + "_full.nml", "--output", name + "_R", "--restart",
+            name + "_full.nml"], "is not an HDF5 file")
+    refused("no such checkpoint", [name + "_full.nml", "--output", name + "_R", "--restart",
+            "absent.h5"], "does not exist")
+    refused("--restart without a file", [name + "_full.nml", "--restart"], "needs a CHECKPOINT")
+    refused("--restart with --sweep", ["--sweep", name + "_full.nml", "--restart", ck],
+            "not with --sweep")
+    refused("checkpoint path not writable", ["refused.nml", "--output", "unwritten", "-q"],
+            "&run: checkpoint = 'no/such/dir/ck.h5'",
+            set_run(full, checkpoint="'no/such/dir/ck.h5'"), prefix="unwritten")
+    check(not os.path.exists(os.path.join(work, "unwritten.his")),
+          "checkpoint path not writable: no outputs written")
+    refused("checkpoint_every without checkpoint", ["refused.nml", "-q"],
+            "&run: checkpoint_every = 10 needs checkpoint",
+            set_run(text_without_checkpoint(full), checkpoint_every="10"), prefix="refused")
+    return check.finish()
+
+
+def text_without_checkpoint(text):
+    return re.sub(r"^\s*checkpoint\s*=.*\n", "", text, flags=re.M)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
