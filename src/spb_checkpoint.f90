@@ -105,6 +105,7 @@ contains
       call h5_attr(h5, '/run', 'w_ext_end', summary%w_ext_end)
       call h5_attr(h5, '/run', 'e_mech0', summary%e_mech0)
       call h5_attr(h5, '/run', 'guard_scale', summary%guard_scale)
+      call h5_attr(h5, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
       ! how far the outputs reach (byte counts as float64: exact below 2^53)
       call h5_group(h5, '/outputs')
       do k = 1, 4
@@ -340,6 +341,7 @@ contains
       call h5_get_attr(h5, '/run', 'w_ext_end', ck%summary%w_ext_end)
       call h5_get_attr(h5, '/run', 'e_mech0', ck%summary%e_mech0)
       call h5_get_attr(h5, '/run', 'guard_scale', ck%summary%guard_scale)
+      call h5_get_attr(h5, '/run', 'fracture_stress_sum', ck%summary%fracture_stress_sum)
       do k = 1, 4
          call h5_get_attr(h5, '/outputs', 'body' // text_extensions(k), x)
          ck%marks%body(k) = int(x, kind(ck%marks%body))

@@ -86,6 +86,8 @@ module spb_deck
 
    type :: initial_cfg
       character(len=name_len) :: state = 'unstressed'  !! 'unstressed' | 'static'
+      real(wp) :: strain_rate = 0.0_wp                 !! uniform stretching: v += rate (x - x_c),
+                                                       !! x_c the centre of mass [1/s]
    end type initial_cfg
 
    !> &strength_field: random strength per cell (issue 8).
@@ -528,8 +530,10 @@ contains
       character(len=256) :: msg2
       character(len=:), allocatable :: record, var
       integer :: k, ios2
-      namelist /initial/ state
+      real(wp) :: strain_rate
+      namelist /initial/ state, strain_rate
       state = deck%init%state
+      strain_rate = deck%init%strain_rate
       rewind(u)
       read(u, nml=initial, iostat=ios, iomsg=msg)
       if (ios /= 0) then
@@ -548,6 +552,7 @@ contains
       call check_word(err, 'initial', 'state', state)
       if (allocated(err)) return
       deck%init%state = lower(state)
+      deck%init%strain_rate = strain_rate
    end subroutine read_initial
 
    subroutine read_strength_field(u, deck, err)
@@ -779,10 +784,13 @@ contains
          deck%field%modulus = value
       case ('scale')
          deck%field%scale = value
+      case ('strain_rate')
+         deck%init%strain_rate = value
       case default
          call make_error(err, '&sweep: vary = ''' // trim(name) // ''' is not a variable a ' &
             // 'sweep can vary (p0, t_k, t_cut, exponent, gravity, t_end, eps_rel, base_gap, ' &
-            // 'modulus, scale, velocity(j), strength(j), young(j), density(j), length(j), gap(j))')
+            // 'modulus, scale, strain_rate, velocity(j), strength(j), young(j), density(j), ' &
+            // 'length(j), gap(j))')
       end select
    end subroutine set_deck_value
 
@@ -1123,7 +1131,15 @@ contains
       end if
       call need_choice(err, 'initial', 'state', deck%init%state, [character(len=10) :: &
                        'unstressed', 'static'])
+      call need_finite(err, 'initial', 'strain_rate', deck%init%strain_rate)
       if (allocated(err)) return
+      if (abs(deck%init%strain_rate) > 0.0_wp .and. (deck%ends%top == 'fixed' .or. &
+          deck%ends%bottom == 'fixed' .or. deck%ends%bottom == 'base')) then
+         call make_error(err, '&initial: strain_rate = ' // rtoa(deck%init%strain_rate) // &
+            ' needs ends that let the bar stretch about its centre of mass (&ends top, ' // &
+            'bottom = ''free'' or ''transmit'')')
+         return
+      end if
       if (deck%init%state == 'static' .and. abs(deck%run%gravity) > 0.0_wp) then
          if (any(deck%seg%gap(1:deck%seg%n - 1) > 0.0_wp)) then
             call make_error(err, '&initial: state = ''static'' with a gap in &segments gap: ' &
@@ -1204,6 +1220,7 @@ contains
       call item('load', 'table', quote(deck%load%table), '')
 
       call item('initial', 'state', quote(deck%init%state), '')
+      call item('initial', 'strain_rate', rtoa(deck%init%strain_rate), '1/s')
       call item('strength_field', 'kind', quote(deck%field%kind), '')
       call item('strength_field', 'modulus', opt(deck%field%modulus), '-')
       call item('strength_field', 'scale', opt(deck%field%scale), 'Pa')

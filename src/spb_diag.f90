@@ -52,6 +52,7 @@ module spb_diag
       real(wp) :: e_kin_end = 0.0_wp       !! kinetic energy at the end [J/m^2]
       real(wp) :: w_ext_end = 0.0_wp       !! work of the loads and ends at the end [J/m^2]
       integer :: checkpoints = 0           !! checkpoints written
+      real(wp) :: fracture_stress_sum = 0.0_wp !! sum of |section stress| at the fractures [Pa]
       real(wp) :: e_mech0 = 0.0_wp         !! the energy guard's reference: mechanical energy
                                            !! at t = 0 [J/m^2]
       real(wp) :: guard_scale = 0.0_wp     !! the guard's scale: e_kin + |e_strain| at t = 0,

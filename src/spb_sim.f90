@@ -156,8 +156,10 @@ contains
             do j = 1, events%n
                associate (ev => events%e(j))
                   summary%n_kind(ev%kind) = summary%n_kind(ev%kind) + 1
-                  if (ev%kind == ev_fracture .and. summary%first_fracture_t < 0.0_wp) &
-                     summary%first_fracture_t = ev%t
+                  if (ev%kind == ev_fracture) then
+                     if (summary%first_fracture_t < 0.0_wp) summary%first_fracture_t = ev%t
+                     summary%fracture_stress_sum = summary%fracture_stress_sum + abs(ev%stress)
+                  end if
                end associate
             end do
          end if

@@ -123,6 +123,12 @@ contains
          vb = deck%seg%velocity(j + 1)
          v(i) = (mesh%ma(i) * va + mesh%mb(i) * vb) * mesh%inv_m(i)
       end do
+      if (abs(deck%init%strain_rate) > 0.0_wp) then
+         ! uniform stretching about the centre of mass (free or transmitting ends)
+         associate (m => mesh%ma + mesh%mb)
+            v = v + deck%init%strain_rate * (mesh%x - sum(m * mesh%x) / sum(m))
+         end associate
+      end if
       if (mesh%top == end_fixed) v(0) = 0.0_wp
       if (mesh%bottom == end_fixed) v(n) = 0.0_wp
       st%ua = u

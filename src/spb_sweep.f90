@@ -31,19 +31,23 @@ module spb_sweep
 
    character(len=*), parameter :: sweep_columns = 'id fragments mean_fragment_length ' // &
       'max_reaction_bottom first_fracture_t value realization seed status fractures ' // &
-      'collisions separations base_collisions e_kin_end w_ext_end max_excess ledger_drift steps'
+      'collisions separations base_collisions e_kin_end w_ext_end max_excess ledger_drift steps ' // &
+      'e_vib_end mean_fracture_stress e_fracture'
    character(len=*), parameter :: sweep_units = 'id, fragments, realization, seed, status, ' // &
       'fractures .. base_collisions, steps [-]; mean_fragment_length [m] (reference length); ' // &
       'max_reaction_bottom [Pa] (compression > 0); first_fracture_t [s] (-1: none); value: ' // &
       'the varied variable''s (0 without vary); e_kin_end, w_ext_end, ledger_drift [J/m^2]; ' // &
-      'max_excess [-] (of the energy scale)'
-   integer, parameter :: n_columns = 18
+      'max_excess [-] (of the energy scale); e_vib_end (fragments'' vibration energy at t_end), ' // &
+      'e_fracture (the fracture corrections'' energy) [J/m^2]; mean_fracture_stress [Pa] ' // &
+      '(mean |section stress| at the fractures, 0: none)'
+   integer, parameter :: n_columns = 21
    logical, parameter :: col_is_int(n_columns) = [.true., .true., .false., .false., .false., &
       .false., .true., .true., .true., .true., .true., .true., .true., .false., .false., &
-      .false., .false., .true.]
+      .false., .false., .true., .false., .false., .false.]
    integer, parameter :: col_id = 1, col_fragments = 2, col_mean_length = 3, col_max_reaction = 4, &
       col_first_fracture = 5, col_value = 6, col_realization = 7, col_seed = 8, col_status = 9, &
-      col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, col_steps = 18
+      col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, &
+      col_steps = 18, col_e_vib = 19, col_fracture_stress = 20, col_e_fracture = 21
    integer, parameter :: status_not_run = -1
    integer, parameter :: tag_request = 1000000001, tag_work = 1000000002
 
@@ -124,6 +128,7 @@ contains
       do f = 1, size(list)
          length = sim%mesh%x(list(f)%bot) - sim%mesh%x(list(f)%top)
          row(col_mean_length) = row(col_mean_length) + length
+         row(col_e_vib) = row(col_e_vib) + list(f)%e_vib
          b = min(nbins, max(1, int(length / l_hist * real(nbins, wp)) + 1))
          hist(b) = hist(b) + 1
       end do
@@ -137,6 +142,9 @@ contains
       row(col_excess) = summary%max_excess
       row(col_drift) = summary%ledger_drift
       row(col_steps) = real(summary%steps, wp)
+      if (summary%n_kind(ev_fracture) > 0) row(col_fracture_stress) = &
+         summary%fracture_stress_sum / real(summary%n_kind(ev_fracture), wp)
+      row(col_e_fracture) = sim%st%e_fracture
    end subroutine run_case
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
@@ -405,11 +413,11 @@ contains
          select case (trim(name))
          case ('mean_fragment_length')
             unit = 'm'
-         case ('max_reaction_bottom')
+         case ('max_reaction_bottom', 'mean_fracture_stress')
             unit = 'Pa'
          case ('first_fracture_t')
             unit = 's'
-         case ('e_kin_end', 'w_ext_end', 'ledger_drift')
+         case ('e_kin_end', 'w_ext_end', 'ledger_drift', 'e_vib_end', 'e_fracture')
             unit = 'J/m^2'
          case default
             unit = '-'
