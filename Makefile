@@ -5,6 +5,7 @@
 #   make test      Debug build (all checks on, -std=f2008) and ctest
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
+#   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): figure, table
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
@@ -13,12 +14,12 @@ RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug run test figures bench clean help
+.PHONY: all setup build debug run test figures bench fragmentation clean help
 
 all: build
 
 help:
-	@sed -n '1,10p' Makefile
+	@sed -n '1,9p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -51,6 +52,11 @@ PYTHON ?= $(shell test -x .venv/bin/python && echo .venv/bin/python || echo pyth
 bench: build
 	$(PYTHON) bench/run.py --exe $(BUILD_RELEASE)/bin/spallbar --label "$$(git describe --always --dirty 2>/dev/null || echo build)" \
 	  --table doc/benchmarks-latest.md --plot doc/figures/bench_scaling.png
+
+fragmentation: build
+	$(PYTHON) plots/fragmentation_study.py --exe $(BUILD_RELEASE)/bin/spallbar --realizations 16 \
+	  --out $(BUILD_RELEASE)/fragmentation --figure doc/figures/fragmentation_rate.png \
+	  --table doc/fragmentation-table.md
 
 clean:
 	rm -rf build
