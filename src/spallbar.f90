@@ -155,22 +155,14 @@ contains
          case ('--quiet', '-q')
             q = .true.
          case ('--output', '-o')
-            if (k == nargs) then
-               call make_error(e, 'command line: --output needs a PREFIX')
-               return
-            end if
-            k = k + 1
-            call get_command_argument(k, arg)
+            call option_value(k, nargs, arg, e, '--output needs a PREFIX')
+            if (allocated(e)) return
             pre = trim(arg)
          case ('--sweep')
             sw = .true.
          case ('--restart')
-            if (k == nargs) then
-               call make_error(e, 'command line: --restart needs a CHECKPOINT file')
-               return
-            end if
-            k = k + 1
-            call get_command_argument(k, arg)
+            call option_value(k, nargs, arg, e, '--restart needs a CHECKPOINT file')
+            if (allocated(e)) return
             rst = trim(arg)
          case default
             if (arg(1:1) == '-') then
@@ -203,4 +195,20 @@ contains
          end if
       end if
    end subroutine parse_command_line
+
+   !> The value after the option at argument k into arg (k moves on to it); the error
+   !> 'command line: missing' when there is none.
+   subroutine option_value(k, nargs, arg, e, missing)
+      integer, intent(inout) :: k
+      integer, intent(in) :: nargs
+      character(len=*), intent(inout) :: arg
+      type(spb_error_t), allocatable, intent(inout) :: e
+      character(len=*), intent(in) :: missing
+      if (k >= nargs) then
+         call make_error(e, 'command line: ' // missing)
+         return
+      end if
+      k = k + 1
+      call get_command_argument(k, arg)
+   end subroutine option_value
 end program spallbar

@@ -212,9 +212,10 @@ contains
       subroutine put_logicals(name, a)
          character(len=*), intent(in) :: name
          logical, allocatable, intent(in) :: a(:)
+         integer, allocatable :: v(:)
          if (.not. allocated(a)) return
-         call bounds(name, lbound(a, 1), size(a))
-         if (size(a) > 0) call h5_write(h5, '/state/' // name, merge(1, 0, a), '0/1')
+         allocate(v(lbound(a, 1):ubound(a, 1)), source=merge(1, 0, a))
+         call put_ints(name, v)
       end subroutine put_logicals
    end subroutine write_state
 
@@ -441,38 +442,33 @@ contains
          integer :: lb, n
          call bounds(name, lb, n)
          if (n < 0) return
-         allocate(a(lb:lb + n - 1))
-         if (n == 0) return
-         call h5_get(h5, '/state/' // name, v)
-         if (.not. allocated(v)) return
-         if (size(v) == n) a(:) = v
+         if (n > 0) call h5_get(h5, '/state/' // name, v)
+         if (.not. allocated(v)) allocate(v(0))
+         if (have(name, size(v), n)) allocate(a(lb:lb + n - 1), source=v)
       end subroutine get_reals
+      !> Integers come back through float64 (HDF5 converts; exact below 2^53).
       subroutine get_ints(name, a)
          character(len=*), intent(in) :: name
          integer, allocatable, intent(out) :: a(:)
-         integer, allocatable :: v(:)
-         integer :: lb, n
-         call bounds(name, lb, n)
-         if (n < 0) return
-         allocate(a(lb:lb + n - 1))
-         if (n == 0) return
-         call h5_get(h5, '/state/' // name, v)
-         if (.not. allocated(v)) return
-         if (size(v) == n) a(:) = v
+         real(wp), allocatable :: v(:)
+         call get_reals(name, v)
+         if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
       end subroutine get_ints
       subroutine get_logicals(name, a)
          character(len=*), intent(in) :: name
          logical, allocatable, intent(out) :: a(:)
          integer, allocatable :: v(:)
-         integer :: lb, n
-         call bounds(name, lb, n)
-         if (n < 0) return
-         allocate(a(lb:lb + n - 1))
-         if (n == 0) return
-         call h5_get(h5, '/state/' // name, v)
-         if (.not. allocated(v)) return
-         if (size(v) == n) a(:) = v /= 0
+         call get_ints(name, v)
+         if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=v /= 0)
       end subroutine get_logicals
+      !> The dataset holds the size its attribute states (else an error in h5%error).
+      logical function have(name, got, n)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: got, n
+         have = got == n
+         if (.not. have .and. .not. allocated(h5%error)) h5%error = '/state/' // name // &
+            ' holds ' // itoa(got) // ' values, its :size attribute says ' // itoa(n)
+      end function have
    end subroutine read_state
 
    !> The deck values a restart must not change: 'group name = value' lines of the echo,

@@ -82,7 +82,7 @@ module spb_hdf5
    end interface h5_write
 
    interface h5_get
-      module procedure get_real_1d, get_int_1d
+      module procedure get_real_1d
    end interface h5_get
 
    interface h5_get_attr
@@ -568,39 +568,40 @@ contains
       call h5dclose_f(dset, hdferr)
    end subroutine h5_dims
 
-   !> A whole 1-D float64 dataset, allocated to its length (unallocated if absent).
+   !> Open a 1-D dataset for reading: its handle and length (false if absent).
+   logical function open_1d(h5, path, dset, n)
+      type(h5file_t), intent(inout) :: h5
+      character(len=*), intent(in) :: path
+      integer(hid_t), intent(out) :: dset
+      integer(hsize_t), intent(out) :: n
+      integer(hsize_t) :: dims(2)
+      integer :: hdferr, rank
+      n = 0
+      dset = -1
+      call h5_dims(h5, path, dims, rank)
+      open_1d = rank == 1
+      if (.not. open_1d) return
+      n = dims(1)
+      call h5dopen_f(h5%file, path, dset, hdferr)
+      call check(h5, hdferr, 'h5dopen_f ' // path)
+      open_1d = hdferr >= 0
+   end function open_1d
+
+   !> A whole 1-D dataset as float64 (HDF5 converts integer ones), allocated to its length
+   !> (unallocated if absent).
    subroutine get_real_1d(h5, path, values)
       type(h5file_t), intent(inout) :: h5
       character(len=*), intent(in) :: path
       real(wp), allocatable, intent(out) :: values(:)
       integer(hid_t) :: dset
-      integer(hsize_t) :: dims(2)
-      integer :: hdferr, rank
-      call h5_dims(h5, path, dims, rank)
-      if (rank /= 1) return
-      allocate(values(dims(1)))
-      call h5dopen_f(h5%file, path, dset, hdferr)
-      call h5dread_f(dset, H5T_NATIVE_DOUBLE, values, dims(1:1), hdferr)
+      integer(hsize_t) :: n
+      integer :: hdferr
+      if (.not. open_1d(h5, path, dset, n)) return
+      allocate(values(n))
+      call h5dread_f(dset, H5T_NATIVE_DOUBLE, values, [n], hdferr)
       call check(h5, hdferr, 'h5dread_f ' // path)
       call h5dclose_f(dset, hdferr)
    end subroutine get_real_1d
-
-   !> A whole 1-D integer dataset, allocated to its length (unallocated if absent).
-   subroutine get_int_1d(h5, path, values)
-      type(h5file_t), intent(inout) :: h5
-      character(len=*), intent(in) :: path
-      integer, allocatable, intent(out) :: values(:)
-      integer(hid_t) :: dset
-      integer(hsize_t) :: dims(2)
-      integer :: hdferr, rank
-      call h5_dims(h5, path, dims, rank)
-      if (rank /= 1) return
-      allocate(values(dims(1)))
-      call h5dopen_f(h5%file, path, dset, hdferr)
-      call h5dread_f(dset, H5T_NATIVE_INTEGER, values, dims(1:1), hdferr)
-      call check(h5, hdferr, 'h5dread_f ' // path)
-      call h5dclose_f(dset, hdferr)
-   end subroutine get_int_1d
 
    !> Columns c0+1 .. c0+size(values, 2) of a 2-D float64 dataset (rows = size(values, 1)).
    subroutine h5_get_columns(h5, path, c0, values)

@@ -227,16 +227,7 @@ contains
       marks%body = bytes - out%head
       do k = 1, 4
          ! the tail is read back through a second connection: close, read, reopen
-         select case (k)
-         case (1)
-            u = out%his
-         case (2)
-            u = out%prf
-         case (3)
-            u = out%evt
-         case default
-            u = out%frg
-         end select
+         u = text_unit(out, k)
          if (u == no_unit) cycle
          close(u)
          marks%tail_n(k) = int(min(int(tail_len, int64), marks%body(k)))
@@ -249,16 +240,7 @@ contains
          open(newunit=u, file=out%prefix // text_extensions(k), status='old', action='write', &
               position='append', iostat=ios)
          if (ios /= 0) u = no_unit
-         select case (k)
-         case (1)
-            out%his = u
-         case (2)
-            out%prf = u
-         case (3)
-            out%evt = u
-         case default
-            out%frg = u
-         end select
+         call set_text_unit(out, k, u)
       end do
       if (.not. out%hdf5) return
       marks%rows_his = h5_table_rows(out%h5, out%h_his)
@@ -267,6 +249,30 @@ contains
       marks%n_prof = out%n_prof
       marks%n_frg = out%n_frg
    end subroutine mark_outputs
+
+   !> The unit of text file k (text_extensions order).
+   pure integer function text_unit(out, k) result(u)
+      type(outputs_t), intent(in) :: out
+      integer, intent(in) :: k
+      integer :: units(4)
+      units = [out%his, out%prf, out%evt, out%frg]
+      u = units(k)
+   end function text_unit
+
+   subroutine set_text_unit(out, k, u)
+      type(outputs_t), intent(inout) :: out
+      integer, intent(in) :: k, u
+      select case (k)
+      case (1)
+         out%his = u
+      case (2)
+         out%prf = u
+      case (3)
+         out%evt = u
+      case default
+         out%frg = u
+      end select
+   end subroutine set_text_unit
 
    !> The column line that ends the header of text file k.
    pure function column_line(k) result(line)
@@ -351,8 +357,8 @@ contains
                   column_line(k) // ''': not a spallbar output' // hint)
             else if (sz - head(k) < marks%body(k)) then
                call make_error(err, '--restart: ''' // f // ''' holds ' // &
-                  itoa8(sz - head(k)) // ' bytes after its header, the checkpoint counts ' // &
-                  itoa8(marks%body(k)) // hint)
+                  itoa(sz - head(k)) // ' bytes after its header, the checkpoint counts ' // &
+                  itoa(marks%body(k)) // hint)
             else if (marks%tail_n(k) < 0) then
                call make_error(err, '--restart: the checkpoint could not read the end of ''' // &
                   f // ''' when it was written')
@@ -414,16 +420,7 @@ contains
          integer :: src, dst, ios
          character(len=256) :: msg
          associate (f => prefix // text_extensions(k))
-            select case (k)
-            case (1)
-               close(out%his)
-            case (2)
-               close(out%prf)
-            case (3)
-               close(out%evt)
-            case default
-               close(out%frg)
-            end select
+            close(text_unit(out, k))
             allocate(character(len=chunk) :: buf)
             open(newunit=src, file=f // aside, access='stream', form='unformatted', &
                  status='old', action='read', iostat=ios, iomsg=msg)
@@ -447,16 +444,7 @@ contains
                                ''': ' // trim(msg), code=exit_runtime)
                dst = no_unit
             end if
-            select case (k)
-            case (1)
-               out%his = dst
-            case (2)
-               out%prf = dst
-            case (3)
-               out%evt = dst
-            case default
-               out%frg = dst
-            end select
+            call set_text_unit(out, k, dst)
          end associate
       end subroutine copy_body
       !> PREFIX.h5: table rows and x-t times up to the marks, profile and fragment groups.
@@ -548,14 +536,6 @@ contains
       open(newunit=u, file=path, status='old', iostat=ios)
       if (ios == 0) close(u, status='delete')
    end subroutine remove_file
-
-   pure function itoa8(i) result(s)
-      integer(int64), intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write(buf, '(i0)') i
-      s = trim(buf)
-   end function itoa8
 
    !> Root attributes (program, title, deck path, layout, conventions) and /deck: one group
    !> per namelist group, one string attribute per variable (the echoed value), with
