@@ -125,15 +125,6 @@ module spb_deck
       type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
    end type deck_t
 
-   abstract interface
-      !> Read one assignment (as text) with a group's namelist.
-      subroutine namelist_try(record, ios, msg)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios
-         character(len=*), intent(inout) :: msg
-      end subroutine namelist_try
-   end interface
-
 contains
 
    logical elemental function is_set(x)
@@ -239,28 +230,6 @@ contains
    end subroutine blame
 
    !> Turn a namelist read status into an error naming the group (and the variable).
-   !> A group's namelist read failed: read its assignments one at a time with try (the
-   !> reader's own namelist) and name the first that fails.
-   subroutine find_failing(deck, group, try, err)
-      type(deck_t), intent(in) :: deck
-      character(len=*), intent(in) :: group
-      procedure(namelist_try) :: try
-      type(spb_error_t), allocatable, intent(inout) :: err
-      character(len=:), allocatable :: record, var
-      character(len=256) :: msg
-      integer :: k, ios
-      do k = 1, size(deck%scan%keys)
-         record = assignment(deck%scan, group, k, var)
-         if (len(record) == 0) cycle
-         msg = ''
-         call try(record, ios, msg)
-         if (ios /= 0) then
-            call blame(err, group, var, record, msg)
-            exit
-         end if
-      end do
-   end subroutine find_failing
-
    subroutine read_status(deck, group, ios, msg, err)
       type(deck_t), intent(in) :: deck
       character(len=*), intent(in) :: group, msg
@@ -308,6 +277,9 @@ contains
       character(len=path_len) :: checkpoint
       integer :: checkpoint_every
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
          profile_times, hdf5, model, energy_guard, field_every, checkpoint, checkpoint_every
       title = deck%run%title
@@ -326,7 +298,18 @@ contains
       energy_guard = deck%run%energy_guard
       rewind(u)
       read(u, nml=run, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'run', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'run', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=run, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'run', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'run', ios, msg, err)
       call check_word(err, 'run', 'timing', timing)
       call check_word(err, 'run', 'shift', shift)
@@ -355,13 +338,6 @@ contains
       deck%run%hdf5 = hdf5
       deck%run%model = lower(model)
       deck%run%energy_guard = energy_guard
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=run, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_run
 
    subroutine read_mesh(u, deck, err)
@@ -372,6 +348,9 @@ contains
       real(wp) :: dt
       character(len=path_len) :: fit
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /mesh/ cells, ref_segment, dt, fit
       cells = deck%mesh%cells
       ref_segment = deck%mesh%ref_segment
@@ -379,7 +358,18 @@ contains
       fit = deck%mesh%fit
       rewind(u)
       read(u, nml=mesh, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'mesh', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'mesh', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=mesh, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'mesh', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'mesh', ios, msg, err)
       call check_word(err, 'mesh', 'fit', fit)
       if (allocated(err)) return
@@ -387,13 +377,6 @@ contains
       deck%mesh%ref_segment = ref_segment
       deck%mesh%dt = dt
       deck%mesh%fit = lower(fit)
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=mesh, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_mesh
 
    subroutine read_segments(u, deck, err)
@@ -404,6 +387,9 @@ contains
       real(wp), dimension(max_segments) :: length, young, density, strength, velocity, gap
       character(len=path_len) :: interface(max_segments)
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /segments/ n, length, young, density, strength, interface, velocity, gap
       n = deck%seg%n
       length = deck%seg%length
@@ -415,7 +401,18 @@ contains
       gap = deck%seg%gap
       rewind(u)
       read(u, nml=segments, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'segments', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'segments', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=segments, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'segments', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'segments', ios, msg, err)
       do j = 1, max_segments
          call check_word(err, 'segments', 'interface(' // itoa(j) // ')', interface(j))
@@ -431,13 +428,6 @@ contains
       end do
       deck%seg%velocity = velocity
       deck%seg%gap = gap
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=segments, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_segments
 
    subroutine read_ends(u, deck, err)
@@ -448,13 +438,27 @@ contains
       real(wp) :: base_gap
       integer :: ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /ends/ top, bottom, base_gap
       top = deck%ends%top
       bottom = deck%ends%bottom
       base_gap = deck%ends%base_gap
       rewind(u)
       read(u, nml=ends, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'ends', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'ends', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=ends, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'ends', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'ends', ios, msg, err)
       call check_word(err, 'ends', 'top', top)
       call check_word(err, 'ends', 'bottom', bottom)
@@ -462,13 +466,6 @@ contains
       deck%ends%top = lower(top)
       deck%ends%bottom = lower(bottom)
       deck%ends%base_gap = base_gap
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=ends, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_ends
 
    subroutine read_load(u, deck, err)
@@ -480,6 +477,9 @@ contains
       character(len=path_len) :: table
       integer :: ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /load/ kind, face, p0, t_k, exponent, t_cut, table
       kind = deck%load%kind
       face = deck%load%face
@@ -490,7 +490,18 @@ contains
       table = deck%load%table
       rewind(u)
       read(u, nml=load, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'load', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'load', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=load, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'load', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'load', ios, msg, err)
       call check_word(err, 'load', 'kind', kind)
       call check_word(err, 'load', 'face', face)
@@ -507,13 +518,6 @@ contains
          return
       end if
       deck%load%table = table
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=load, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_load
 
    subroutine read_initial(u, deck, err)
@@ -523,25 +527,32 @@ contains
       character(len=path_len) :: state
       integer :: ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       real(wp) :: strain_rate
       namelist /initial/ state, strain_rate
       state = deck%init%state
       strain_rate = deck%init%strain_rate
       rewind(u)
       read(u, nml=initial, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'initial', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'initial', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=initial, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'initial', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'initial', ios, msg, err)
       call check_word(err, 'initial', 'state', state)
       if (allocated(err)) return
       deck%init%state = lower(state)
       deck%init%strain_rate = strain_rate
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=initial, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_initial
 
    subroutine read_strength_field(u, deck, err)
@@ -552,6 +563,9 @@ contains
       real(wp) :: modulus, scale
       integer :: seed, ios
       character(len=256) :: msg
+      character(len=256) :: msg2
+      character(len=:), allocatable :: record, var
+      integer :: k, ios2
       namelist /strength_field/ kind, modulus, scale, seed
       kind = deck%field%kind
       modulus = deck%field%modulus
@@ -559,7 +573,18 @@ contains
       seed = deck%field%seed
       rewind(u)
       read(u, nml=strength_field, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'strength_field', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'strength_field', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=strength_field, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'strength_field', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'strength_field', ios, msg, err)
       call check_word(err, 'strength_field', 'kind', kind)
       if (allocated(err)) return
@@ -567,13 +592,6 @@ contains
       deck%field%modulus = modulus
       deck%field%scale = scale
       deck%field%seed = seed
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=strength_field, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_strength_field
 
    subroutine read_sweep(u, deck, err)
@@ -582,8 +600,9 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err
       character(len=path_len) :: vary, distribution
       real(wp) :: values(max_sweep_values)
-      integer :: realizations, seed, bins, ios, k
-      character(len=256) :: msg
+      integer :: realizations, seed, bins, ios, k, ios2
+      character(len=256) :: msg, msg2
+      character(len=:), allocatable :: record, var
       namelist /sweep/ realizations, seed, vary, values, distribution, bins
       realizations = deck%sweep%realizations
       seed = deck%sweep%seed
@@ -593,7 +612,18 @@ contains
       bins = deck%sweep%bins
       rewind(u)
       read(u, nml=sweep, iostat=ios, iomsg=msg)
-      if (ios /= 0) call find_failing(deck, 'sweep', try_one, err)
+      if (ios /= 0) then
+         ! find the assignment that fails by reading them one at a time
+         do k = 1, size(deck%scan%keys)
+            record = assignment(deck%scan, 'sweep', k, var)
+            if (len(record) == 0) cycle
+            read(record, nml=sweep, iostat=ios2, iomsg=msg2)
+            if (ios2 /= 0) then
+               call blame(err, 'sweep', var, record, msg2)
+               exit
+            end if
+         end do
+      end if
       call read_status(deck, 'sweep', ios, msg, err)
       call check_word(err, 'sweep', 'vary', vary)
       call check_word(err, 'sweep', 'distribution', distribution)
@@ -609,13 +639,6 @@ contains
          if (.not. is_set(values(k))) exit
          deck%sweep%n_values = k
       end do
-   contains
-      subroutine try_one(record, ios_one, msg_one)
-         character(len=*), intent(in) :: record
-         integer, intent(out) :: ios_one
-         character(len=*), intent(inout) :: msg_one
-         read(record, nml=sweep, iostat=ios_one, iomsg=msg_one)
-      end subroutine try_one
    end subroutine read_sweep
 
    !> &sweep: what to vary and how often; every case's deck must itself be valid.
