@@ -190,6 +190,7 @@ contains
          sig = stop_signal()
          if (ck_on) then
             ! the state after everything of step n that an uninterrupted run writes too
+            ! (max: Fortran may evaluate mod before the test of ck_every)
             if (n == sim%mesh%nsteps .or. sig /= 0 .or. &
                 (ck_every > 0 .and. mod(n, max(ck_every, 1)) == 0)) call checkpoint()
             if (allocated(err)) exit
