@@ -2,24 +2,37 @@
 #   make setup     install the Debian packages and the Python venv (needs root or sudo)
 #   make           Release build in build/release
 #   make run       build and run the seed example deck (input/$(RUN_DECK).nml)
-#   make test      Debug build (all checks on, -std=f2008) and ctest
+#   make test      Debug build (all checks on, -std=f2008) and ctest; unit tests under real
+#                  pFUnit with PFUNIT_PREFIX=DIR, else under the translator (doc/build.md)
+#   make test-translator  the .pf unit tests again through tests/pf2f90.py (what CI adds)
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): figure, table
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
-BUILD_DEBUG   ?= build/debug
+# Unit-test framework: PFUNIT_PREFIX=DIR (pFUnit 4.14 installed there, e.g. by
+# ../shared/tools/pfunit/build-pfunit.sh DIR) builds the tests against real pFUnit in its own
+# folder; without it CMake looks for pFUnit and falls back to the translator.
+PFUNIT_PREFIX ?=
+ifneq ($(strip $(PFUNIT_PREFIX)),)
+BUILD_DEBUG    ?= build/debug-pfunit
+TEST_FRAMEWORK ?= pfunit
+else
+BUILD_DEBUG    ?= build/debug
+TEST_FRAMEWORK ?= auto
+endif
+CTEST_ARGS ?=
 RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug run test figures bench fragmentation clean help
+.PHONY: all setup build debug debug-configure run test test-translator figures bench fragmentation clean help
 
 all: build
 
 help:
-	@sed -n '1,9p' Makefile
+	@sed -n '1,11p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -27,13 +40,15 @@ setup:
 $(BUILD_RELEASE)/build.ninja:
 	cmake -S . -B $(BUILD_RELEASE) $(CMAKE_COMMON) -DCMAKE_BUILD_TYPE=Release -DSPALLBAR_BUILD_TESTING=OFF
 
-$(BUILD_DEBUG)/build.ninja:
-	cmake -S . -B $(BUILD_DEBUG) $(CMAKE_COMMON) -DCMAKE_BUILD_TYPE=Debug -DSPALLBAR_BUILD_TESTING=ON
+# configured on every call: the framework given now wins over what the folder cached
+debug-configure:
+	cmake -S . -B $(BUILD_DEBUG) $(CMAKE_COMMON) -DCMAKE_BUILD_TYPE=Debug -DSPALLBAR_BUILD_TESTING=ON \
+	  -DSPALLBAR_TEST_FRAMEWORK=$(TEST_FRAMEWORK) $(if $(strip $(PFUNIT_PREFIX)),-DCMAKE_PREFIX_PATH=$(abspath $(PFUNIT_PREFIX)))
 
 build: $(BUILD_RELEASE)/build.ninja
 	cmake --build $(BUILD_RELEASE) -j $(JOBS)
 
-debug: $(BUILD_DEBUG)/build.ninja
+debug: debug-configure
 	cmake --build $(BUILD_DEBUG) -j $(JOBS)
 
 run: build
@@ -42,7 +57,12 @@ run: build
 	@echo "outputs: $(BUILD_RELEASE)/runs/$(RUN_DECK).{his,prf,evt,frg}"
 
 test: debug
-	cd $(BUILD_DEBUG) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD_DEBUG) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+	@python3 tests/pf_summary.py $(BUILD_DEBUG)
+
+test-translator:
+	$(MAKE) test PFUNIT_PREFIX= TEST_FRAMEWORK=translator BUILD_DEBUG=build/debug-translator \
+	  CTEST_ARGS="-L pf"
 
 figures: build
 	cmake --build $(BUILD_RELEASE) --target figures

@@ -6,7 +6,9 @@
 !> harness's own state, as in pFUnit; the library under test has none.
 module funit
    use, intrinsic :: iso_fortran_env, only: real64, output_unit
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan, ieee_class, &
+      ieee_positive_inf, ieee_negative_inf, ieee_positive_zero, ieee_negative_zero, &
+      operator(==)
    implicit none
    private
    public :: assertEqual, assertNotEqual, assertRelativelyEqual, assertTrue, assertFalse
@@ -18,6 +20,8 @@ module funit
    logical :: failed = .false.
    integer :: n_run = 0, n_failed = 0
    character(len=256) :: current = ''
+   character(len=*), parameter :: nonfinite_array = 'non-finite array element in ' // &
+      'AssertEqual (pFUnit 4.14 stops with SIGFPE here under the Debug traps)'
 
    interface assertEqual
       module procedure eq_r_r, eq_r_r1, eq_r1_r1, eq_i_i, eq_i1_i1, eq_c_c, eq_l_l
@@ -119,10 +123,24 @@ contains
       real(dp) :: tol
       tol = 0.0_dp
       if (present(tolerance)) tol = tolerance
+      ! pFUnit 4.14 passes equal infinities (Inf = Inf) and fails Inf against anything
+      ! else; it never forms Inf - Inf, which the Debug traps would turn into SIGFPE.
+      if (.not. (ieee_is_finite(expected) .and. ieee_is_finite(actual))) then
+         if (.not. same_infinity(expected, actual)) call fail('expected ' // r2s(expected) // &
+            ' but found ' // r2s(actual), message, location)
+         return
+      end if
       if (.not. (abs(actual - expected) <= tol)) call fail('expected ' // r2s(expected) // &
          ' but found ' // r2s(actual) // ' (difference ' // r2s(abs(actual - expected)) // &
          ' > tolerance ' // r2s(tol) // ')', message, location)
    end subroutine eq_r_r
+
+   !> Both values are the same infinity (no NaN): what pFUnit's scalar assertEqual accepts.
+   logical function same_infinity(a, b)
+      real(dp), intent(in) :: a, b
+      same_infinity = ieee_class(a) == ieee_class(b) .and. &
+         (ieee_class(a) == ieee_positive_inf .or. ieee_class(a) == ieee_negative_inf)
+   end function same_infinity
 
    subroutine eq_r_r1(expected, actual, tolerance, message, location)
       real(dp), intent(in) :: expected, actual(:)
@@ -144,6 +162,10 @@ contains
       if (size(expected) /= size(actual)) then
          call fail('arrays differ in size: expected ' // i2s(size(expected)) // ', found ' // &
                    i2s(size(actual)), message, location)
+         return
+      end if
+      if (.not. (all(ieee_is_finite(expected)) .and. all(ieee_is_finite(actual)))) then
+         call fail(nonfinite_array, message, location)
          return
       end if
       do k = 1, size(actual)
@@ -184,8 +206,10 @@ contains
    subroutine eq_c_c(expected, actual, message, location)
       character(len=*), intent(in) :: expected, actual
       character(len=*), intent(in), optional :: message, location
-      if (expected /= actual) call fail('expected ''' // expected // ''' but found ''' // &
-                                        actual // '''', message, location)
+      ! pFUnit 4.14's default: leading and trailing blanks are ignored, inner ones count
+      ! (Fortran's == already pads the shorter string with trailing blanks).
+      if (adjustl(expected) /= adjustl(actual)) call fail('expected ''' // expected // &
+         ''' but found ''' // actual // '''', message, location)
    end subroutine eq_c_c
 
    subroutine eq_l_l(expected, actual, message, location)
@@ -203,6 +227,18 @@ contains
    subroutine rel_r_r(expected, actual, tolerance, message, location)
       real(dp), intent(in) :: expected, actual, tolerance
       character(len=*), intent(in), optional :: message, location
+      ! pFUnit 4.14 fails expected = 0 whatever actual is; it dies of SIGFPE on a non-finite
+      ! value under the Debug traps (a failing verdict too).
+      if (.not. (ieee_is_finite(expected) .and. ieee_is_finite(actual))) then
+         call fail('non-finite value in AssertRelativelyEqual (pFUnit 4.14 stops with ' // &
+                   'SIGFPE here under the Debug traps)', message, location)
+         return
+      end if
+      if (ieee_class(expected) == ieee_positive_zero .or. &
+          ieee_class(expected) == ieee_negative_zero) then
+         call fail('Zero denominator detected in AssertRelativelyEqual.', message, location)
+         return
+      end if
       if (.not. (abs(actual - expected) <= tolerance * abs(expected))) call fail('expected ' &
          // r2s(expected) // ' but found ' // r2s(actual) // ' (relative difference ' // &
          r2s(abs(actual - expected) / abs(expected)) // ' > ' // r2s(tolerance) // ')', &

@@ -1,13 +1,21 @@
 #!/usr/bin/env python3
 """Translate the subset of pFUnit .pf syntax that spallbar uses into plain Fortran.
 
-Used only when CMake finds no real pFUnit. The same .pf files compile under real pFUnit
-(see ../shared/spec/PFUNIT.md); this translator gives the same verdicts:
+Used when the build is configured without real pFUnit (SPALLBAR_TEST_FRAMEWORK=translator,
+or no pFUnit found). The same .pf files compile under real pFUnit 4.14 (see
+../shared/spec/PFUNIT.md and doc/build.md); this translator gives the same verdicts:
 
   * @test, @before, @after, @disable annotate the next `subroutine NAME`;
   * @assertXxx(args) becomes `call assertXxx(args, location='file:line')` followed by
     `if (anyExceptions()) return` (a test stops at its first failing assertion);
   * `use funit` resolves to tests/funit.f90, the fallback implementation.
+
+It refuses (exit 1, `pf2f90: FILE:LINE: ...`) every directive that pFUnit 4.14 cannot take:
+a directive whose pFUnit translation `  call assertXxx(ARGS, &` is longer than 132 columns
+(funitproc copies the arguments onto one line, and gfortran stops at "Line truncated"), a
+directive continued with `&` or followed by a comment, an assertion with fewer arguments
+than pFUnit's parser requires (it leaves such a line untranslated), arguments on @test,
+@before, @after or @disable, and any directive outside the subset below.
 
 Usage:
   pf2f90.py FILE.pf --list                 print the test names, one per line
@@ -31,6 +39,15 @@ ASSERTS = {
     "assertisnan": "assertIsNaN",
     "assertfail": "assertFail",
 }
+# pFUnit 4.14 (bin/funit/pFUnitParser.py, assert_operands): an @assert line with fewer
+# comma-separated operands than this is not recognised and stays in the source untranslated.
+MIN_OPERANDS = {
+    "assertequal": 2, "assertnotequal": 2, "assertrelativelyequal": 2, "asserttrue": 1,
+    "assertfalse": 1, "assertlessthan": 2, "assertlessthanorequal": 2,
+    "assertgreaterthan": 2, "assertgreaterthanorequal": 2, "assertisfinite": 1,
+    "assertisnan": 1, "assertfail": 0,
+}
+FORTRAN_LINE_LIMIT = 132  # gfortran free form; pFUnit's build treats truncation as an error
 DIRECTIVE = re.compile(r"^(\s*)@(\w+)\s*(\((.*)\))?\s*$")
 SUBROUTINE = re.compile(r"^\s*subroutine\s+(\w+)", re.IGNORECASE)
 MODULE = re.compile(r"^\s*module\s+(\w+)\s*$", re.IGNORECASE)
@@ -67,6 +84,27 @@ def split_args(args):
     return parts
 
 
+def pfunit_line(variant, args):
+    """The line funitproc 4.14 writes for `@assert<variant>(<args>)` (AtAssert.action)."""
+    line = "  call assert" + variant + "(" + args
+    if args and not args.isspace():
+        line += ", "
+    return line + "&"
+
+
+def check_assert(path, lineno, written, name, args):
+    """Refuse what pFUnit cannot take; `written` is the directive's name as in the file."""
+    operands = args.count(",") + (1 if args and not args.isspace() else 0)
+    if operands < MIN_OPERANDS[name]:
+        raise PfError(f"{path}:{lineno}: @{written} needs at least {MIN_OPERANDS[name]} "
+                      "argument(s); pFUnit would leave the line untranslated")
+    width = len(pfunit_line(written[len("assert"):], args))
+    if width > FORTRAN_LINE_LIMIT:
+        raise PfError(f"{path}:{lineno}: @{written} becomes a {width}-column line under "
+                      f"pFUnit (limit {FORTRAN_LINE_LIMIT}: funitproc puts all arguments on "
+                      "one line); shorten it, e.g. with a local variable")
+
+
 def translate(path):
     base = os.path.splitext(os.path.basename(path))[0]
     out, tests, before, after = [], [], None, None
@@ -78,6 +116,8 @@ def translate(path):
         m = DIRECTIVE.match(line)
         if m:
             indent, name, _, args = m.group(1), m.group(2).lower(), m.group(3), m.group(4)
+            if name in ("test", "before", "after", "disable") and m.group(3) is not None:
+                raise PfError(f"{path}:{lineno}: @{m.group(2)} takes no arguments here")
             if name == "test":
                 pending = "disabled" if pending == "disabled" else "test"
             elif name in ("before", "after", "disable"):
@@ -85,6 +125,7 @@ def translate(path):
             elif name in ASSERTS:
                 if args is None:
                     raise PfError(f"{path}:{lineno}: @{m.group(2)} needs (arguments)")
+                check_assert(path, lineno, m.group(2), name, args)
                 parts = split_args(args) + [f"location='{base}.pf:{lineno}'"]
                 # one argument per continuation line keeps every line within 132 columns
                 body = (", &\n" + indent + "   ").join(parts)
