@@ -35,6 +35,8 @@ module spb_deck
       real(wp) :: gravity = 0.0_wp                      !! acceleration along +x [m/s^2]
       character(len=name_len) :: timing = 'accelerate'  !! collision timing rule
       character(len=name_len) :: shift = 'above'        !! collision shift policy
+      character(len=name_len) :: events = 'admissible' !! event rules: 'admissible' (they never
+                                                        !! create wave energy) | 'paper' (literal)
       real(wp) :: eps_rel = 1.0e-9_wp                   !! round-off guard of the fracture test [-]
       integer :: history_every = 1                      !! steps between history rows
       integer :: field_every = 0                        !! steps between x-t field rows in
@@ -270,7 +272,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err
       character(len=path_len) :: title
       real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
-      character(len=path_len) :: timing, shift, model
+      character(len=path_len) :: timing, shift, model, events
       integer :: history_every, field_every, ios
       logical :: hdf5
       real(wp) :: energy_guard
@@ -281,7 +283,8 @@ contains
       character(len=:), allocatable :: record, var
       integer :: k, ios2
       namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
-         profile_times, hdf5, model, energy_guard, field_every, checkpoint, checkpoint_every
+         profile_times, hdf5, model, energy_guard, field_every, checkpoint, checkpoint_every, &
+         events
       title = deck%run%title
       checkpoint = deck%run%checkpoint
       checkpoint_every = deck%run%checkpoint_every
@@ -289,6 +292,7 @@ contains
       gravity = deck%run%gravity
       timing = deck%run%timing
       shift = deck%run%shift
+      events = deck%run%events
       eps_rel = deck%run%eps_rel
       history_every = deck%run%history_every
       field_every = deck%run%field_every
@@ -313,6 +317,7 @@ contains
       call read_status(deck, 'run', ios, msg, err)
       call check_word(err, 'run', 'timing', timing)
       call check_word(err, 'run', 'shift', shift)
+      call check_word(err, 'run', 'events', events)
       call check_word(err, 'run', 'model', model)
       if (allocated(err)) return
       if (len_trim(title) == len(title)) then
@@ -331,6 +336,7 @@ contains
       deck%run%gravity = gravity
       deck%run%timing = lower(timing)
       deck%run%shift = lower(shift)
+      deck%run%events = lower(events)
       deck%run%eps_rel = eps_rel
       deck%run%history_every = history_every
       deck%run%field_every = field_every
@@ -872,6 +878,8 @@ contains
       call need_choice(err, 'run', 'timing', run%timing, [character(len=10) :: 'accelerate', &
                        'delay', 'min'])
       call need_choice(err, 'run', 'shift', run%shift, [character(len=8) :: 'above', 'fragment'])
+      call need_choice(err, 'run', 'events', run%events, [character(len=10) :: 'admissible', &
+                       'paper'])
       call need_choice(err, 'run', 'model', run%model, [character(len=9) :: 'half-mass', 'full-mass'])
       call need_finite(err, 'run', 'eps_rel', run%eps_rel)
       if (allocated(err)) return
@@ -1172,6 +1180,7 @@ contains
       call item('run', 'gravity', rtoa(deck%run%gravity), 'm/s^2')
       call item('run', 'timing', quote(deck%run%timing), '')
       call item('run', 'shift', quote(deck%run%shift), '')
+      call item('run', 'events', quote(deck%run%events), '')
       call item('run', 'eps_rel', rtoa(deck%run%eps_rel), '-')
       call item('run', 'history_every', itoa(deck%run%history_every), 'steps')
       v = ''

@@ -12,9 +12,16 @@ module spb_fracture
    use spb_state, only: state_t, open_node
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
    use spb_arrays, only: append
+   use spb_wave, only: fragment_characteristics
    implicit none
    private
-   public :: fracture_step, node_energy, fragment_span, shift_span, span_mass, new_fragment_id, first_overlap
+   public :: fracture_step, events_admissible, events_paper, node_energy, fragment_span
+   public :: shift_span, span_mass, new_fragment_id, first_overlap
+
+   !> Event rules: 'admissible' keeps the continuum state a break or a lift-off acts on (no
+   !> wave energy is created, no Jordan component is left); 'paper' is the paper's literal
+   !> stage-1/stage-2 correction (doc/method.md, "Admissible events").
+   integer, parameter :: events_admissible = 1, events_paper = 2
 
 contains
 
@@ -94,12 +101,14 @@ contains
 
    !> Test every joined interior node at t^{n+1} = st%n dt and break those in tension
    !> beyond their strength; append one event per fracture.
-   pure subroutine fracture_step(mesh, st, g, eps_rel, events)
+   pure subroutine fracture_step(mesh, st, g, eps_rel, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g          !! gravity [m/s^2]
       real(wp), intent(in) :: eps_rel    !! round-off guard, relative to the stress scale
       type(event_list_t), intent(inout) :: events
+      integer, intent(in) :: rules       !! events_admissible | events_paper
+      real(wp), intent(in) :: i_top, i_bot  !! face-load integrals over the step [Pa s]
       integer, allocatable :: brk(:)
       real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
       integer :: cand(mesh%n)
@@ -111,7 +120,8 @@ contains
       if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%base_contact)) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%sec(mesh%n)))
       eps = eps_rel * st%s_scale
-      if (mesh%bottom == end_base .and. st%base_contact) call lift_off(mesh, st, g, eps, events)
+      if (mesh%bottom == end_base .and. st%base_contact) call lift_off(mesh, st, g, eps, events, &
+                                                                       rules, i_top, i_bot)
       if (st%n_breakable == 0) return
       if (mesh%full_mass) then
          call cut_springs(mesh, st, eps, events)
@@ -130,6 +140,10 @@ contains
       if (nb == 0) return
       allocate(brk(nb), d_a(nb), d_b(nb), s_brk(nb))
       brk = cand(1:nb)
+      if (rules == events_admissible) then
+         call break_admissible(mesh, st, g, brk, i_top, i_bot, events)
+         return
+      end if
       dt2 = mesh%dt**2
       ! stage 1, (3.4)-(3.6): each adjacent cell loses exactly S; the new faces are free
       do m = 1, nb
@@ -195,20 +209,128 @@ contains
       end do
    end subroutine fracture_step
 
+   !> The admissible break of the sections brk (ascending). A section found at t^{n+1} with
+   !> S^{n+1/2} < -R carried that tension over the step just taken: the crack opened at t^n
+   !> (the method's bound (4.1)). So the step is redone for the new faces from the continuum
+   !> state at t^n, which the break leaves as it is: over the step the upper face moves by
+   !> 2 f_i, the lower by 2 g_{i+1} (the t^n intervals of the cells above and below, read
+   !> from the fragment before any of this step's breaks; spb_wave), and the two cells'
+   !> stresses follow. The wave energy is conserved, momentum too (m_A 2 f_i + m_B 2 g_{i+1}
+   !> = m_i du_i), both new fragments are free of the Jordan component; for a homogeneous
+   !> bar this is the paper's stage 1 with S the continuum section stress of the step. The
+   !> faces open by what the continuum opens them in one step (no stage 2). The scheme's
+   !> own measure changes by what e_fracture books.
+   pure subroutine break_admissible(mesh, st, g, brk, i_top, i_bot, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: brk(:)
+      real(wp), intent(in) :: i_top, i_bot
+      type(event_list_t), intent(inout) :: events
+      real(wp) :: du_a(size(brk)), du_b(size(brk)), s_brk(size(brk)), e0
+      real(wp), allocatable :: f(:), gw(:)
+      integer :: m, i, j, k, parent
+      type(event_t) :: ev
+      m = 1
+      do while (m <= size(brk))
+         call fragment_span(mesh, st, brk(m), j, k)
+         allocate(f(j+1:k), gw(j+1:k))
+         call fragment_characteristics(mesh, st, j, k, i_top, i_bot, .true., f, gw)
+         do while (m <= size(brk))
+            if (brk(m) >= k) exit
+            du_a(m) = 2.0_wp * f(brk(m))
+            du_b(m) = 2.0_wp * gw(brk(m) + 1)
+            m = m + 1
+         end do
+         deallocate(f, gw)
+      end do
+      do m = 1, size(brk)
+         i = brk(m)
+         s_brk(m) = st%sec(i)
+         e0 = node_energy(mesh, st, g, i)
+         ! the step redone from t^n for the two faces: u, du and the two cells' s^{n+1}
+         st%s(i) = st%s(i) - mesh%stiff(i) * (du_a(m) - st%dua(i))
+         st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * (du_b(m) - st%dub(i))
+         st%ua(i) = st%ua(i) + (du_a(m) - st%dua(i))
+         st%ub(i) = st%ub(i) + (du_b(m) - st%dub(i))
+         st%dua(i) = du_a(m)
+         st%dub(i) = du_b(m)
+         call open_node(st, i)
+         st%strength(i) = 0.0_wp
+         st%sec(i) = 0.0_wp
+         st%n_breakable = st%n_breakable - 1
+         st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
+      end do
+      do m = 1, size(brk)
+         i = brk(m)
+         call fragment_span(mesh, st, i, j, k)
+         parent = st%frag_id(j)
+         call new_fragment_id(st, parent, j)
+         call new_fragment_id(st, parent, i)
+         ev%kind = ev_fracture
+         if (st%cracked(i)) ev%kind = ev_separation
+         st%cracked(i) = .true.
+         ev%step = st%n
+         ev%node = i
+         ev%t = real(st%n, wp) * mesh%dt
+         ev%x = mesh%x(i)
+         ev%stress = s_brk(m)
+         ev%dt_bound = mesh%dt
+         ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
+         ev%opening = st%ub(i) - st%ua(i)
+         ev%frag_above = st%frag_id(j)
+         ev%frag_below = st%frag_id(i)
+         call push_event(events, ev)
+      end do
+   end subroutine break_admissible
+
    !> The bar leaves the rigid base when the base section stress falls below -eps (the
-   !> base has no tensile strength): stage 1 and 2 on the bar side only.
-   pure subroutine lift_off(mesh, st, g, eps, events)
+   !> base has no tensile strength): 'paper', stage 1 and 2 on the bar side only;
+   !> 'admissible', as a break: the bar left at t^n, and its bottom face moves over the step
+   !> by 2 f_n of the continuum state at t^n (the base's impulse of the step is given back).
+   pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g, eps
       type(event_list_t), intent(inout) :: events
+      integer, intent(in) :: rules
+      real(wp), intent(in) :: i_top, i_bot
       real(wp) :: s_base, d_a, e0, de
+      real(wp), allocatable :: f(:), gw(:)
       integer :: n, j, k
       type(event_t) :: ev
       n = mesh%n
       if (any(st%skip_test(1:st%n_skip) == n)) return
       if (.not. (st%sec(n) < -eps)) return
       s_base = st%sec(n)
+      if (rules == events_admissible .and. .not. mesh%full_mass) then
+         call fragment_span(mesh, st, n, j, k)
+         allocate(f(j+1:n), gw(j+1:n))
+         call fragment_characteristics(mesh, st, j, n, i_top, i_bot, .true., f, gw)
+         e0 = node_energy(mesh, st, g, n)
+         d_a = st%dua(n) - 2.0_wp * f(n)
+         st%s(n) = st%s(n) + mesh%stiff(n) * d_a
+         st%ua(n) = st%ua(n) - d_a
+         st%ub(n) = st%ua(n)
+         st%dua(n) = 2.0_wp * f(n)
+         st%dub(n) = st%dua(n)
+         st%i_support = st%i_support - mesh%ma(n) * d_a / mesh%dt
+         st%base_contact = .false.
+         st%sec(n) = 0.0_wp
+         st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
+         ev%kind = ev_separation
+         ev%step = st%n
+         ev%node = n
+         ev%t = real(st%n, wp) * mesh%dt
+         ev%x = mesh%x(n)
+         ev%stress = s_base
+         ev%dt_bound = mesh%dt
+         ev%dx_bound = 0.0_wp
+         ev%opening = st%u_base - st%ua(n)
+         ev%frag_above = st%frag_id(j)
+         call push_event(events, ev)
+         return
+      end if
       ! the full-mass model lets go without corrections (it has no section stresses)
       d_a = merge(0.0_wp, -s_base * mesh%dt**2 / mesh%dm(n), mesh%full_mass)
       e0 = node_energy(mesh, st, g, n)

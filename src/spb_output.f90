@@ -26,17 +26,18 @@ module spb_output
 
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
-      // 'w_transmit ledger e_fracture e_join e_shift e_contact i_gravity i_ends i_support p_shift'
+      // 'w_transmit ledger e_fracture e_join e_shift e_contact i_gravity i_ends i_support p_shift ' &
+      // 'e_wave e_wave_g jordan'
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
-      // 'p_shift [kg/(m s)] along +x (down)'
+      // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
    character(len=*), parameter :: event_columns = 't step kind node x stress dt_bound ' &
       // 'dx_bound opening frag_above frag_below stress_bound shift'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
    character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
-      fmt_real // '),1x,i20,13(1x,' // fmt_real // '))'
+      fmt_real // '),1x,i20,16(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
       '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
@@ -693,7 +694,7 @@ contains
          u = 's'
       case ('reaction_bottom', 'reaction_top', 's_end_top', 's_end_bottom')
          u = 'Pa'
-      case ('fragments', 'step')
+      case ('fragments', 'step', 'jordan')
          u = '-'
       case ('momentum', 'i_gravity', 'i_ends', 'i_support', 'p_shift')
          u = 'kg/(m s)'
@@ -729,23 +730,28 @@ contains
    subroutine write_history_row(out, t, reaction_bottom, reaction_top, fragments, e_kin, &
                                 e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
                                 s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, &
-                                e_shift, e_contact, i_gravity, i_ends, i_support, p_shift)
+                                e_shift, e_contact, i_gravity, i_ends, i_support, p_shift, &
+                                e_wave, e_wave_g, jordan)
       type(outputs_t), intent(inout) :: out
       real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
       real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
       real(wp), intent(in) :: e_fracture, e_join, e_shift, e_contact
       real(wp), intent(in) :: i_gravity, i_ends, i_support, p_shift
+      real(wp), intent(in) :: e_wave     !! continuum energy of the lattice state (spb_wave) [J/m^2]
+      real(wp), intent(in) :: e_wave_g   !! its gravity term -(g dt/2) sum J' [J/m^2]
+      real(wp), intent(in) :: jordan     !! largest relative Jordan amplitude of a fragment [-]
       integer, intent(in) :: fragments, step
       ! fmt_his, written by the fast formatters into one line (the same characters as the
       ! edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
-      character(len=24 * 21) :: line
+      character(len=27 * 21) :: line
       integer :: k
-      real(wp) :: v(24)
+      real(wp) :: v(27)
       v = [t, reaction_bottom, reaction_top, 0.0_wp, e_kin, e_strain, e_pot, w_ext, e_lost, &
            momentum, 0.0_wp, s_end_top, s_end_bottom, w_load, w_transmit, ledger, e_fracture, &
-           e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift]
+           e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift, e_wave, e_wave_g, &
+           jordan]
       line = ' '
-      do k = 1, 24
+      do k = 1, 27
          select case (k)
          case (4)
             line(21 * k - 19:21 * k) = int_right(fragments, 20)

@@ -13,10 +13,11 @@ module spb_sim
    use spb_mesh, only: mesh_t, build_mesh
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
-   use spb_step, only: advance, advance_joined, joined_only, end_stresses
+   use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
+   use spb_wave, only: wave_t, wave_energy
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t
    use spb_events, only: event_list_t, ev_fracture
-   use spb_fracture, only: fracture_step
+   use spb_fracture, only: fracture_step, events_admissible, events_paper
    use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
@@ -56,7 +57,8 @@ contains
    pure subroutine sim_step(sim, events)
       type(sim_t), intent(inout) :: sim
       type(event_list_t), intent(inout) :: events   !! events of this step are appended
-      integer :: timing, policy
+      integer :: timing, policy, rules
+      real(wp) :: i_top, i_bot
       select case (sim%deck%run%timing)
       case ('delay')
          timing = timing_delay
@@ -69,7 +71,11 @@ contains
       if (sim%deck%run%shift == 'fragment') policy = shift_fragment
       call advance(sim%mesh, sim%load, sim%deck%run%gravity, sim%st)
       call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events)
-      call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events)
+      rules = events_admissible
+      if (sim%deck%run%events == 'paper') rules = events_paper
+      call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
+      call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events, &
+                         rules, i_top, i_bot)
    end subroutine sim_step
 
    !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
@@ -257,7 +263,8 @@ contains
       end subroutine checkpoint
       subroutine row()
          type(energies_t) :: e
-         real(wp) :: s_top, s_bot
+         type(wave_t) :: wv
+         real(wp) :: s_top, s_bot, i_top, i_bot
          integer :: i
          e = energies(sim%mesh, sim%st, g)
          call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
@@ -274,6 +281,8 @@ contains
             if (to_files) call flush_outputs(out)
             return
          end if
+         call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
+         wv = wave_energy(sim%mesh, sim%st, g, i_top, i_bot)
          summary%e_kin_end = e%e_kin
          summary%w_ext_end = e%w_ext
          if (to_files) call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
@@ -281,7 +290,7 @@ contains
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
             e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
             g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
-            sim%st%i_ends, sim%st%i_support, sim%st%p_shift)
+            sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
          call guard(e)
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))

@@ -2,12 +2,12 @@
 module spb_step
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base
-   use spb_load, only: load_t, load_none, face_top, step_load
+   use spb_load, only: load_t, load_none, face_top, step_load, load_integral
    use spb_state, only: state_t
    use spb_section, only: section_stress_a, section_stress_b
    implicit none
    private
-   public :: advance, advance_joined, joined_only, end_stresses
+   public :: advance, advance_joined, joined_only, end_stresses, face_load_integrals
 
    !> What one step did at the two end nodes: what the end stresses' impulse and work, the
    !> supports' impulse and the support section stresses of that step are booked from.
@@ -60,6 +60,26 @@ contains
          if (load%face /= face_top) s_bot = s_bot + 2.0_wp * p
       end select
    end subroutine end_stresses
+
+   !> Integrals of the load over the step that ends at t^step, on a free top and a free bottom
+   !> face [Pa s] (0 where the load acts elsewhere or the face is not free): the exact work
+   !> of the load on the continuum state is I du / dt (spb_wave).
+   pure subroutine face_load_integrals(mesh, load, step, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh
+      type(load_t), intent(in) :: load
+      integer, intent(in) :: step
+      real(wp), intent(out) :: i_top, i_bot
+      real(wp) :: q
+      i_top = 0.0_wp
+      i_bot = 0.0_wp
+      if (load%kind == load_none .or. step < 1) return
+      q = load_integral(load, real(step - 1, wp) * mesh%dt, real(step, wp) * mesh%dt)
+      if (load%face == face_top) then
+         if (mesh%top == end_free) i_top = q
+      else
+         if (mesh%bottom == end_free) i_bot = q
+      end if
+   end subroutine face_load_integrals
 
    !> Advance the state from t^n to t^{n+1}.
    pure subroutine advance(mesh, load, g, st)

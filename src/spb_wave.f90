@@ -1,0 +1,244 @@
+!> The continuum energy a lattice state represents, and its zig-zag Jordan amplitude
+!> (METHOD.md §8; doc/method.md, "Wave energy").
+!>
+!> At dx = a dt the lattice reproduces at its nodes every solution u = F(t - x/a) + G(t + x/a)
+!> of each cell (plus g t^2/2 under gravity). A lattice state at t^{n+1} (cell stresses
+!> s^{n+1}, increments du^{n+1}) is read as the characteristic intervals of every cell: f_k
+!> (the down-going wave's rise over one step) and g_k (the up-going one's), with
+!>    cell k:         Z_k (f_k - g_k) = s_k dt
+!>    joined node i:  m_i du_i / dt   = Z_{i+1} f_{i+1} + Z_i g_i
+!>    free top face:  m du / dt       = Z f - I/2      (I: integral of the face load over the step)
+!>    free bottom:    m du / dt       = Z g + I/2
+!> (a held or transmitting end gives no equation). The energy of that continuum state,
+!>    E = sum_k Z_k (f_k^2 + g_k^2) / dt  =  integral of rho v^2/2 + sigma^2/(2E),
+!> is non-negative, zero only at rest or in rigid motion, and conserved exactly by the intact
+!> scheme (g = 0, no load). A fragment with two free faces has one equation more than
+!> unknowns: their compatibility residual
+!>    J = sum_i (-1)^(i - top) (m_i du_i / dt + s_i dt)   (s_i: the cell above node i)
+!> minus the load terms is the amplitude along the Jordan partner of the zig-zag mode (it
+!> grows linearly when not zero) and must stay at round-off. A fragment held at both ends
+!> has one unknown more than equations (the zig-zag standing wave with nodes at every node):
+!> the smallest energy is taken. Under gravity E + e_pot - (g dt / 2) sum_f J'_f (J' the same
+!> alternating sum with the loads) is the exactly conserved total (checked for every
+!> combination of held and free ends, homogeneous and layered).
+module spb_wave
+   use spb_kinds, only: wp
+   use spb_mesh, only: mesh_t, end_free, end_base
+   use spb_state, only: state_t
+   implicit none
+   private
+   public :: wave_t, wave_energy, fragment_wave, fragment_characteristics
+
+   !> The whole bar's wave energy and the largest Jordan amplitude of its fragments.
+   type :: wave_t
+      real(wp) :: e_wave = 0.0_wp      !! sum of the fragments' continuum energies [J/m^2]
+      real(wp) :: e_gravity = 0.0_wp   !! -(g dt/2) sum_f J'_f: with e_pot the exact gravity
+                                       !! energy of the lattice [J/m^2]
+      real(wp) :: jordan = 0.0_wp      !! largest |J| / (its fragment's momentum scale) [-]
+      real(wp) :: jordan_abs = 0.0_wp  !! largest |J| [kg/(m s)]
+   end type wave_t
+
+contains
+
+   !> Wave energy of the bar at t^{n+1} = st%n dt. i_top, i_bot: integrals of the load on the
+   !> top and bottom faces over the step just taken [Pa s] (0 where no load acts there).
+   pure function wave_energy(mesh, st, g, i_top, i_bot) result(w)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g        !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top, i_bot
+      type(wave_t) :: w
+      real(wp) :: e, jp, jr, ja
+      integer :: c, top, bot
+      top = 0
+      do c = 1, st%n_split + 1
+         if (c <= st%n_split) then
+            bot = st%split(c)
+         else
+            bot = mesh%n
+         end if
+         call fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jp, jr, ja)
+         w%e_wave = w%e_wave + e
+         w%e_gravity = w%e_gravity - 0.5_wp * g * mesh%dt * jp
+         w%jordan = max(w%jordan, jr)
+         w%jordan_abs = max(w%jordan_abs, ja)
+         top = bot
+      end do
+   end function wave_energy
+
+   !> The continuum reading of one fragment, nodes top..bot (top: 0 or a split node whose
+   !> lower half it owns; bot: n or a split node whose upper half it owns).
+   pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
+      real(wp), intent(out) :: e             !! continuum energy [J/m^2]
+      real(wp), intent(out) :: jprime        !! alternating sum J' with the load terms [kg/(m s)]
+      real(wp), intent(out) :: jordan        !! |J| / momentum scale (0 unless two free faces) [-]
+      real(wp), intent(out) :: jordan_abs    !! |J| [kg/(m s)]
+      real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot))
+      integer :: k
+      call fragment_h(mesh, st, top, bot, i_top, i_bot, .false., h, sdt, jprime, jordan, &
+                      jordan_abs)
+      e = 0.0_wp
+      do k = top + 1, bot
+         e = e + (h(k)**2 + (h(k) + sdt(k))**2) / (mesh%z(k) * mesh%dt)
+      end do
+   end subroutine fragment_wave
+
+   !> The characteristic intervals of the fragment's cells at t^n (at_n: read from s^n and
+   !> du^{n+1}; the waves that arrive at the nodes during the step) or at t^{n+1} (from
+   !> s^{n+1} and du^{n+1}): f_k (down-going) and g_k (up-going) rise over one step [m].
+   !> Over the step a joined node moves by 2 (Z_i f_i + Z_{i+1} g_{i+1}) / (Z_i + Z_{i+1})
+   !> (t^n intervals), a free bottom face by 2 f_i, a free top face by 2 g_{i+1}.
+   pure subroutine fragment_characteristics(mesh, st, top, bot, i_top, i_bot, at_n, f, g)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
+      logical, intent(in) :: at_n
+      real(wp), intent(out) :: f(top+1:), g(top+1:)
+      real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot)), jp, jr, ja
+      call fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jp, jr, ja)
+      g(top+1:bot) = h(top+1:bot) / mesh%z(top+1:bot)
+      f(top+1:bot) = (h(top+1:bot) + sdt(top+1:bot)) / mesh%z(top+1:bot)
+   end subroutine fragment_characteristics
+
+   !> h_k = Z_k g_k and s_k dt of the fragment's cells, J' and the Jordan amplitude; at_n:
+   !> the t^n reading (s^n; a node's equation holds the cell above), else t^{n+1} (s^{n+1};
+   !> the cell below).
+   pure subroutine fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jprime, jordan, &
+                              jordan_abs)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      real(wp), intent(in) :: i_top, i_bot
+      logical, intent(in) :: at_n
+      real(wp), intent(out) :: h(top+1:), sdt(top+1:)   !! [kg/(m s)] each
+      real(wp), intent(out) :: jprime, jordan, jordan_abs
+      real(wp) :: r(top:bot), h_dn(top+1:max(top+1, bot)), h_up(top+1:max(top+1, bot))
+      real(wp) :: dt, load_top, load_bot, scale, sgn, res, alpha, num, den
+      logical :: eq_top, eq_bot
+      integer :: i, k, o
+
+      dt = mesh%dt
+      o = merge(0, 1, at_n)
+      ! the fragment's node momenta over the step, m du / dt, and s dt of its cells
+      do i = top, bot
+         r(i) = node_momentum(mesh, st, top, bot, i)
+      end do
+      do k = top + 1, bot
+         if (at_n) then
+            sdt(k) = st%s_old(k) * dt
+         else
+            sdt(k) = st%s(k) * dt
+         end if
+      end do
+      call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot)
+      ! J' = sum (-1)^(i-top) (r_i + s_i dt), s_i the cell above node i
+      jprime = 0.0_wp
+      scale = 0.0_wp
+      sgn = 1.0_wp
+      do i = top, bot
+         if (i > top) then
+            jprime = jprime + sgn * (r(i) + sdt(i))
+            scale = scale + abs(r(i)) + abs(sdt(i))
+         else
+            jprime = jprime + sgn * r(i)
+            scale = scale + abs(r(i))
+         end if
+         sgn = -sgn
+      end do
+      jordan = 0.0_wp
+      jordan_abs = 0.0_wp
+      if (bot == top) return
+      ! h from the top face down and from the bottom face up
+      h_dn(top + 1) = 0.0_wp
+      if (eq_top .and. at_n) h_dn(top + 1) = r(top) - load_top
+      if (eq_top .and. .not. at_n) h_dn(top + 1) = r(top) + load_top - sdt(top + 1)
+      do k = top + 1, bot - 1
+         h_dn(k + 1) = r(k) - sdt(k + o) - h_dn(k)
+      end do
+      if (eq_bot) then
+         if (at_n) then
+            h_up(bot) = r(bot) - sdt(bot) + load_bot
+         else
+            h_up(bot) = r(bot) - load_bot
+         end if
+         do k = bot - 1, top + 1, -1
+            h_up(k) = r(k) - sdt(k + o) - h_up(k + 1)
+         end do
+      end if
+      if (eq_top .and. eq_bot) then
+         ! two free faces: one equation too many; its residual is the Jordan amplitude,
+         ! shared half and half between the two readings
+         res = h_dn(bot) - h_up(bot)
+         jordan_abs = abs(res)
+         if (scale > 0.0_wp) jordan = jordan_abs / scale
+         h(top+1:bot) = 0.5_wp * (h_dn + h_up)
+      else if (eq_top) then
+         h(top+1:bot) = h_dn
+      else if (eq_bot) then
+         h(top+1:bot) = h_up
+      else
+         ! held at both ends: h + alpha (-1)^k solves the node equations for any alpha; the
+         ! smallest energy drops the standing zig-zag wave that no node sees
+         num = 0.0_wp
+         den = 0.0_wp
+         sgn = 1.0_wp
+         do k = top + 1, bot
+            num = num + sgn * (2.0_wp * h_dn(k) + sdt(k)) / mesh%z(k)
+            den = den + 2.0_wp / mesh%z(k)
+            sgn = -sgn
+         end do
+         alpha = -num / den
+         sgn = 1.0_wp
+         do k = top + 1, bot
+            h(k) = h_dn(k) + sgn * alpha
+            sgn = -sgn
+         end do
+      end if
+   end subroutine fragment_h
+
+   !> m du / dt of node i as the fragment top..bot owns it [kg/(m s)].
+   pure real(wp) function node_momentum(mesh, st, top, bot, i) result(p)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot, i
+      if (i == top .and. top > 0) then
+         p = mesh%mb(i) * st%dub(i)             ! the lower half of a split node
+      else if (i == bot .and. bot < mesh%n) then
+         p = mesh%ma(i) * st%dua(i)             ! the upper half of a split node
+      else
+         p = mesh%ma(i) * st%dua(i) + mesh%mb(i) * st%dub(i)
+      end if
+      p = p / mesh%dt
+   end function node_momentum
+
+   !> Which faces of the fragment are free (give an equation), with the load terms -I/2 (top)
+   !> and +I/2 (bottom) moved to the side of the unknowns.
+   pure subroutine face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, &
+                                  load_top, load_bot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      real(wp), intent(in) :: i_top, i_bot
+      logical, intent(out) :: eq_top, eq_bot
+      real(wp), intent(out) :: load_top, load_bot
+      load_top = 0.0_wp
+      load_bot = 0.0_wp
+      if (top > 0) then
+         eq_top = .true.
+      else
+         eq_top = mesh%top == end_free
+         if (eq_top) load_top = 0.5_wp * i_top
+      end if
+      if (bot < mesh%n) then
+         eq_bot = .true.
+      else
+         eq_bot = mesh%bottom == end_free .or. (mesh%bottom == end_base .and. .not. st%base_contact)
+         if (mesh%bottom == end_free) load_bot = 0.5_wp * i_bot
+      end if
+   end subroutine face_equations
+end module spb_wave
