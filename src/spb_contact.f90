@@ -19,6 +19,7 @@ module spb_contact
    use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
    use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id
    use spb_arrays, only: append
+   use spb_wave, only: region_wave
    implicit none
    private
    public :: contact_step, timing_accelerate, timing_delay, timing_min, shift_above, &
@@ -68,13 +69,16 @@ contains
    end function anchored
 
    !> Test every open section (and the base) after the trial step; join what collides.
-   pure subroutine contact_step(mesh, st, g, timing, policy, events)
+   pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g                !! gravity [m/s^2]
       integer, intent(in) :: timing            !! timing_* rule
       integer, intent(in) :: policy            !! shift_* policy
       type(event_list_t), intent(inout) :: events
+      real(wp), intent(in) :: i_top, i_bot     !! face-load integrals over the step [Pa s]
+      real(wp) :: e_wave0
+      integer :: r_top, r_bot
       integer :: open_nodes(st%n_split)
       integer :: c, i
       st%n_skip = 0
@@ -82,12 +86,58 @@ contains
       open_nodes = st%split(1:st%n_split)
       do c = 1, size(open_nodes)
          i = open_nodes(c)
-         if (st%ua(i) - st%ub(i) > 0.0_wp) call collide(mesh, st, g, timing, policy, i, events)
+         if (st%ua(i) - st%ub(i) > 0.0_wp) then
+            call event_region(mesh, st, policy, i, r_top, r_bot)
+            e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+            call collide(mesh, st, g, timing, policy, i, events)
+            st%e_lost_wave = st%e_lost_wave + e_wave0 - &
+                             region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+         end if
       end do
       if (mesh%bottom == end_base .and. .not. st%base_contact) then
-         if (st%ua(mesh%n) - st%u_base > 0.0_wp) call land(mesh, st, g, timing, policy, events)
+         if (st%ua(mesh%n) - st%u_base > 0.0_wp) then
+            call event_region(mesh, st, policy, mesh%n, r_top, r_bot)
+            e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+            call land(mesh, st, g, timing, policy, events)
+            st%e_lost_wave = st%e_lost_wave + e_wave0 - &
+                             region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+         end if
       end if
    end subroutine contact_step
+
+   !> Fragment boundaries around everything a collision at split node i (or a landing, i = n)
+   !> can change: the two fragments and whatever either correction (5.2) shifts; the whole
+   !> bar for 'above'.
+   pure subroutine event_region(mesh, st, policy, i, r_top, r_bot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: policy, i
+      integer, intent(out) :: r_top, r_bot
+      real(wp) :: d_acc, d_del, amount
+      integer :: j, k, top, bot
+      r_top = 0
+      r_bot = mesh%n
+      if (policy == shift_above) return
+      call fragment_span(mesh, st, i, j, k)
+      if (i == mesh%n) then
+         d_acc = (st%ua(i) - st%dua(i)) - st%u_base
+         d_del = st%ua(i) - st%u_base
+         call land_side(mesh, st, policy, d_acc, top, amount)
+         call land_side(mesh, st, policy, d_del, bot, amount)
+         r_top = min(j, top, bot)
+         return
+      end if
+      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
+      d_del = st%ua(i) - st%ub(i)
+      r_top = j
+      r_bot = k
+      call shift_side(mesh, st, policy, i, d_acc, top, bot, amount)
+      r_top = min(r_top, top)
+      r_bot = max(r_bot, bot)
+      call shift_side(mesh, st, policy, i, d_del, top, bot, amount)
+      r_top = min(r_top, top)
+      r_bot = max(r_bot, bot)
+   end subroutine event_region
 
    !> Trial increment of a split half over the step just taken, and its increment before.
    pure real(wp) function du_before_a(mesh, st, g, i) result(d)

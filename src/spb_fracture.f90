@@ -12,7 +12,7 @@ module spb_fracture
    use spb_state, only: state_t, open_node
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
    use spb_arrays, only: append
-   use spb_wave, only: fragment_characteristics
+   use spb_wave, only: fragment_characteristics, region_wave
    implicit none
    private
    public :: fracture_step, events_admissible, events_paper, node_energy, fragment_span
@@ -112,8 +112,8 @@ contains
       integer, allocatable :: brk(:)
       real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
       integer :: cand(mesh%n)
-      real(wp) :: eps, dt2, e0, de, shift_up, shift_dn
-      integer :: i, m, nb, j, k, parent
+      real(wp) :: eps, dt2, e0, de, shift_up, shift_dn, e_wave0
+      integer :: i, m, nb, j, k, parent, r_top, r_bot
       logical :: anchored_up, anchored_dn
       type(event_t) :: ev
 
@@ -140,8 +140,14 @@ contains
       if (nb == 0) return
       allocate(brk(nb), d_a(nb), d_b(nb), s_brk(nb))
       brk = cand(1:nb)
+      ! the wave energy of the fragments that break, before and after (e_lost_wave)
+      call fragment_span(mesh, st, brk(1), r_top, k)
+      call fragment_span(mesh, st, brk(nb), j, r_bot)
+      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
       if (rules == events_admissible) then
          call break_admissible(mesh, st, g, brk, i_top, i_bot, events)
+         st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
+                                                                  r_top, r_bot)
          return
       end if
       dt2 = mesh%dt**2
@@ -207,6 +213,8 @@ contains
          ev%frag_below = st%frag_id(i)
          call push_event(events, ev)
       end do
+      st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
+                                                               r_top, r_bot)
    end subroutine fracture_step
 
    !> The admissible break of the sections brk (ascending). A section found at t^{n+1} with
@@ -295,7 +303,7 @@ contains
       type(event_list_t), intent(inout) :: events
       integer, intent(in) :: rules
       real(wp), intent(in) :: i_top, i_bot
-      real(wp) :: s_base, d_a, e0, de
+      real(wp) :: s_base, d_a, e0, de, e_wave0
       real(wp), allocatable :: f(:), gw(:)
       integer :: n, j, k
       type(event_t) :: ev
@@ -303,6 +311,8 @@ contains
       if (any(st%skip_test(1:st%n_skip) == n)) return
       if (.not. (st%sec(n) < -eps)) return
       s_base = st%sec(n)
+      call fragment_span(mesh, st, n, j, k)
+      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, j, n)
       if (rules == events_admissible .and. .not. mesh%full_mass) then
          call fragment_span(mesh, st, n, j, k)
          allocate(f(j+1:n), gw(j+1:n))
@@ -329,6 +339,7 @@ contains
          ev%opening = st%u_base - st%ua(n)
          ev%frag_above = st%frag_id(j)
          call push_event(events, ev)
+         st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
          return
       end if
       ! the full-mass model lets go without corrections (it has no section stresses)
@@ -359,6 +370,7 @@ contains
       ev%opening = st%u_base - st%ua(n)
       ev%frag_above = st%frag_id(j)
       call push_event(events, ev)
+      st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
    end subroutine lift_off
 
    !> The naive full-mass model (the paper's Fig. 12 comparison): a spring whose own stress

@@ -70,10 +70,11 @@ contains
       policy = shift_above
       if (sim%deck%run%shift == 'fragment') policy = shift_fragment
       call advance(sim%mesh, sim%load, sim%deck%run%gravity, sim%st)
-      call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events)
       rules = events_admissible
       if (sim%deck%run%events == 'paper') rules = events_paper
       call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
+      call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events, i_top, &
+                        i_bot)
       call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events, &
                          rules, i_top, i_bot)
    end subroutine sim_step
@@ -290,7 +291,9 @@ contains
             e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
             e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
             g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
-            sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan)
+            sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
+            sim%st%w_wave, sim%st%e_lost_wave, wv%e_wave + e%e_pot + wv%e_gravity - &
+            sim%st%w_wave + sim%st%e_lost_wave)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
          call guard(e)
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))

@@ -53,6 +53,10 @@ module spb_state
       real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
       real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
       real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
+      real(wp) :: w_wave = 0.0_wp             !! work of the loads and transmitting ends on the
+                                              !! continuum state (spb_wave) [J/m^2]
+      real(wp) :: e_lost_wave = 0.0_wp        !! wave energy (with its gravity term) that events
+                                              !! removed [J/m^2]
       real(wp) :: p_shift = 0.0_wp            !! momentum collision shifts gave the shifted
                                               !! masses, moving them along their path [kg/(m s)]
       real(wp) :: i_ends = 0.0_wp             !! impulse of the end stresses (loads and
@@ -169,9 +173,9 @@ contains
       if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
       if (mesh%bottom == end_base) then
          ! touching and at rest: in contact; moving onto it: the first step lands by the
-         ! timing rule (and logs the event)
+         ! timing rule (and logs the event); moving away from it: not in contact
          st%u_base = st%ua(n) + deck%ends%base_gap
-         st%base_contact = deck%ends%base_gap <= 0.0_wp .and. .not. (st%dua(n) > 0.0_wp)
+         st%base_contact = deck%ends%base_gap <= 0.0_wp .and. .not. (abs(st%dua(n)) > 0.0_wp)
          if (st%base_contact) st%dua(n) = 0.0_wp
       end if
       st%s = 0.0_wp

@@ -18,6 +18,8 @@ module spb_step
       logical :: held_top = .false., held_bot = .false.    !! a support stopped the end node
       real(wp) :: p_top = 0.0_wp, p_bot = 0.0_wp           !! ma du_A + mb du_B it stopped [kg/m]
       real(wp) :: s_1 = 0.0_wp, s_n = 0.0_wp               !! s^n of the end cells [Pa]
+      real(wp) :: q_top = 0.0_wp, q_bot = 0.0_wp           !! integral of the load over the
+                                                           !! step on that face [Pa s]
    end type end_step_t
 
    integer, parameter :: block_default = 2048   !! nodes per block of advance_joined
@@ -81,6 +83,24 @@ contains
       end if
    end subroutine face_load_integrals
 
+   !> Integral of the load over the step from t^n to t^{n+1} on the face it acts on [Pa s].
+   pure subroutine step_load_integrals(load, n, dt, q_top, q_bot)
+      type(load_t), intent(in) :: load
+      integer, intent(in) :: n
+      real(wp), intent(in) :: dt
+      real(wp), intent(out) :: q_top, q_bot
+      real(wp) :: q
+      q_top = 0.0_wp
+      q_bot = 0.0_wp
+      if (load%kind == load_none) return
+      q = load_integral(load, real(n, wp) * dt, real(n + 1, wp) * dt)
+      if (load%face == face_top) then
+         q_top = q
+      else
+         q_bot = q
+      end if
+   end subroutine step_load_integrals
+
    !> Advance the state from t^n to t^{n+1}.
    pure subroutine advance(mesh, load, g, st)
       type(mesh_t), intent(in) :: mesh
@@ -98,6 +118,7 @@ contains
       dt = mesh%dt
       dt2 = dt * dt
       call end_stresses(mesh, load, st, r%s_top, r%s_bot)
+      call step_load_integrals(load, st%n, mesh%dt, r%q_top, r%q_bot)
       st%s(0) = r%s_top
       st%s(n + 1) = r%s_bot
       r%du_top_old = st%dub(0)
@@ -231,11 +252,13 @@ contains
             if (a >= e) cycle
             if (a == 0) then
                call end_stresses(mesh, load, st, r(t)%s_top, unused, step=n0 + t - 1)
+               call step_load_integrals(load, n0 + t - 1, mesh%dt, r(t)%q_top, unused)
                st%s(0) = r(t)%s_top
                r(t)%du_top_old = st%dub(0)
             end if
             if (e == n + 1) then
                call end_stresses(mesh, load, st, unused, r(t)%s_bot, step=n0 + t - 1)
+               call step_load_integrals(load, n0 + t - 1, mesh%dt, unused, r(t)%q_bot)
                st%s(n + 1) = r(t)%s_bot
                r(t)%du_bot_old = st%dua(n)
             end if
@@ -364,6 +387,26 @@ contains
             st%w_load = st%w_load + w_bot
          end if
       end associate
+
+      ! the same work on the continuum state (spb_wave): I du / dt at a free loaded face; at a
+      ! transmitting end the energy the incoming wave (the static stress carried and the
+      ! incident load) brings minus what the outgoing one takes, Z du (2 w_in - du) / dt
+      select case (mesh%top)
+      case (end_free)
+         st%w_wave = st%w_wave + r%q_top * r%du_top / dt
+      case (end_transmit)
+         associate (w_in => (0.5_wp * st%s_static_top * dt + r%q_top) / mesh%z(1))
+            st%w_wave = st%w_wave + mesh%z(1) * r%du_top * (2.0_wp * w_in - r%du_top) / dt
+         end associate
+      end select
+      select case (mesh%bottom)
+      case (end_free)
+         st%w_wave = st%w_wave - r%q_bot * r%du_bot / dt
+      case (end_transmit)
+         associate (w_in => -(0.5_wp * st%s_static_bot * dt + r%q_bot) / mesh%z(n))
+            st%w_wave = st%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * w_in - r%du_bot) / dt
+         end associate
+      end select
 
       ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
       ! a support just hit by a moving half starts from that half's velocity
