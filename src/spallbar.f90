@@ -62,8 +62,10 @@ program spallbar
          ' steps in ', summary%wall, ' s; energy ledger drift ', summary%ledger_drift, &
          ' J/m^2 (', summary%ledger_drift / max(summary%energy_scale, tiny(1.0_wp)), &
          ' of the largest energy term)'
-      write(output_unit, '(a,es9.2,a)') '  largest excess of mechanical energy over initial + ' // &
-         'work: ', summary%max_excess, ' of the energy scale'
+      write(output_unit, '(a,es9.2,a)') '  largest excess of mechanical energy (wave measure) ' // &
+         'over initial + work: ', summary%max_excess, ' of the energy scale'
+      write(output_unit, '(a,es9.2,a,es9.2,a)') '  wave energy ledger drift ', summary%wave_drift, &
+         ' J/m^2; largest Jordan amplitude ', summary%max_jordan, ' (events must leave none: round-off)'
       write(output_unit, '(a)') '  events: ' // itoa(summary%events) // '; wrote ' // prefix // &
          '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
       if (summary%checkpoints > 0) write(output_unit, '(a)') '  checkpoint: ' // &

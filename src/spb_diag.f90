@@ -54,9 +54,12 @@ module spb_diag
       integer :: checkpoints = 0           !! checkpoints written
       real(wp) :: fracture_stress_sum = 0.0_wp !! sum of |section stress| at the fractures [Pa]
       real(wp) :: e_mech0 = 0.0_wp         !! the energy guard's reference: mechanical energy
-                                           !! at t = 0 [J/m^2]
-      real(wp) :: guard_scale = 0.0_wp     !! the guard's scale: e_kin + |e_strain| at t = 0,
-                                           !! then the largest |w_ext| [J/m^2]
+                                           !! at t = 0, e_wave + e_pot + e_wave_g [J/m^2]
+      real(wp) :: guard_scale = 0.0_wp     !! the guard's scale: e_wave at t = 0, then the
+                                           !! largest |w_wave| [J/m^2]
+      real(wp) :: ledger_w0 = 0.0_wp       !! wave ledger at t = 0 [J/m^2]
+      real(wp) :: wave_drift = 0.0_wp      !! largest |ledger_w - ledger_w0| over rows [J/m^2]
+      real(wp) :: max_jordan = 0.0_wp      !! largest relative Jordan amplitude over rows [-]
    end type run_summary_t
 
 contains

@@ -39,6 +39,27 @@ module spb_sim
 
 contains
 
+   !> The energy measure of the outputs and the guard: the wave measure (spb_wave) of the
+   !> half-mass model; the full-mass comparison model has no continuum reading and keeps the
+   !> scheme's own (e_wave = e_kin + e_strain, w_wave = w_ext, e_lost_w = e_lost).
+   pure subroutine measure(sim, e, wv, w_wave, e_lost_w)
+      type(sim_t), intent(in) :: sim
+      type(energies_t), intent(in) :: e
+      type(wave_t), intent(out) :: wv
+      real(wp), intent(out) :: w_wave, e_lost_w     !! [J/m^2]
+      real(wp) :: q_top, q_bot
+      if (sim%mesh%full_mass) then
+         wv%e_wave = e%e_kin + e%e_strain
+         w_wave = e%w_ext
+         e_lost_w = e%e_lost
+         return
+      end if
+      call face_load_integrals(sim%mesh, sim%load, sim%st%n, q_top, q_bot)
+      wv = wave_energy(sim%mesh, sim%st, sim%deck%run%gravity, q_top, q_bot)
+      w_wave = sim%st%w_wave
+      e_lost_w = sim%st%e_lost_wave
+   end subroutine measure
+
    !> Build mesh, load and initial state from a validated deck.
    subroutine sim_setup(deck, sim, err)
       type(deck_t), intent(in) :: deck
@@ -133,9 +154,14 @@ contains
       if (.not. present(resume)) then
          block
             type(energies_t) :: e0
+            type(wave_t) :: w0
+            real(wp) :: w_w, e_l
             e0 = energies(sim%mesh, sim%st, g)
-            summary%e_mech0 = e0%e_kin + e0%e_strain + e0%e_pot
-            summary%guard_scale = e0%e_kin + abs(e0%e_strain)
+            call measure(sim, e0, w0, w_w, e_l)
+            summary%e_mech0 = w0%e_wave + e0%e_pot + w0%e_gravity
+            summary%guard_scale = w0%e_wave
+            if (sim%mesh%full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
+            summary%ledger_w0 = summary%e_mech0 - w_w + e_l
          end block
          summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
          call row()
@@ -179,9 +205,12 @@ contains
             ! between rows: the state's finiteness and the energy guard every 64 steps
             block
                type(energies_t) :: e
+               type(wave_t) :: wv
+               real(wp) :: w_w, e_l
                e = energies(sim%mesh, sim%st, g)
                if (ieee_is_finite(e%ledger)) then
-                  call guard(e)
+                  call measure(sim, e, wv, w_w, e_l)
+                  call guard(e, wv, w_w)
                   if (allocated(err)) call row()
                else
                   call row()
@@ -265,7 +294,7 @@ contains
       subroutine row()
          type(energies_t) :: e
          type(wave_t) :: wv
-         real(wp) :: s_top, s_bot, i_top, i_bot
+         real(wp) :: s_top, s_bot, w_w, e_l
          integer :: i
          e = energies(sim%mesh, sim%st, g)
          call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
@@ -282,8 +311,7 @@ contains
             if (to_files) call flush_outputs(out)
             return
          end if
-         call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
-         wv = wave_energy(sim%mesh, sim%st, g, i_top, i_bot)
+         call measure(sim, e, wv, w_w, e_l)
          summary%e_kin_end = e%e_kin
          summary%w_ext_end = e%w_ext
          if (to_files) call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
@@ -292,23 +320,28 @@ contains
             e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
             g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
             sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
-            sim%st%w_wave, sim%st%e_lost_wave, wv%e_wave + e%e_pot + wv%e_gravity - &
-            sim%st%w_wave + sim%st%e_lost_wave)
+            w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l)
          if (sim%st%n == 0) summary%ledger0 = e%ledger
-         call guard(e)
+         call guard(e, wv, w_w)
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
+         summary%wave_drift = max(summary%wave_drift, abs(wv%e_wave + e%e_pot + wv%e_gravity - &
+            w_w + e_l - summary%ledger_w0))
+         summary%max_jordan = max(summary%max_jordan, wv%jordan)
          summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
                                     abs(e%e_pot), abs(e%w_ext))
       end subroutine row
       !> Stop when the mechanical energy exceeds the initial energy plus the work of the
-      !> loads (gravity's work is in e_pot) by more than energy_guard times the scale.
-      subroutine guard(e)
+      !> loads (gravity's work is in e_pot) by more than energy_guard times the scale. The
+      !> energy is the wave measure (spb_wave), which no zig-zag growth can hide from.
+      subroutine guard(e, wv, w_w)
          type(energies_t), intent(in) :: e
+         type(wave_t), intent(in) :: wv
+         real(wp), intent(in) :: w_w      !! work in that measure [J/m^2]
          real(wp) :: excess
          character(len=16) :: b1, b2
          if (allocated(err)) return
-         summary%guard_scale = max(summary%guard_scale, abs(e%w_ext))
-         excess = (e%e_kin + e%e_strain + e%e_pot - summary%e_mech0) - e%w_ext
+         summary%guard_scale = max(summary%guard_scale, abs(w_w))
+         excess = (wv%e_wave + e%e_pot + wv%e_gravity - summary%e_mech0) - w_w
          if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
             excess / summary%guard_scale)
          if (sim%deck%run%energy_guard > 0.0_wp .and. &
