@@ -20,6 +20,7 @@ module spb_contact
    use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id
    use spb_arrays, only: append
    use spb_wave, only: region_wave
+   use spb_fracture, only: events_admissible
    implicit none
    private
    public :: contact_step, timing_accelerate, timing_delay, timing_min, shift_above, &
@@ -69,7 +70,7 @@ contains
    end function anchored
 
    !> Test every open section (and the base) after the trial step; join what collides.
-   pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot)
+   pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g                !! gravity [m/s^2]
@@ -77,28 +78,58 @@ contains
       integer, intent(in) :: policy            !! shift_* policy
       type(event_list_t), intent(inout) :: events
       real(wp), intent(in) :: i_top, i_bot     !! face-load integrals over the step [Pa s]
-      real(wp) :: e_wave0
+      integer, intent(in) :: rules             !! events_admissible | events_paper
+      real(wp), intent(in) :: eps_rel          !! admissible: faces collide when they overlap
+                                               !! by more than eps_rel dx (round-off) [-]
+      real(wp) :: e_wave0, tol
       integer :: r_top, r_bot
       integer :: open_nodes(st%n_split)
-      integer :: c, i
+      real(wp) :: overlap(st%n_split)
+      integer :: c, i, m, nc
       st%n_skip = 0
       ! the open sections in ascending order; a join removes only its own node from the list
       open_nodes = st%split(1:st%n_split)
+      if (rules == events_admissible) then
+         ! admissible: the overlapping ones, largest overlap first (an order that a mirrored
+         ! bar sees the same way; a correction can close or open the next one's overlap)
+         nc = 0
+         do c = 1, size(open_nodes)
+            i = open_nodes(c)
+            if (.not. (st%ua(i) - st%ub(i) > eps_rel * mesh%dx(i))) cycle
+            nc = nc + 1
+            m = nc
+            do while (m > 1)
+               if (overlap(m - 1) >= st%ua(i) - st%ub(i)) exit
+               overlap(m) = overlap(m - 1)
+               open_nodes(m) = open_nodes(m - 1)
+               m = m - 1
+            end do
+            overlap(m) = st%ua(i) - st%ub(i)
+            open_nodes(m) = i
+         end do
+         open_nodes(nc + 1:) = 0
+      end if
       do c = 1, size(open_nodes)
+         if (open_nodes(c) == 0) exit
          i = open_nodes(c)
-         if (st%ua(i) - st%ub(i) > 0.0_wp) then
-            call event_region(mesh, st, policy, i, r_top, r_bot)
+         tol = 0.0_wp
+         if (rules == events_admissible) tol = eps_rel * mesh%dx(i)
+         if (st%ua(i) - st%ub(i) > tol) then
+            call event_region(mesh, st, g, timing, policy, rules, i, r_top, r_bot, i_top, i_bot)
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-            call collide(mesh, st, g, timing, policy, i, events)
+            call collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot)
             st%e_lost_wave = st%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
       end do
       if (mesh%bottom == end_base .and. .not. st%base_contact) then
-         if (st%ua(mesh%n) - st%u_base > 0.0_wp) then
-            call event_region(mesh, st, policy, mesh%n, r_top, r_bot)
+         tol = 0.0_wp
+         if (rules == events_admissible) tol = eps_rel * mesh%dx(mesh%n)
+         if (st%ua(mesh%n) - st%u_base > tol) then
+            call event_region(mesh, st, g, timing, policy, rules, mesh%n, r_top, r_bot, &
+                              i_top, i_bot)
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-            call land(mesh, st, g, timing, policy, events)
+            call land(mesh, st, g, timing, policy, events, rules, i_top)
             st%e_lost_wave = st%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
@@ -108,16 +139,29 @@ contains
    !> Fragment boundaries around everything a collision at split node i (or a landing, i = n)
    !> can change: the two fragments and whatever either correction (5.2) shifts; the whole
    !> bar for 'above'.
-   pure subroutine event_region(mesh, st, policy, i, r_top, r_bot)
+   pure subroutine event_region(mesh, st, g, timing, policy, rules, i, r_top, r_bot, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
-      integer, intent(in) :: policy, i
+      real(wp), intent(in) :: g, i_top, i_bot
+      integer, intent(in) :: timing, policy, rules, i
       integer, intent(out) :: r_top, r_bot
-      real(wp) :: d_acc, d_del, amount
+      real(wp) :: d_acc, d_del, amount, corr, x, y
       integer :: j, k, top, bot
+      logical :: at_n
       r_top = 0
       r_bot = mesh%n
       if (policy == shift_above) return
+      if (rules == events_admissible .and. i < mesh%n) then
+         call fragment_span(mesh, st, i, j, k)
+         d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
+         d_del = st%ua(i) - st%ub(i)
+         call choose_time(timing, d_acc, d_del, at_n, corr)
+         call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
+                              i_top, i_bot)
+         r_top = min(j, top)
+         r_bot = max(k, bot)
+         return
+      end if
       call fragment_span(mesh, st, i, j, k)
       if (i == mesh%n) then
          d_acc = (st%ua(i) - st%dua(i)) - st%u_base
@@ -157,11 +201,11 @@ contains
    end function du_before_b
 
    !> Choose the rule's time, shift one side, join node i.
-   pure subroutine collide(mesh, st, g, timing, policy, i, events)
+   pure subroutine collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g
-      integer, intent(in) :: timing, policy, i
+      real(wp), intent(in) :: g, i_top, i_bot
+      integer, intent(in) :: timing, policy, i, rules
       type(event_list_t), intent(inout) :: events
       real(wp) :: dua0, dub0, d_acc, d_del, corr, mass_a, mass_b, du_join, e0, de, sz, v_a, v_b
       real(wp) :: du_a_trial, du_b_trial, shift_amount, w, closing
@@ -175,8 +219,13 @@ contains
       d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))     ! u_A^n - u_B^n (< 0: a gap)
       d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
       call choose_time(timing, d_acc, d_del, at_n, corr)
-      call shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
-      if (.not. at_n) then
+      if (rules == events_admissible) then
+         call shift_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, shift_amount, &
+                               i_top, i_bot)
+      else
+         call shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
+      end if
+      if (.not. at_n .and. rules /= events_admissible) then
          ! a join at t^{n+1} moves the shifted region on its path (shift_late); where no
          ! path leads there, or the join would create energy, it is joined at t^n
          call path_speed(mesh, st, g, top, bot, shift_amount, w, ok)
@@ -189,7 +238,7 @@ contains
             call shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
          end if
       end if
-      if (abs(shift_amount) > 0.0_wp) then
+      if (abs(shift_amount) > 0.0_wp .and. rules /= events_admissible) then
          if (at_n) then
             call shift_span(mesh, st, g, top, bot, shift_amount, de)
             st%e_shift = st%e_shift - de
@@ -336,6 +385,110 @@ contains
       st%p_shift = st%p_shift + mass * w
    end subroutine shift_late
 
+   !> The admissible correction of a collision at split node i: both sides move rigidly so
+   !> that their faces meet and their common centre of mass stays (upper by -d M_l/(M_u + M_l),
+   !> lower by +d M_u/(M_u + M_l), d the chosen (5.2) correction): no direction is preferred
+   !> (mirror), only relative displacements count (Galilean), gravity does no work on it (free
+   !> fall). The sides are the two colliding fragments ('fragment') or all of the bar on each
+   !> side ('above'), each taking along what it would be pushed into. An anchored side does
+   !> not move and the other takes the whole correction, at the time (t^n or t^{n+1}) whose
+   !> correction does not lift it against gravity; with both anchored nothing moves and the
+   !> join is at t^n (the faces then keep the small gap they had: never an overlap).
+   pure subroutine shift_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, moved, &
+                                    i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g, d_acc, d_del, i_top, i_bot
+      integer, intent(in) :: policy, i
+      logical, intent(inout) :: at_n
+      real(wp), intent(inout) :: corr
+      real(wp), intent(out) :: moved         !! shift of the upper side (of the lower one where the
+                                             !! upper stays) [m]
+      integer :: top, bot
+      real(wp) :: x, y, de
+      call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
+                              i_top, i_bot)
+      moved = -x
+      if (abs(x) > 0.0_wp) then
+         call shift_span(mesh, st, g, top, i, -x, de)
+         st%e_shift = st%e_shift - de
+         ! the load on a face the shift moves does its work on the move; the bar's energy
+         ! does not change, so that work is what the event removes
+         if (top == 0) call book_shift_work(st, -i_top / mesh%dt * x)
+      end if
+      if (abs(y) > 0.0_wp) then
+         call shift_span(mesh, st, g, i, bot, y, de)
+         st%e_shift = st%e_shift - de
+         if (bot == mesh%n) call book_shift_work(st, -i_bot / mesh%dt * y)
+         if (abs(x) == 0.0_wp) moved = y
+      end if
+   end subroutine shift_both_sides
+
+   !> What shift_both_sides moves: the upper side top..i by -x, the lower side i..bot by +y,
+   !> at the time (at_n) and with the correction (corr) it settles on.
+   pure subroutine plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, &
+                                   x, y, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g, d_acc, d_del
+      real(wp), intent(in) :: i_top, i_bot   !! face-load integrals of the step [Pa s]: a side
+                                             !! that holds a loaded face only moves along the load
+      integer, intent(in) :: policy, i
+      logical, intent(inout) :: at_n
+      real(wp), intent(inout) :: corr
+      integer, intent(out) :: top, bot
+      real(wp), intent(out) :: x, y          !! [m]
+      integer :: j, k, pass
+      real(wp) :: m_u, m_l
+      logical :: anch_u, anch_l
+      call fragment_span(mesh, st, i, j, k)
+      if (policy == shift_above) then
+         j = 0
+         k = mesh%n
+      end if
+      top = j
+      bot = k
+      x = 0.0_wp
+      y = 0.0_wp
+      do pass = 1, 3
+         anch_u = anchored(mesh, st, top, i)
+         anch_l = anchored(mesh, st, i, bot)
+         ! a side that a load pushes towards the other moves only along it (moved back against
+         ! it, the load would do its work again): the faces meet at t^n, closing the gap
+         if (.not. (anch_u .or. anch_l) .and. ((top == 0 .and. i_top > 0.0_wp) .or. &
+             (bot == mesh%n .and. i_bot > 0.0_wp)) .and. .not. at_n) then
+            at_n = .true.
+            corr = d_acc
+         end if
+         if (anch_u .and. anch_l) then
+            at_n = .true.
+            corr = d_acc
+            x = 0.0_wp
+            y = 0.0_wp
+         else if (anch_u .or. anch_l) then
+            ! the free side moves by +corr (lower) or -corr (upper): down is +x
+            if (merge(g * corr < 0.0_wp, g * corr > 0.0_wp, anch_u)) then
+               ! its move would lift it: the other time's correction moves it down instead
+               at_n = .not. at_n
+               corr = merge(d_acc, d_del, at_n)
+            end if
+            x = merge(0.0_wp, corr, anch_u)
+            y = merge(corr, 0.0_wp, anch_u)
+         else
+            m_u = span_mass(mesh, top, i)
+            m_l = span_mass(mesh, i, bot)
+            x = corr * m_l / (m_u + m_l)
+            y = corr - x
+         end if
+         ! a side pushed into its neighbour takes it along; then the masses change
+         j = top
+         k = bot
+         if (.not. anch_u .and. top > 0) call extend_up(mesh, st, top, -x)
+         if (.not. anch_l .and. bot < mesh%n) call extend_down(mesh, st, bot, y)
+         if (top == j .and. bot == k) exit
+      end do
+   end subroutine plan_both_sides
+
    !> The side a correction corr (5.2) moves at split node i: the upper one (the fragment
    !> ending at A_i, or all above it for 'above'), the lower one where the upper is
    !> anchored, none if both are; a shifted side takes along what it would be pushed into.
@@ -401,13 +554,13 @@ contains
    end subroutine land_side
 
    !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
-   pure subroutine land(mesh, st, g, timing, policy, events)
+   pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g
-      integer, intent(in) :: timing, policy
+      real(wp), intent(in) :: g, i_top
+      integer, intent(in) :: timing, policy, rules
       type(event_list_t), intent(inout) :: events
-      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w
+      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias
       integer :: n, j
       logical :: at_n, ok
       type(event_t) :: ev
@@ -417,7 +570,27 @@ contains
       d_del = st%ua(n) - st%u_base
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call land_side(mesh, st, policy, corr, j, shift_amount)
-      if (.not. at_n) then
+      if (rules == events_admissible) then
+         ! the base does not move: the bar's side takes the whole correction, rigidly; where
+         ! that would move it against gravity and a load on its top face the other time is
+         ! taken (closing the gap at t^n moves it down, removing the overlap at t^{n+1} up)
+         bias = g * span_mass(mesh, j, n) * mesh%dt
+         if (j == 0) bias = bias + i_top
+         if (.not. at_n .and. bias * shift_amount < 0.0_wp) then
+            at_n = .true.
+            corr = d_acc
+            call land_side(mesh, st, policy, corr, j, shift_amount)
+         else if (at_n .and. bias * shift_amount < 0.0_wp) then
+            at_n = .false.
+            corr = d_del
+            call land_side(mesh, st, policy, corr, j, shift_amount)
+         end if
+         if (abs(shift_amount) > 0.0_wp) then
+            call shift_span(mesh, st, g, j, n, shift_amount, de)
+            st%e_shift = st%e_shift - de
+            if (j == 0) call book_shift_work(st, i_top / mesh%dt * shift_amount)
+         end if
+      else if (.not. at_n) then
          ! as for a collision: on its path, and never creating energy, else at t^n
          call path_speed(mesh, st, g, j, n, shift_amount, w, ok)
          du_trial = st%dua(n) + w * mesh%dt
@@ -428,7 +601,7 @@ contains
             call land_side(mesh, st, policy, corr, j, shift_amount)
          end if
       end if
-      if (abs(shift_amount) > 0.0_wp) then
+      if (abs(shift_amount) > 0.0_wp .and. rules /= events_admissible) then
          if (at_n) then
             call shift_span(mesh, st, g, j, n, shift_amount, de)
             st%e_shift = st%e_shift - de
@@ -529,6 +702,15 @@ contains
       ev%frag_below = below
       call push_event(events, ev)
    end subroutine finish_event
+
+   !> Work a face load does on a rigid shift of its face [J/m^2]: booked as work and, since no
+   !> wave energy follows, as what the event removed.
+   pure subroutine book_shift_work(st, work)
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: work
+      st%w_wave = st%w_wave + work
+      st%e_lost_wave = st%e_lost_wave + work
+   end subroutine book_shift_work
 
    pure subroutine skip_next(st, i)
       type(state_t), intent(inout) :: st

@@ -17,7 +17,8 @@ module spb_sim
    use spb_wave, only: wave_t, wave_energy
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t
    use spb_events, only: event_list_t, ev_fracture
-   use spb_fracture, only: fracture_step, events_admissible, events_paper
+   use spb_fracture, only: fracture_step, events_admissible, events_paper, &
+      continuum_section_stresses
    use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
@@ -94,8 +95,11 @@ contains
       rules = events_admissible
       if (sim%deck%run%events == 'paper') rules = events_paper
       call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
+      if (rules == events_admissible .and. .not. sim%mesh%full_mass .and. &
+          (sim%st%n_breakable > 0 .or. sim%st%base_contact)) &
+         call continuum_section_stresses(sim%mesh, sim%st, i_top, i_bot)
       call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events, i_top, &
-                        i_bot)
+                        i_bot, rules, sim%deck%run%eps_rel)
       call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events, &
                          rules, i_top, i_bot)
    end subroutine sim_step

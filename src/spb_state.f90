@@ -83,7 +83,7 @@ contains
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(out) :: st
       integer :: n, j, i, k
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap, xc
 
       n = mesh%n
       g = deck%run%gravity
@@ -130,7 +130,14 @@ contains
       if (abs(deck%init%strain_rate) > 0.0_wp) then
          ! uniform stretching about the centre of mass (free or transmitting ends)
          associate (m => mesh%ma + mesh%mb)
-            v = v + deck%init%strain_rate * (mesh%x - sum(m * mesh%x) / sum(m))
+            xc = sum(m * mesh%x) / sum(m)
+            v = v + deck%init%strain_rate * (mesh%x - xc)
+            ! a free face moves in the first step with the mean velocity of its cell: that is
+            ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
+            ! (spb_wave); the face's own v(x) would start one that grows linearly
+            if (mesh%top == end_free) v(0) = v(0) + deck%init%strain_rate * 0.5_wp * mesh%dx(1)
+            if (mesh%bottom == end_free .or. mesh%bottom == end_base) &
+               v(n) = v(n) - deck%init%strain_rate * 0.5_wp * mesh%dx(n)
          end associate
       end if
       if (mesh%top == end_fixed) v(0) = 0.0_wp
