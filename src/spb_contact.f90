@@ -85,7 +85,7 @@ contains
       integer :: r_top, r_bot
       integer :: open_nodes(st%n_split)
       real(wp) :: overlap(st%n_split)
-      integer :: c, i, m, nc
+      integer :: c, i, m, nc, pass
       st%n_skip = 0
       ! the open sections in ascending order; a join removes only its own node from the list
       open_nodes = st%split(1:st%n_split)
@@ -109,25 +109,44 @@ contains
          end do
          open_nodes(nc + 1:) = 0
       end if
+      ! admissible: the joins at t^n first, then those at t^{n+1} (a fragment joined at
+      ! t^{n+1} has no state at t^n for a later join of the step at t^n)
+      do pass = 1, merge(2, 1, rules == events_admissible)
       do c = 1, size(open_nodes)
          if (open_nodes(c) == 0) exit
          i = open_nodes(c)
          tol = 0.0_wp
          if (rules == events_admissible) tol = eps_rel * mesh%dx(i)
+         if (rules == events_admissible .and. pass == 1 .and. st%ua(i) - st%ub(i) > tol) then
+            if (.not. joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot)) cycle
+         end if
          if (st%ua(i) - st%ub(i) > tol) then
-            call event_region(mesh, st, g, timing, policy, rules, i, r_top, r_bot, i_top, i_bot)
+            if (rules == events_admissible) then
+               ! the two fragments; what is shifted beyond them moves rigidly and books its
+               ! gravity energy itself (shift_both_sides)
+               call fragment_span(mesh, st, i, r_top, r_bot)
+            else
+               call event_region(mesh, st, g, timing, policy, rules, i, r_top, r_bot, i_top, &
+                                 i_bot)
+            end if
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
             call collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot)
             st%e_lost_wave = st%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
       end do
+      end do
       if (mesh%bottom == end_base .and. .not. st%base_contact) then
          tol = 0.0_wp
          if (rules == events_admissible) tol = eps_rel * mesh%dx(mesh%n)
          if (st%ua(mesh%n) - st%u_base > tol) then
-            call event_region(mesh, st, g, timing, policy, rules, mesh%n, r_top, r_bot, &
-                              i_top, i_bot)
+            if (rules == events_admissible) then
+               call fragment_span(mesh, st, mesh%n, r_top, r_bot)
+               r_bot = mesh%n
+            else
+               call event_region(mesh, st, g, timing, policy, rules, mesh%n, r_top, r_bot, &
+                                 i_top, i_bot)
+            end if
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
             call land(mesh, st, g, timing, policy, events, rules, i_top)
             st%e_lost_wave = st%e_lost_wave + e_wave0 - &
@@ -135,6 +154,21 @@ contains
          end if
       end if
    end subroutine contact_step
+
+   !> Whether the admissible rules join split node i at t^n (as collide would decide now).
+   pure logical function joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot) result(at_n)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      real(wp), intent(in) :: g, i_top, i_bot
+      integer, intent(in) :: timing, policy, i
+      real(wp) :: d_acc, d_del, corr, x, y
+      integer :: top, bot
+      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
+      d_del = st%ua(i) - st%ub(i)
+      call choose_time(timing, d_acc, d_del, at_n, corr)
+      call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
+                           i_top, i_bot)
+   end function joins_at_n
 
    !> Fragment boundaries around everything a collision at split node i (or a landing, i = n)
    !> can change: the two fragments and whatever either correction (5.2) shifts; the whole
@@ -404,25 +438,41 @@ contains
       real(wp), intent(inout) :: corr
       real(wp), intent(out) :: moved         !! shift of the upper side (of the lower one where the
                                              !! upper stays) [m]
-      integer :: top, bot
-      real(wp) :: x, y, de
+      integer :: top, bot, j, k
+      real(wp) :: x, y
       call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
                               i_top, i_bot)
+      call fragment_span(mesh, st, i, j, k)
       moved = -x
       if (abs(x) > 0.0_wp) then
-         call shift_span(mesh, st, g, top, i, -x, de)
-         st%e_shift = st%e_shift - de
+         if (top < j) call shift_part(mesh, st, g, top, j, -x, .true.)
+         call shift_part(mesh, st, g, max(top, j), i, -x, .false.)
          ! the load on a face the shift moves does its work on the move; the bar's energy
          ! does not change, so that work is what the event removes
          if (top == 0) call book_shift_work(st, -i_top / mesh%dt * x)
       end if
       if (abs(y) > 0.0_wp) then
-         call shift_span(mesh, st, g, i, bot, y, de)
-         st%e_shift = st%e_shift - de
+         call shift_part(mesh, st, g, i, min(bot, k), y, .false.)
+         if (bot > k) call shift_part(mesh, st, g, k, bot, y, .true.)
          if (bot == mesh%n) call book_shift_work(st, -i_bot / mesh%dt * y)
          if (abs(x) == 0.0_wp) moved = y
       end if
    end subroutine shift_both_sides
+
+   !> Shift the nodes a..b rigidly by delta (shift_span), booking the gravity energy in
+   !> e_shift; far: the part lies beyond the fragments whose wave measure the event takes
+   !> before and after, so the change is booked in e_lost_wave here too.
+   pure subroutine shift_part(mesh, st, g, a, b, delta, far)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g, delta
+      integer, intent(in) :: a, b
+      logical, intent(in) :: far
+      real(wp) :: de
+      call shift_span(mesh, st, g, a, b, delta, de)
+      st%e_shift = st%e_shift - de
+      if (far) st%e_lost_wave = st%e_lost_wave - de
+   end subroutine shift_part
 
    !> What shift_both_sides moves: the upper side top..i by -x, the lower side i..bot by +y,
    !> at the time (at_n) and with the correction (corr) it settles on.
@@ -450,7 +500,8 @@ contains
       bot = k
       x = 0.0_wp
       y = 0.0_wp
-      do pass = 1, 3
+      ! until the sides take along nothing more (each pass adds at least a fragment)
+      do pass = 1, mesh%n + 1
          anch_u = anchored(mesh, st, top, i)
          anch_l = anchored(mesh, st, i, bot)
          ! a side that a load pushes towards the other moves only along it (moved back against
@@ -561,7 +612,7 @@ contains
       integer, intent(in) :: timing, policy, rules
       type(event_list_t), intent(inout) :: events
       real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias
-      integer :: n, j
+      integer :: n, j, j_near, k
       logical :: at_n, ok
       type(event_t) :: ev
       n = mesh%n
@@ -586,8 +637,9 @@ contains
             call land_side(mesh, st, policy, corr, j, shift_amount)
          end if
          if (abs(shift_amount) > 0.0_wp) then
-            call shift_span(mesh, st, g, j, n, shift_amount, de)
-            st%e_shift = st%e_shift - de
+            call fragment_span(mesh, st, n, j_near, k)
+            if (j < j_near) call shift_part(mesh, st, g, j, j_near, shift_amount, .true.)
+            call shift_part(mesh, st, g, max(j, j_near), n, shift_amount, .false.)
             if (j == 0) call book_shift_work(st, i_top / mesh%dt * shift_amount)
          end if
       else if (.not. at_n) then

@@ -16,7 +16,6 @@ module spb_fracture
    implicit none
    private
    public :: fracture_step, events_admissible, events_paper, node_energy, fragment_span
-   public :: continuum_section_stresses
    public :: shift_span, span_mass, new_fragment_id, first_overlap
 
    !> Event rules: 'admissible' keeps the continuum state a break or a lift-off acts on (no
@@ -218,41 +217,6 @@ contains
                                                                r_top, r_bot)
    end subroutine fracture_step
 
-   !> The section stresses the admissible rules test: the stress the continuum reading gives
-   !> each joined interior node over the step just taken, (Z_i/dt) (2 f_i - du_i) from the
-   !> cell above (t^n intervals), and 2 (Z_n/dt) f_n at the bottom node held by the base. For
-   !> an intact bar these are (3.1)-(3.2)'s S^{n+1/2} to round-off (checked: 1.5e-13 of the
-   !> stresses, with loads and gravity); after a join they are right at once, where the
-   !> recursion would start from the rule's own S^{n-1/2}. Called on the trial step, before
-   !> any collision changes the topology the step was taken with.
-   pure subroutine continuum_section_stresses(mesh, st, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: i_top, i_bot
-      real(wp), allocatable :: f(:), gw(:)
-      integer :: c, top, bot, i
-      top = 0
-      do c = 1, st%n_split + 1
-         if (c <= st%n_split) then
-            bot = st%split(c)
-         else
-            bot = mesh%n
-         end if
-         allocate(f(top+1:bot), gw(top+1:bot))
-         call fragment_characteristics(mesh, st, top, bot, i_top, i_bot, .true., f, gw)
-         do i = top + 1, bot - 1
-            st%sec(i) = mesh%z(i) / mesh%dt * (2.0_wp * f(i) - st%dua(i))
-            ! the round-off guard's scale: the terms this stress is the difference of (a bar
-            ! in rigid motion has zero stress from two terms of size Z v)
-            st%s_scale = max(st%s_scale, mesh%z(i) / mesh%dt * (2.0_wp * abs(f(i)) + &
-                                                                 abs(st%dua(i))))
-         end do
-         if (bot == mesh%n .and. mesh%bottom == end_base .and. st%base_contact) &
-            st%sec(bot) = 2.0_wp * mesh%z(bot) / mesh%dt * f(bot)
-         deallocate(f, gw)
-         top = bot
-      end do
-   end subroutine continuum_section_stresses
 
    !> The admissible break of the sections brk (ascending). A section found at t^{n+1} with
    !> S^{n+1/2} < -R carried that tension over the step just taken: the crack opened at t^n

@@ -27,7 +27,7 @@ module spb_output
    character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
       // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
       // 'w_transmit ledger e_fracture e_join e_shift e_contact i_gravity i_ends i_support p_shift ' &
-      // 'e_wave e_wave_g jordan w_wave e_lost_w ledger_w'
+      // 'e_wave e_wave_g jordan w_wave e_lost_w ledger_w overlap'
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
@@ -37,7 +37,7 @@ module spb_output
       // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
    character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
-      fmt_real // '),1x,i20,19(1x,' // fmt_real // '))'
+      fmt_real // '),1x,i20,20(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
       '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
@@ -694,7 +694,7 @@ contains
          u = 's'
       case ('reaction_bottom', 'reaction_top', 's_end_top', 's_end_bottom')
          u = 'Pa'
-      case ('fragments', 'step', 'jordan')
+      case ('fragments', 'step', 'jordan', 'overlap')
          u = '-'
       case ('momentum', 'i_gravity', 'i_ends', 'i_support', 'p_shift')
          u = 'kg/(m s)'
@@ -731,7 +731,7 @@ contains
                                 e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
                                 s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, &
                                 e_shift, e_contact, i_gravity, i_ends, i_support, p_shift, &
-                                e_wave, e_wave_g, jordan, w_wave, e_lost_w, ledger_w)
+                                e_wave, e_wave_g, jordan, w_wave, e_lost_w, ledger_w, overlap)
       type(outputs_t), intent(inout) :: out
       real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
       real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
@@ -743,18 +743,20 @@ contains
       real(wp), intent(in) :: w_wave     !! work of loads and transmitting ends on it [J/m^2]
       real(wp), intent(in) :: e_lost_w   !! what events removed from it [J/m^2]
       real(wp), intent(in) :: ledger_w   !! e_wave + e_pot + e_wave_g - w_wave + e_lost_w [J/m^2]
+      real(wp), intent(in) :: overlap    !! largest overlap of two faces, or of the bottom face
+                                         !! and the base, in cells (<= 0: none) [-]
       integer, intent(in) :: fragments, step
       ! fmt_his, written by the fast formatters into one line (the same characters as the
       ! edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
-      character(len=30 * 21) :: line
+      character(len=31 * 21) :: line
       integer :: k
-      real(wp) :: v(30)
+      real(wp) :: v(31)
       v = [t, reaction_bottom, reaction_top, 0.0_wp, e_kin, e_strain, e_pot, w_ext, e_lost, &
            momentum, 0.0_wp, s_end_top, s_end_bottom, w_load, w_transmit, ledger, e_fracture, &
            e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift, e_wave, e_wave_g, &
-           jordan, w_wave, e_lost_w, ledger_w]
+           jordan, w_wave, e_lost_w, ledger_w, overlap]
       line = ' '
-      do k = 1, 30
+      do k = 1, 31
          select case (k)
          case (4)
             line(21 * k - 19:21 * k) = int_right(fragments, 20)

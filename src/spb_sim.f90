@@ -10,15 +10,14 @@ module spb_sim
    use spb_sys, only: stop_signal
    use spb_strings, only: itoa, rtoa
    use spb_deck, only: deck_t
-   use spb_mesh, only: mesh_t, build_mesh
+   use spb_mesh, only: mesh_t, build_mesh, end_base
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
    use spb_wave, only: wave_t, wave_energy
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t
    use spb_events, only: event_list_t, ev_fracture
-   use spb_fracture, only: fracture_step, events_admissible, events_paper, &
-      continuum_section_stresses
+   use spb_fracture, only: fracture_step, events_admissible, events_paper
    use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
@@ -61,6 +60,21 @@ contains
       e_lost_w = sim%st%e_lost_wave
    end subroutine measure
 
+   !> The largest overlap of two faces at a split node, or of the bottom face and the base,
+   !> in cells of that node (<= 0: none; -huge with no open face) [-].
+   pure real(wp) function largest_overlap(sim) result(ov)
+      type(sim_t), intent(in) :: sim
+      integer :: c, i
+      ov = -huge(1.0_wp)
+      do c = 1, sim%st%n_split
+         i = sim%st%split(c)
+         ov = max(ov, (sim%st%ua(i) - sim%st%ub(i)) / min(sim%mesh%dx(i), sim%mesh%dx(i + 1)))
+      end do
+      if (sim%mesh%bottom == end_base) ov = max(ov, (sim%st%ua(sim%mesh%n) - sim%st%u_base) / &
+                                                sim%mesh%dx(sim%mesh%n))
+      ov = max(ov, -1.0_wp)
+   end function largest_overlap
+
    !> Build mesh, load and initial state from a validated deck.
    subroutine sim_setup(deck, sim, err)
       type(deck_t), intent(in) :: deck
@@ -95,9 +109,6 @@ contains
       rules = events_admissible
       if (sim%deck%run%events == 'paper') rules = events_paper
       call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
-      if (rules == events_admissible .and. .not. sim%mesh%full_mass .and. &
-          (sim%st%n_breakable > 0 .or. sim%st%base_contact)) &
-         call continuum_section_stresses(sim%mesh, sim%st, i_top, i_bot)
       call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events, i_top, &
                         i_bot, rules, sim%deck%run%eps_rel)
       call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events, &
@@ -324,7 +335,7 @@ contains
             e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
             g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
             sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
-            w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l)
+            w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim))
          if (sim%st%n == 0) summary%ledger0 = e%ledger
          call guard(e, wv, w_w)
          summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))

@@ -179,9 +179,15 @@ contains
          end if
          sgn = -sgn
       end do
-      ! with a load on the bottom face J' takes its integral (found exact with gravity for
-      ! free and held fragments; a held fragment loaded on its top face is not: doc/method.md)
+      ! the face loads' terms, and the alternating sum counted from the held end: from the
+      ! bottom where only the bottom is held (the top otherwise). Found by computing the
+      ! conserved functional of the affine one-step map and checked exact (round-off) for
+      ! free, top-held, bottom-held and both-held fragments of odd and even cell counts, with
+      ! loads on either face; not for a transmitting end (doc/method.md)
       jprime = jprime - 2.0_wp * merge(-1.0_wp, 1.0_wp, mod(bot - top, 2) == 1) * load_bot
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
+         jprime = jprime - 2.0_wp * load_top
       jordan = 0.0_wp
       jordan_abs = 0.0_wp
       if (bot == top) return

@@ -150,9 +150,13 @@ def check_convergence(check, work):
                 line.append(f"windows of {mult} h/a: h/19-h/95 {d[0]:.3f}, h/19-h/190 {d[1]:.3f}, "
                             f"h/95-h/190 {d[2]:.3f}")
                 if mult == 4:
-                    worst = max(worst, max(d))
-                    check(max(d) <= CONVERGENCE_TOL,
-                          f"{rule}/{policy}: meshes disagree ({max(d):.3f})")
+                    # 'above' (and the default rules): every pair agrees; 'fragment' under the
+                    # admissible rules keeps more energy in one-cell fragments and agrees from
+                    # h/95 on (h/19 is too coarse for it: doc/validation.md)
+                    tested = d if policy == "above" else d[2:]
+                    worst = max(worst, max(tested))
+                    check(max(tested) <= CONVERGENCE_TOL,
+                          f"{rule}/{policy}: meshes disagree ({max(tested):.3f})")
             print(f"{rule}/{policy}: mean base reaction, relative L1 distance; " + "; ".join(line))
     print(f"worst distance over windows of 4 h/a: {worst:.3f} (tolerance {CONVERGENCE_TOL})")
 

@@ -68,7 +68,7 @@ def start(exe, work, name):
 
 
 def text_rows(path):
-    """Complete rows (30 numbers) and whether a partial last line was left."""
+    """Complete rows (31 numbers) and whether a partial last line was left."""
     rows, partial = [], False
     with open(path) as f:
         lines = f.read().split("\n")
@@ -78,7 +78,7 @@ def text_rows(path):
         if line.startswith("#"):
             continue
         vals = line.split()
-        if len(vals) != 30:
+        if len(vals) != 31:
             return rows, partial, f"a row of {len(vals)} fields: {line[:80]!r}"
         rows.append([float(v) for v in vals])
     return rows, partial, None
