@@ -490,7 +490,7 @@ contains
       real(wp), intent(out) :: x, y          !! [m]
       integer :: j, k, pass
       real(wp) :: m_u, m_l
-      logical :: anch_u, anch_l
+      logical :: anch_u, anch_l, blocked
       call fragment_span(mesh, st, i, j, k)
       if (policy == shift_above) then
          j = 0
@@ -500,10 +500,11 @@ contains
       bot = k
       x = 0.0_wp
       y = 0.0_wp
+      blocked = .false.
       ! until the sides take along nothing more (each pass adds at least a fragment)
       do pass = 1, mesh%n + 1
          anch_u = anchored(mesh, st, top, i)
-         anch_l = anchored(mesh, st, i, bot)
+         anch_l = anchored(mesh, st, i, bot) .or. blocked
          ! a side that a load pushes towards the other moves only along it (moved back against
          ! it, the load would do its work again): the faces meet at t^n, closing the gap
          if (.not. (anch_u .or. anch_l) .and. ((top == 0 .and. i_top > 0.0_wp) .or. &
@@ -530,6 +531,14 @@ contains
             m_l = span_mass(mesh, i, bot)
             x = corr * m_l / (m_u + m_l)
             y = corr - x
+         end if
+         ! a lower side that reaches the base and would be pushed into it stays, as if held
+         if (.not. anch_l .and. bot == mesh%n .and. mesh%bottom == end_base .and. &
+             y > 0.0_wp) then
+            if (st%ua(mesh%n) + y - st%u_base > 0.0_wp) then
+               blocked = .true.
+               cycle
+            end if
          end if
          ! a side pushed into its neighbour takes it along; then the masses change
          j = top
@@ -635,6 +644,12 @@ contains
             at_n = .false.
             corr = d_del
             call land_side(mesh, st, policy, corr, j, shift_amount)
+         end if
+         ! a bar side that cannot move (held by a fixed top) lands at t^n: the face keeps the
+         ! small gap it had then, never an overlap
+         if (abs(shift_amount) == 0.0_wp .and. .not. at_n) then
+            at_n = .true.
+            corr = d_acc
          end if
          if (abs(shift_amount) > 0.0_wp) then
             call fragment_span(mesh, st, n, j_near, k)

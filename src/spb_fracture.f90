@@ -145,7 +145,7 @@ contains
       call fragment_span(mesh, st, brk(nb), j, r_bot)
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
       if (rules == events_admissible) then
-         call break_admissible(mesh, st, g, brk, i_top, i_bot, events)
+         call break_admissible(mesh, st, g, brk, i_top, i_bot, eps, events)
          st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
                                                                   r_top, r_bot)
          return
@@ -229,31 +229,44 @@ contains
    !> bar this is the paper's stage 1 with S the continuum section stress of the step. The
    !> faces open by what the continuum opens them in one step (no stage 2). The scheme's
    !> own measure changes by what e_fracture books.
-   pure subroutine break_admissible(mesh, st, g, brk, i_top, i_bot, events)
+   pure subroutine break_admissible(mesh, st, g, cand, i_top, i_bot, eps, events)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g
-      integer, intent(in) :: brk(:)
-      real(wp), intent(in) :: i_top, i_bot
+      integer, intent(in) :: cand(:)           !! sections whose S^{n+1/2} < -R - eps
+      real(wp), intent(in) :: i_top, i_bot, eps
       type(event_list_t), intent(inout) :: events
-      real(wp) :: du_a(size(brk)), du_b(size(brk)), s_brk(size(brk)), e0
+      real(wp) :: du_a(size(cand)), du_b(size(cand)), s_brk(size(cand)), e0, sig
       real(wp), allocatable :: f(:), gw(:)
-      integer :: m, i, j, k, parent
+      integer :: brk(size(cand))
+      integer :: m, i, j, k, parent, nb
       type(event_t) :: ev
+      ! each candidate breaks where the continuum reading's own section stress over the step,
+      ! (Z_i/dt)(2 f_i - du_i), is beyond its strength too (after a join the (3.1)-(3.2)
+      ! recursion can differ from it; its value is kept where the section holds)
       m = 1
-      do while (m <= size(brk))
-         call fragment_span(mesh, st, brk(m), j, k)
+      nb = 0
+      do while (m <= size(cand))
+         call fragment_span(mesh, st, cand(m), j, k)
          allocate(f(j+1:k), gw(j+1:k))
          call fragment_characteristics(mesh, st, j, k, i_top, i_bot, .true., f, gw)
-         do while (m <= size(brk))
-            if (brk(m) >= k) exit
-            du_a(m) = 2.0_wp * f(brk(m))
-            du_b(m) = 2.0_wp * gw(brk(m) + 1)
+         do while (m <= size(cand))
+            if (cand(m) >= k) exit
+            i = cand(m)
+            sig = mesh%z(i) / mesh%dt * (2.0_wp * f(i) - st%dua(i))
+            if (sig < -st%strength(i) - eps) then
+               nb = nb + 1
+               brk(nb) = i
+               du_a(nb) = 2.0_wp * f(i)
+               du_b(nb) = 2.0_wp * gw(i + 1)
+            else
+               st%sec(i) = sig
+            end if
             m = m + 1
          end do
          deallocate(f, gw)
       end do
-      do m = 1, size(brk)
+      do m = 1, nb
          i = brk(m)
          s_brk(m) = st%sec(i)
          e0 = node_energy(mesh, st, g, i)
@@ -270,7 +283,7 @@ contains
          st%n_breakable = st%n_breakable - 1
          st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
       end do
-      do m = 1, size(brk)
+      do m = 1, nb
          i = brk(m)
          call fragment_span(mesh, st, i, j, k)
          parent = st%frag_id(j)

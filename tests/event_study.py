@@ -316,7 +316,18 @@ def analyse(prefix, energy_column, notes):
     need = ("e_kin", "e_strain", "e_pot", "w_ext")
     if all(k in his for k in need):
         e_pot = his["e_pot"]
-        if energy_column:
+        wave = energy_column == "e_wave" and all(k in his for k in ("e_wave", "e_wave_g", "w_wave", "e_lost_w", "ledger_w"))
+        if wave:
+            # the wave measure (doc/outputs.md): its own work, losses and ledger
+            e = his["e_wave"] + e_pot + his["e_wave_g"]
+            res["energy_measure"] = "e_wave + e_pot + e_wave_g (w_wave, e_lost_w, ledger_w)"
+            his = dict(his)
+            his["w_ext"] = his["w_wave"]
+            his["e_lost"] = his["e_lost_w"]
+            his["ledger"] = his["ledger_w"]
+            his["e_kin"] = his["e_wave"]
+            his["e_strain"] = 0.0 * his["e_wave"]
+        elif energy_column:
             if energy_column in his:
                 e = his[energy_column] + e_pot
                 res["energy_measure"] = energy_column + " + e_pot"
