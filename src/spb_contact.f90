@@ -489,8 +489,8 @@ contains
       integer, intent(out) :: top, bot
       real(wp), intent(out) :: x, y          !! [m]
       integer :: j, k, pass
-      real(wp) :: m_u, m_l
-      logical :: anch_u, anch_l, blocked
+      real(wp) :: m_u, m_l, bias, other
+      logical :: anch_u, anch_l, blocked, lift
       call fragment_span(mesh, st, i, j, k)
       if (policy == shift_above) then
          j = 0
@@ -518,11 +518,23 @@ contains
             x = 0.0_wp
             y = 0.0_wp
          else if (anch_u .or. anch_l) then
-            ! the free side moves by +corr (lower) or -corr (upper): down is +x
-            if (merge(g * corr < 0.0_wp, g * corr > 0.0_wp, anch_u)) then
-               ! its move would lift it: the other time's correction moves it down instead
+            ! the free side moves by +corr (lower) or -corr (upper), down is +x; it must not
+            ! move against gravity and a load on its face (bias: their push along +x)
+            if (anch_u) then
+               bias = g * span_mass(mesh, i, bot) * mesh%dt
+               if (bot == mesh%n) bias = bias - i_bot
+            else
+               bias = -g * span_mass(mesh, top, i) * mesh%dt
+               if (top == 0) bias = bias - i_top
+            end if
+            ! (bias now along the free side's move by +corr)
+            lift = bias * corr < 0.0_wp
+            other = merge(d_del, d_acc, at_n)
+            if (lift .and. (.not. bias * other < 0.0_wp .or. abs(other) < abs(corr))) then
+               ! its move would go against gravity and the load: the other time's correction
+               ! moves it along them (or, if both go against, the smaller one)
                at_n = .not. at_n
-               corr = merge(d_acc, d_del, at_n)
+               corr = other
             end if
             x = merge(0.0_wp, corr, anch_u)
             y = merge(corr, 0.0_wp, anch_u)

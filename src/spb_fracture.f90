@@ -331,6 +331,11 @@ contains
          call fragment_span(mesh, st, n, j, k)
          allocate(f(j+1:n), gw(j+1:n))
          call fragment_characteristics(mesh, st, j, n, i_top, i_bot, .true., f, gw)
+         ! the base lets go where the continuum reading's base stress pulls too (as breaks)
+         if (.not. (2.0_wp * mesh%z(n) / mesh%dt * f(n) < -eps)) then
+            st%sec(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
+            return
+         end if
          e0 = node_energy(mesh, st, g, n)
          d_a = st%dua(n) - 2.0_wp * f(n)
          st%s(n) = st%s(n) + mesh%stiff(n) * d_a

@@ -34,7 +34,8 @@ module spb_wave
       real(wp) :: e_wave = 0.0_wp      !! sum of the fragments' continuum energies [J/m^2]
       real(wp) :: e_gravity = 0.0_wp   !! -(g dt/2) sum_f J'_f: with e_pot the exact gravity
                                        !! energy of the lattice [J/m^2]
-      real(wp) :: jordan = 0.0_wp      !! largest |J| / (its fragment's momentum scale) [-]
+      real(wp) :: jordan = 0.0_wp      !! largest |J| over the fragments / the bar's momentum
+                                       !! scale (sum of |m du/dt| and |s dt| over the nodes) [-]
       real(wp) :: jordan_abs = 0.0_wp  !! largest |J| [kg/(m s)]
    end type wave_t
 
@@ -48,8 +49,9 @@ contains
       real(wp), intent(in) :: g        !! gravity along +x [m/s^2]
       real(wp), intent(in) :: i_top, i_bot
       type(wave_t) :: w
-      real(wp) :: e, jp, jr, ja
+      real(wp) :: e, jp, jr, ja, total
       integer :: c, top, bot
+      total = 0.0_wp
       top = 0
       do c = 1, st%n_split + 1
          if (c <= st%n_split) then
@@ -60,10 +62,11 @@ contains
          call fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jp, jr, ja)
          w%e_wave = w%e_wave + e
          w%e_gravity = w%e_gravity - 0.5_wp * g * mesh%dt * jp
-         w%jordan = max(w%jordan, jr)
+         total = total + jr
          w%jordan_abs = max(w%jordan_abs, ja)
          top = bot
       end do
+      if (total > 0.0_wp) w%jordan = w%jordan_abs / total
    end function wave_energy
 
    !> Wave energy with its gravity terms, e_wave - (g dt/2) J' + e_pot, of the fragments
@@ -104,8 +107,9 @@ contains
       real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
       real(wp), intent(out) :: e             !! continuum energy [J/m^2]
       real(wp), intent(out) :: jprime        !! alternating sum J' with the load terms [kg/(m s)]
-      real(wp), intent(out) :: jordan        !! |J| / momentum scale (0 unless two free faces) [-]
-      real(wp), intent(out) :: jordan_abs    !! |J| [kg/(m s)]
+      real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
+                                             !! and |s dt| [kg/(m s)]
+      real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
       real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot))
       integer :: k
       call fragment_h(mesh, st, top, bot, i_top, i_bot, .false., h, sdt, jprime, jordan, &
@@ -188,7 +192,7 @@ contains
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
          jprime = jprime - 2.0_wp * load_top
-      jordan = 0.0_wp
+      jordan = scale
       jordan_abs = 0.0_wp
       if (bot == top) return
       ! h from the top face down and from the bottom face up
@@ -213,7 +217,6 @@ contains
          ! shared half and half between the two readings
          res = h_dn(bot) - h_up(bot)
          jordan_abs = abs(res)
-         if (scale > 0.0_wp) jordan = jordan_abs / scale
          h(top+1:bot) = 0.5_wp * (h_dn + h_up)
       else if (eq_top) then
          h(top+1:bot) = h_dn
