@@ -113,9 +113,8 @@ contains
       real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
       integer :: cand(mesh%n)
       real(wp) :: eps, dt2, e0, de, shift_up, shift_dn, e_wave0
-      integer :: i, m, nb, j, k, parent, r_top, r_bot
+      integer :: i, m, nb, j, k, r_top, r_bot
       logical :: anchored_up, anchored_dn
-      type(event_t) :: ev
 
       if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%base_contact)) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%sec(mesh%n)))
@@ -194,24 +193,7 @@ contains
          st%e_fracture = st%e_fracture - de
          call shift_span(mesh, st, g, i, k, shift_dn, de)
          st%e_fracture = st%e_fracture - de
-         ! genealogy: both pieces are new fragments born of the one that broke
-         parent = st%frag_id(j)
-         call new_fragment_id(st, parent, j)
-         call new_fragment_id(st, parent, i)
-         ev%kind = ev_fracture
-         if (st%cracked(i)) ev%kind = ev_separation
-         st%cracked(i) = .true.
-         ev%step = st%n
-         ev%node = i
-         ev%t = real(st%n, wp) * mesh%dt
-         ev%x = mesh%x(i)
-         ev%stress = s_brk(m)
-         ev%dt_bound = mesh%dt
-         ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
-         ev%opening = (st%ub(i) - st%ua(i))
-         ev%frag_above = st%frag_id(j)
-         ev%frag_below = st%frag_id(i)
-         call push_event(events, ev)
+         call record_break(mesh, st, i, j, s_brk(m), events)
       end do
       st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
                                                                r_top, r_bot)
@@ -239,8 +221,7 @@ contains
       real(wp) :: du_a(size(cand)), du_b(size(cand)), s_brk(size(cand)), e0, sig
       real(wp), allocatable :: f(:), gw(:)
       integer :: brk(size(cand))
-      integer :: m, i, j, k, parent, nb
-      type(event_t) :: ev
+      integer :: m, i, j, k, nb
       ! each candidate breaks where the continuum reading's own section stress over the step,
       ! (Z_i/dt)(2 f_i - du_i), is beyond its strength too (after a join the (3.1)-(3.2)
       ! recursion can differ from it; its value is kept where the section holds)
@@ -284,27 +265,40 @@ contains
          st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
       end do
       do m = 1, nb
-         i = brk(m)
-         call fragment_span(mesh, st, i, j, k)
-         parent = st%frag_id(j)
-         call new_fragment_id(st, parent, j)
-         call new_fragment_id(st, parent, i)
-         ev%kind = ev_fracture
-         if (st%cracked(i)) ev%kind = ev_separation
-         st%cracked(i) = .true.
-         ev%step = st%n
-         ev%node = i
-         ev%t = real(st%n, wp) * mesh%dt
-         ev%x = mesh%x(i)
-         ev%stress = s_brk(m)
-         ev%dt_bound = mesh%dt
-         ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
-         ev%opening = st%ub(i) - st%ua(i)
-         ev%frag_above = st%frag_id(j)
-         ev%frag_below = st%frag_id(i)
-         call push_event(events, ev)
+         call fragment_span(mesh, st, brk(m), j, k)
+         call record_break(mesh, st, brk(m), j, s_brk(m), events)
       end do
    end subroutine break_admissible
+
+   !> The genealogy and the event of a break at node i, now split, of the fragment whose top
+   !> node was j: both pieces are new fragments born of the one that broke; a section that had
+   !> been open before (a crack, a dry contact) separates rather than fractures.
+   pure subroutine record_break(mesh, st, i, j, stress, events)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      integer, intent(in) :: i, j
+      real(wp), intent(in) :: stress          !! the section stress that broke it [Pa]
+      type(event_list_t), intent(inout) :: events
+      type(event_t) :: ev
+      integer :: parent
+      parent = st%frag_id(j)
+      call new_fragment_id(st, parent, j)
+      call new_fragment_id(st, parent, i)
+      ev%kind = ev_fracture
+      if (st%cracked(i)) ev%kind = ev_separation
+      st%cracked(i) = .true.
+      ev%step = st%n
+      ev%node = i
+      ev%t = real(st%n, wp) * mesh%dt
+      ev%x = mesh%x(i)
+      ev%stress = stress
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
+      ev%opening = st%ub(i) - st%ua(i)
+      ev%frag_above = st%frag_id(j)
+      ev%frag_below = st%frag_id(i)
+      call push_event(events, ev)
+   end subroutine record_break
 
    !> The bar leaves the rigid base when the base section stress falls below -eps (the
    !> base has no tensile strength): 'paper', stage 1 and 2 on the bar side only;
