@@ -622,6 +622,8 @@ contains
       if (.not. anchored(mesh, st, j, mesh%n)) then
          shift_amount = -corr
          call extend_up(mesh, st, j, shift_amount)
+         ! taking along what it is pushed into can reach a held top: then nothing moves
+         if (anchored(mesh, st, j, mesh%n)) shift_amount = 0.0_wp
       end if
    end subroutine land_side
 
@@ -632,7 +634,7 @@ contains
       real(wp), intent(in) :: g, i_top
       integer, intent(in) :: timing, policy, rules
       type(event_list_t), intent(inout) :: events
-      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias
+      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias, other
       integer :: n, j, j_near, k
       logical :: at_n, ok
       type(event_t) :: ev
@@ -648,13 +650,13 @@ contains
          ! taken (closing the gap at t^n moves it down, removing the overlap at t^{n+1} up)
          bias = g * span_mass(mesh, j, n) * mesh%dt
          if (j == 0) bias = bias + i_top
-         if (.not. at_n .and. bias * shift_amount < 0.0_wp) then
-            at_n = .true.
-            corr = d_acc
-            call land_side(mesh, st, policy, corr, j, shift_amount)
-         else if (at_n .and. bias * shift_amount < 0.0_wp) then
-            at_n = .false.
-            corr = d_del
+         ! the bar side moves by -corr: against the bias, take the other time's correction
+         ! if it moves along it, or the smaller one where both go against
+         other = merge(d_del, d_acc, at_n)
+         if (-bias * corr < 0.0_wp .and. (.not. -bias * other < 0.0_wp .or. &
+                                          abs(other) < abs(corr))) then
+            at_n = .not. at_n
+            corr = other
             call land_side(mesh, st, policy, corr, j, shift_amount)
          end if
          ! a bar side that cannot move (held by a fixed top) lands at t^n: the face keeps the

@@ -188,7 +188,7 @@ contains
       ! conserved functional of the affine one-step map and checked exact (round-off) for
       ! free, top-held, bottom-held and both-held fragments of odd and even cell counts, with
       ! loads on either face; not for a transmitting end (doc/method.md)
-      jprime = jprime - 2.0_wp * merge(-1.0_wp, 1.0_wp, mod(bot - top, 2) == 1) * load_bot
+      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
          jprime = jprime - 2.0_wp * load_top
