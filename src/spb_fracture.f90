@@ -322,7 +322,6 @@ contains
       call fragment_span(mesh, st, n, j, k)
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, j, n)
       if (rules == events_admissible .and. .not. mesh%full_mass) then
-         call fragment_span(mesh, st, n, j, k)
          allocate(f(j+1:n), gw(j+1:n))
          call fragment_characteristics(mesh, st, j, n, i_top, i_bot, .true., f, gw)
          ! the base lets go where the continuum reading's base stress pulls too (as breaks)
@@ -330,45 +329,29 @@ contains
             st%sec(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
             return
          end if
-         e0 = node_energy(mesh, st, g, n)
+         ! the step redone from t^n for the bottom face: it moves by 2 f_n
          d_a = st%dua(n) - 2.0_wp * f(n)
-         st%s(n) = st%s(n) + mesh%stiff(n) * d_a
-         st%ua(n) = st%ua(n) - d_a
-         st%ub(n) = st%ua(n)
-         st%dua(n) = 2.0_wp * f(n)
-         st%dub(n) = st%dua(n)
-         st%i_support = st%i_support - mesh%ma(n) * d_a / mesh%dt
-         st%base_contact = .false.
-         st%sec(n) = 0.0_wp
-         st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
-         ev%kind = ev_separation
-         ev%step = st%n
-         ev%node = n
-         ev%t = real(st%n, wp) * mesh%dt
-         ev%x = mesh%x(n)
-         ev%stress = s_base
-         ev%dt_bound = mesh%dt
-         ev%dx_bound = 0.0_wp
-         ev%opening = st%u_base - st%ua(n)
-         ev%frag_above = st%frag_id(j)
-         call push_event(events, ev)
-         st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
-         return
+      else
+         ! stage 1 on the bar side; the full-mass model lets go without corrections (it has
+         ! no section stresses)
+         d_a = merge(0.0_wp, -s_base * mesh%dt**2 / mesh%dm(n), mesh%full_mass)
       end if
-      ! the full-mass model lets go without corrections (it has no section stresses)
-      d_a = merge(0.0_wp, -s_base * mesh%dt**2 / mesh%dm(n), mesh%full_mass)
       e0 = node_energy(mesh, st, g, n)
       st%ua(n) = st%ua(n) - d_a
       st%dua(n) = st%dua(n) - d_a
       st%i_support = st%i_support - mesh%ma(n) * d_a / mesh%dt
       st%ub(n) = st%ua(n)
       st%dub(n) = st%dua(n)
-      if (.not. mesh%full_mass) st%s(n) = st%s(n) - s_base
+      if (rules == events_admissible) then
+         st%s(n) = st%s(n) + mesh%stiff(n) * d_a    ! the cell above follows the redone step
+      else if (.not. mesh%full_mass) then
+         st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
+      end if
       st%base_contact = .false.
       st%sec(n) = 0.0_wp
       st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
-      call fragment_span(mesh, st, n, j, k)
-      if (.not. (j == 0 .and. mesh%top == end_fixed)) then
+      if (rules /= events_admissible .and. .not. (j == 0 .and. mesh%top == end_fixed)) then
+         ! stage 2
          call shift_span(mesh, st, g, j, n, 0.5_wp * d_a, de)
          st%e_fracture = st%e_fracture - de
       end if
