@@ -112,7 +112,7 @@ contains
       integer, allocatable :: brk(:)
       real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
       integer :: cand(mesh%n)
-      real(wp) :: eps, dt2, e0, de, shift_up, shift_dn, e_wave0
+      real(wp) :: eps, dt2, de, shift_up, shift_dn, e_wave0
       integer :: i, m, nb, j, k, r_top, r_bot
       logical :: anchored_up, anchored_dn
 
@@ -156,18 +156,7 @@ contains
          s_brk(m) = st%sec(i)
          d_a(m) = -s_brk(m) * dt2 / mesh%dm(i)
          d_b(m) = -s_brk(m) * dt2 / mesh%dm(i + 1)
-         e0 = node_energy(mesh, st, g, i)
-         st%ua(i) = st%ua(i) - d_a(m)
-         st%dua(i) = st%dua(i) - d_a(m)
-         st%ub(i) = st%ub(i) + d_b(m)
-         st%dub(i) = st%dub(i) + d_b(m)
-         st%s(i) = st%s(i) - s_brk(m)
-         st%s(i + 1) = st%s(i + 1) - s_brk(m)
-         call open_node(st, i)
-         st%strength(i) = 0.0_wp
-         st%sec(i) = 0.0_wp
-         st%n_breakable = st%n_breakable - 1
-         st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
+         call open_section(mesh, st, g, i, -d_a(m), d_b(m), -s_brk(m), -s_brk(m))
       end do
       ! stage 2: the opening becomes (dA + dB)/2; an anchored fragment (holding a fixed
       ! end) does not move and the other one takes the whole correction
@@ -218,7 +207,7 @@ contains
       integer, intent(in) :: cand(:)           !! sections whose S^{n+1/2} < -R - eps
       real(wp), intent(in) :: i_top, i_bot, eps
       type(event_list_t), intent(inout) :: events
-      real(wp) :: du_a(size(cand)), du_b(size(cand)), s_brk(size(cand)), e0, sig
+      real(wp) :: du_a(size(cand)), du_b(size(cand)), s_brk(size(cand)), sig
       real(wp), allocatable :: f(:), gw(:)
       integer :: brk(size(cand))
       integer :: m, i, j, k, nb
@@ -250,25 +239,41 @@ contains
       do m = 1, nb
          i = brk(m)
          s_brk(m) = st%sec(i)
-         e0 = node_energy(mesh, st, g, i)
          ! the step redone from t^n for the two faces: u, du and the two cells' s^{n+1}
-         st%s(i) = st%s(i) - mesh%stiff(i) * (du_a(m) - st%dua(i))
-         st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * (du_b(m) - st%dub(i))
-         st%ua(i) = st%ua(i) + (du_a(m) - st%dua(i))
-         st%ub(i) = st%ub(i) + (du_b(m) - st%dub(i))
-         st%dua(i) = du_a(m)
-         st%dub(i) = du_b(m)
-         call open_node(st, i)
-         st%strength(i) = 0.0_wp
-         st%sec(i) = 0.0_wp
-         st%n_breakable = st%n_breakable - 1
-         st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
+         call open_section(mesh, st, g, i, du_a(m) - st%dua(i), du_b(m) - st%dub(i), &
+                           -mesh%stiff(i) * (du_a(m) - st%dua(i)), &
+                           mesh%stiff(i + 1) * (du_b(m) - st%dub(i)))
       end do
       do m = 1, nb
          call fragment_span(mesh, st, brk(m), j, k)
          call record_break(mesh, st, brk(m), j, s_brk(m), events)
       end do
    end subroutine break_admissible
+
+   !> Open the joined section i: its halves' u and du change by dd_a (upper) and dd_b
+   !> (lower), the cells above and below by ds_a and ds_b; the section has no strength from
+   !> now on, and the change of the scheme's measure is booked in e_fracture.
+   pure subroutine open_section(mesh, st, g, i, dd_a, dd_b, ds_a, ds_b)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(inout) :: st
+      real(wp), intent(in) :: g
+      integer, intent(in) :: i
+      real(wp), intent(in) :: dd_a, dd_b   !! [m]
+      real(wp), intent(in) :: ds_a, ds_b   !! [Pa]
+      real(wp) :: e0
+      e0 = node_energy(mesh, st, g, i)
+      st%ua(i) = st%ua(i) + dd_a
+      st%dua(i) = st%dua(i) + dd_a
+      st%ub(i) = st%ub(i) + dd_b
+      st%dub(i) = st%dub(i) + dd_b
+      st%s(i) = st%s(i) + ds_a
+      st%s(i + 1) = st%s(i + 1) + ds_b
+      call open_node(st, i)
+      st%strength(i) = 0.0_wp
+      st%sec(i) = 0.0_wp
+      st%n_breakable = st%n_breakable - 1
+      st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
+   end subroutine open_section
 
    !> The genealogy and the event of a break at node i, now split, of the fragment whose top
    !> node was j: both pieces are new fragments born of the one that broke; a section that had
