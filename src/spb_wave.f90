@@ -23,7 +23,7 @@
 !> combination of held and free ends, homogeneous and layered).
 module spb_wave
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_base
+   use spb_mesh, only: mesh_t, end_free, end_base, end_fixed
    use spb_state, only: state_t
    implicit none
    private
@@ -190,6 +190,13 @@ contains
       ! loads on either face; not for a transmitting end (doc/method.md)
       if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
+      ! held at both ends (a fixed top, and a fixed bottom or the base) with an odd cell count:
+      ! the conserved gravity term is -2 g sum w_i m_i (u_i^n + u_i^{n+1})/2 with weights
+      ! w_i = (-1)^(i-top-1) (1/2 - C_i/C), C_i the compliance (sum of dt/Z) of the cells
+      ! above node i (found from the affine one-step map; exact, layered included)
+      if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
+          mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+          (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
          jprime = jprime - 2.0_wp * load_top
       jordan = scale
@@ -241,6 +248,28 @@ contains
          end do
       end if
    end subroutine fragment_h
+
+   !> (4/dt) sum_i w_i m_i (u_i - du_i/2) over the nodes of a fragment held at both ends,
+   !> w_i = (-1)^(i-top-1) (1/2 - C_i/C) with C_i the compliance of the cells above node i:
+   !> with -(g dt/2) in front, the exact gravity term of an odd cell count [kg/(m s)].
+   pure real(wp) function held_weights(mesh, st, top, bot) result(jp)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      real(wp) :: c_total, c_above, sgn
+      integer :: i
+      c_total = sum(1.0_wp / mesh%z(top+1:bot))
+      c_above = 0.0_wp
+      sgn = -1.0_wp
+      jp = 0.0_wp
+      do i = top, bot
+         if (i > top) c_above = c_above + 1.0_wp / mesh%z(i)
+         jp = jp + sgn * (0.5_wp - c_above / c_total) * &
+              (mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i)) + mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i)))
+         sgn = -sgn
+      end do
+      jp = 4.0_wp / mesh%dt * jp
+   end function held_weights
 
    !> m du / dt of node i as the fragment top..bot owns it [kg/(m s)].
    pure real(wp) function node_momentum(mesh, st, top, bot, i) result(p)
