@@ -25,50 +25,21 @@ import subprocess
 import sys
 import time
 
-DECK = """&run
-  title         = "Example 3, case 2 at h/{cells}: {timing}/{shift}, events {events}"
-  t_end         = 0.6
-  gravity       = 9.81
-  timing        = '{timing}'
-  shift         = '{shift}'
-{events_line}  history_every = {every}
-/
-&mesh
-  cells = {cells}
-/
-&segments
-  n        = 1
-  length   = 0.95
-  young    = 20.0e6
-  density  = 1765.8
-  strength = 0.0
-/
-&ends
-  top    = 'free'
-  bottom = 'base'
-/
-&load
-  kind     = 'power'
-  face     = 'top'
-  p0       = 0.1e6
-  t_k      = 0.5
-  exponent = 3.0
-  t_cut    = 0.5
-/
-&initial
-  state = 'static'
-/
-"""
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "scripts"))
+sys.path.insert(0, os.path.join(HERE, "..", "tests"))
+from make_case2_decks import BODY          # the decks of input/example3_case2/  # noqa: E402
+from cli_event_layer import his            # the history reader by column names  # noqa: E402
 
 
-def his(path):
-    names, rows = None, []
-    for line in open(path):
-        if line.startswith("# t "):
-            names = line[2:].split()
-        elif not line.startswith("#") and line.strip():
-            rows.append([float(x) for x in line.split()])
-    return {n: [r[i] for r in rows] for i, n in enumerate(names)}
+def deck_text(cells, timing, shift, events):
+    """input/example3_case2's deck at this mesh, rule and policy, history every step,
+    with &run events unless events == 'none'."""
+    text = BODY.format(title=f"h/{cells}, {timing}/{shift}", timing=timing, shift=shift,
+                       model="half-mass", cells=cells)
+    extra = "  history_every = 1\n" + ("" if events == "none" else f"  events = '{events}'\n")
+    return "\n".join(l for l in text.splitlines() if not l.strip().startswith("profile_times")) \
+        .replace("&run\n", "&run\n" + extra, 1) + "\n"
 
 
 def window_means(t, r, width, t_end):
@@ -90,9 +61,7 @@ def run_one(exe, work, cells, timing, shift, events):
     name = f"{timing}_{shift}_h{cells}"
     deck = os.path.join(work, name + ".nml")
     with open(deck, "w") as f:
-        line = "" if events == "none" else f"  events        = '{events}'\n"
-        f.write(DECK.format(cells=cells, timing=timing, shift=shift, events=events, every=1,
-                            events_line=line))
+        f.write(deck_text(cells, timing, shift, events))
     t0 = time.perf_counter()
     p = subprocess.run([exe, deck, "-q"], cwd=work, capture_output=True, text=True)
     wall = time.perf_counter() - t0
