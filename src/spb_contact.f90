@@ -95,7 +95,7 @@ contains
          nc = 0
          do c = 1, size(open_nodes)
             i = open_nodes(c)
-            if (.not. (st%ua(i) - st%ub(i) > eps_rel * mesh%dx(i))) cycle
+            if (.not. (st%ua(i) - st%ub(i) > eps_rel * min(mesh%dx(i), mesh%dx(i + 1)))) cycle
             nc = nc + 1
             m = nc
             do while (m > 1)
@@ -116,9 +116,9 @@ contains
          if (open_nodes(c) == 0) exit
          i = open_nodes(c)
          tol = 0.0_wp
-         if (rules == events_admissible) tol = eps_rel * mesh%dx(i)
+         if (rules == events_admissible) tol = eps_rel * min(mesh%dx(i), mesh%dx(i + 1))
          if (rules == events_admissible .and. pass == 1 .and. st%ua(i) - st%ub(i) > tol) then
-            if (.not. joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot)) cycle
+            if (.not. joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot, tol)) cycle
          end if
          if (st%ua(i) - st%ub(i) > tol) then
             if (rules == events_admissible) then
@@ -130,7 +130,7 @@ contains
                                  i_bot)
             end if
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-            call collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot)
+            call collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot, tol)
             st%e_lost_wave = st%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
@@ -148,22 +148,39 @@ contains
                                  i_top, i_bot)
             end if
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-            call land(mesh, st, g, timing, policy, events, rules, i_top)
+            call land(mesh, st, g, timing, policy, events, rules, i_top, tol)
             st%e_lost_wave = st%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
       end if
    end subroutine contact_step
 
+   !> The correction (5.2) that closes the gap at t^n, u_A^n - u_B^n (the base for i = n with
+   !> the base below), where an overlap at t^n within the contact tolerance counts as touching:
+   !> the faces met then (to round-off), and moving a side by that much would only lift it.
+   pure real(wp) function gap_at_n(mesh, st, i, tol) result(d_acc)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: i
+      real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
+      if (i == mesh%n) then
+         d_acc = (st%ua(i) - st%dua(i)) - st%u_base
+      else
+         d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
+      end if
+      if (d_acc > 0.0_wp .and. d_acc <= tol) d_acc = 0.0_wp
+   end function gap_at_n
+
    !> Whether the admissible rules join split node i at t^n (as collide would decide now).
-   pure logical function joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot) result(at_n)
+   pure logical function joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot, tol) result(at_n)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
       real(wp), intent(in) :: g, i_top, i_bot
       integer, intent(in) :: timing, policy, i
+      real(wp), intent(in) :: tol              !! contact tolerance [m]
       real(wp) :: d_acc, d_del, corr, x, y
       integer :: top, bot
-      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
+      d_acc = gap_at_n(mesh, st, i, tol)
       d_del = st%ua(i) - st%ub(i)
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
@@ -235,10 +252,11 @@ contains
    end function du_before_b
 
    !> Choose the rule's time, shift one side, join node i.
-   pure subroutine collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot)
+   pure subroutine collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot, tol)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g, i_top, i_bot
+      real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing, policy, i, rules
       type(event_list_t), intent(inout) :: events
       real(wp) :: dua0, dub0, d_acc, d_del, corr, mass_a, mass_b, du_join, e0, de, sz, v_a, v_b
@@ -250,7 +268,7 @@ contains
       dua0 = du_before_a(mesh, st, g, i)
       dub0 = du_before_b(mesh, st, g, i)
       ! (5.2): corrections that close the gap at t^n or remove the overlap at t^{n+1}
-      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))     ! u_A^n - u_B^n (< 0: a gap)
+      d_acc = gap_at_n(mesh, st, i, tol)                          ! u_A^n - u_B^n (< 0: a gap)
       d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
       call choose_time(timing, d_acc, d_del, at_n, corr)
       if (rules == events_admissible) then
@@ -628,10 +646,11 @@ contains
    end subroutine land_side
 
    !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
-   pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top)
+   pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top, tol)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: g, i_top
+      real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing, policy, rules
       type(event_list_t), intent(inout) :: events
       real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias, other
@@ -640,7 +659,7 @@ contains
       type(event_t) :: ev
       n = mesh%n
       dua0 = du_before_a(mesh, st, g, n)
-      d_acc = (st%ua(n) - st%dua(n)) - st%u_base
+      d_acc = gap_at_n(mesh, st, n, tol)
       d_del = st%ua(n) - st%u_base
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call land_side(mesh, st, policy, corr, j, shift_amount)

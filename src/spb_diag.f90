@@ -60,6 +60,8 @@ module spb_diag
       real(wp) :: ledger_w0 = 0.0_wp       !! wave ledger at t = 0 [J/m^2]
       real(wp) :: wave_drift = 0.0_wp      !! largest |ledger_w - ledger_w0| over rows [J/m^2]
       real(wp) :: max_jordan = 0.0_wp      !! largest relative Jordan amplitude over rows [-]
+      real(wp) :: jordan_scale = 0.0_wp    !! largest momentum scale of the bar over rows, what
+                                           !! the Jordan amplitude is relative to [kg/(m s)]
    end type run_summary_t
 
 contains

@@ -59,16 +59,14 @@ contains
       end do
    end subroutine fragment_span
 
-   !> Mass of the region from B_top to A_bot (as moved by shift_span) [kg/m^2].
+   !> Mass of the region from B_top to A_bot (as moved by shift_span) [kg/m^2]: its cells,
+   !> and the outer half mass of an end node (a transmitting or full-mass end).
    pure real(wp) function span_mass(mesh, top, bot) result(mass)
       type(mesh_t), intent(in) :: mesh
       integer, intent(in) :: top, bot
-      integer :: i
-      mass = 0.0_wp
-      do i = top, bot
-         if (i > top .or. top == 0) mass = mass + mesh%ma(i)
-         if (i < bot .or. bot == mesh%n) mass = mass + mesh%mb(i)
-      end do
+      mass = mesh%m_above(bot) - mesh%m_above(top)
+      if (top == 0) mass = mass + mesh%ma(0)
+      if (bot == mesh%n) mass = mass + mesh%mb(mesh%n)
    end function span_mass
 
    !> Shift the displacements (not the increments) of the fragment from B_top to A_bot

@@ -42,6 +42,7 @@ module spb_mesh
       real(wp), allocatable :: ma(:)         !! upper half mass (cell above) [kg/m^2]
       real(wp), allocatable :: mb(:)         !! lower half mass (cell below) [kg/m^2]
       real(wp), allocatable :: inv_m(:)      !! 1/(ma + mb) [m^2/kg]
+      real(wp), allocatable :: m_above(:)    !! mass of cells 1..i, sum of dm [kg/m^2]
    end type mesh_t
 
 contains
@@ -186,6 +187,11 @@ contains
          if (mesh%full_mass .and. mesh%top == end_free) mesh%ma(0) = 0.5_wp * mesh%dm(1)
          if (mesh%full_mass .and. mesh%bottom == end_free) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          mesh%inv_m = 1.0_wp / (mesh%ma + mesh%mb)
+         allocate(mesh%m_above(0:n))
+         mesh%m_above(0) = 0.0_wp
+         do k = 1, n
+            mesh%m_above(k) = mesh%m_above(k - 1) + mesh%dm(k)
+         end do
       end associate
    end subroutine build_mesh
 end module spb_mesh

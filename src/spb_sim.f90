@@ -327,6 +327,10 @@ contains
             return
          end if
          call measure(sim, e, wv, w_w, e_l)
+         ! the Jordan amplitude relative to the largest momentum scale so far (the current one
+         ! vanishes once a bar has come to rest or radiated its waves away)
+         summary%jordan_scale = max(summary%jordan_scale, wv%momentum_scale)
+         if (summary%jordan_scale > 0.0_wp) wv%jordan = wv%jordan_abs / summary%jordan_scale
          summary%e_kin_end = e%e_kin
          summary%w_ext_end = e%w_ext
          if (to_files) call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &

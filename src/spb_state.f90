@@ -48,6 +48,12 @@ module spb_state
                                               !! removed from the scheme's invariant [J/m^2]
       real(wp) :: s_static_top = 0.0_wp       !! static stress a transmitting top carries [Pa]
       real(wp) :: s_static_bot = 0.0_wp       !! static stress a transmitting bottom carries [Pa]
+      real(wp) :: v_far_top = 0.0_wp          !! velocity of the bar's continuation beyond a
+                                              !! transmitting top: the end's at t = 0 [m/s]
+      real(wp) :: v_far_bot = 0.0_wp          !! the same beyond a transmitting bottom [m/s]
+      real(wp) :: w_in_top = 0.0_wp           !! interval of the wave that came in through a
+                                              !! transmitting top over the last step [m]
+      real(wp) :: w_in_bot = 0.0_wp           !! the same through a transmitting bottom [m]
       real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
       real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
       real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
@@ -142,6 +148,14 @@ contains
       end if
       if (mesh%top == end_fixed) v(0) = 0.0_wp
       if (mesh%bottom == end_fixed) v(n) = 0.0_wp
+      ! a transmitting end continues the bar without end: beyond it the bar keeps the motion
+      ! its end had at t = 0 (as it keeps the static stress), so a bar in uniform motion stays
+      ! in it and no end depends on the frame of reference
+      if (mesh%top == end_transmit) st%v_far_top = v(0)
+      if (mesh%bottom == end_transmit) st%v_far_bot = v(n)
+      ! what comes in through them before any load: the continuation's static stress and motion
+      st%w_in_top = 0.5_wp * (st%s_static_top / mesh%z(1) + st%v_far_top) * dt
+      st%w_in_bot = 0.5_wp * (-st%s_static_bot / mesh%z(n) + st%v_far_bot) * dt
       st%ua = u
       st%ub = u
       st%dua = v * dt

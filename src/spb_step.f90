@@ -51,14 +51,14 @@ contains
       case (end_transmit)
          ! u = F(t - x/a) + G(t + x/a) at Courant 1: the virtual cell above node 0 has
          ! s_0 = -(E/dx) du_0^n (outgoing G) + (E/dx) [F(n+1) - F(n-1)] = 2 P^n (incident F)
-         s_top = st%s_static_top - mesh%stiff(1) * st%dub(0)
+         s_top = st%s_static_top - mesh%stiff(1) * (st%dub(0) - st%v_far_top * mesh%dt)
          if (load%face == face_top) s_top = s_top + 2.0_wp * p
       end select
       select case (mesh%bottom)
       case (end_free)
          if (load%face /= face_top) s_bot = p
       case (end_transmit)
-         s_bot = st%s_static_bot + mesh%stiff(mesh%n) * st%dua(mesh%n)
+         s_bot = st%s_static_bot + mesh%stiff(mesh%n) * (st%dua(mesh%n) - st%v_far_bot * mesh%dt)
          if (load%face /= face_top) s_bot = s_bot + 2.0_wp * p
       end select
    end subroutine end_stresses
@@ -395,17 +395,17 @@ contains
       case (end_free)
          st%w_wave = st%w_wave + r%q_top * r%du_top / dt
       case (end_transmit)
-         associate (w_in => (0.5_wp * st%s_static_top * dt + r%q_top) / mesh%z(1))
-            st%w_wave = st%w_wave + mesh%z(1) * r%du_top * (2.0_wp * w_in - r%du_top) / dt
-         end associate
+         st%w_in_top = (0.5_wp * st%s_static_top * dt + r%q_top) / mesh%z(1) + &
+                       0.5_wp * st%v_far_top * dt
+         st%w_wave = st%w_wave + mesh%z(1) * r%du_top * (2.0_wp * st%w_in_top - r%du_top) / dt
       end select
       select case (mesh%bottom)
       case (end_free)
          st%w_wave = st%w_wave - r%q_bot * r%du_bot / dt
       case (end_transmit)
-         associate (w_in => -(0.5_wp * st%s_static_bot * dt + r%q_bot) / mesh%z(n))
-            st%w_wave = st%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * w_in - r%du_bot) / dt
-         end associate
+         st%w_in_bot = -(0.5_wp * st%s_static_bot * dt + r%q_bot) / mesh%z(n) + &
+                       0.5_wp * st%v_far_bot * dt
+         st%w_wave = st%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * st%w_in_bot - r%du_bot) / dt
       end select
 
       ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}

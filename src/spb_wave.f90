@@ -23,7 +23,7 @@
 !> combination of held and free ends, homogeneous and layered).
 module spb_wave
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_base, end_fixed
+   use spb_mesh, only: mesh_t, end_free, end_base, end_fixed, end_transmit
    use spb_state, only: state_t
    implicit none
    private
@@ -37,6 +37,7 @@ module spb_wave
       real(wp) :: jordan = 0.0_wp      !! largest |J| over the fragments / the bar's momentum
                                        !! scale (sum of |m du/dt| and |s dt| over the nodes) [-]
       real(wp) :: jordan_abs = 0.0_wp  !! largest |J| [kg/(m s)]
+      real(wp) :: momentum_scale = 0.0_wp  !! the bar's momentum scale (the sum above) [kg/(m s)]
    end type wave_t
 
 contains
@@ -66,6 +67,7 @@ contains
          w%jordan_abs = max(w%jordan_abs, ja)
          top = bot
       end do
+      w%momentum_scale = total
       if (total > 0.0_wp) w%jordan = w%jordan_abs / total
    end function wave_energy
 
@@ -99,7 +101,15 @@ contains
    end function region_wave
 
    !> The continuum reading of one fragment, nodes top..bot (top: 0 or a split node whose
-   !> lower half it owns; bot: n or a split node whose upper half it owns).
+   !> lower half it owns; bot: n or a split node whose upper half it owns), at t^{n+1}.
+   !> One pass without arrays (the reading of fragment_h, which tests/test_wave_energy.pf
+   !> checks this against): every solution of the node equations from the top down is
+   !> h_k = hd_k + beta (-1)^(bot-k), hd_k the one that starts from the top face's equation
+   !> (or from 0 where the top is held); beta follows from the bottom face's equation (half
+   !> of it, sharing the residual, when both faces are free; 0 when only the top is free) or,
+   !> held at both ends, from the smallest energy. With A = sum (hd^2 + (hd + s dt)^2)/Z,
+   !> B = sum (-1)^(bot-k) (2 hd + s dt)/Z and C = sum 1/Z the energy is
+   !> (A + 2 beta B + 2 beta^2 C)/dt.
    pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
@@ -110,14 +120,61 @@ contains
       real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
                                              !! and |s dt| [kg/(m s)]
       real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
-      real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot))
+      real(wp) :: dt, load_top, load_bot, r, sd, hd, sgn, sgn_k, a, b, c, d, beta, iz
+      logical :: eq_top, eq_bot, tr_top, tr_bot
       integer :: k
-      call fragment_h(mesh, st, top, bot, i_top, i_bot, .false., h, sdt, jprime, jordan, &
-                      jordan_abs)
-      e = 0.0_wp
+      dt = mesh%dt
+      call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot, &
+                          tr_top, tr_bot)
+      r = node_momentum(mesh, st, top, bot, top)
+      jprime = r
+      jordan = abs(r)
+      hd = 0.0_wp
+      if (eq_top .and. bot > top) hd = r + load_top - st%s(top + 1) * dt
+      if (tr_top .and. bot > top) hd = mesh%z(1) * st%w_in_top - st%s(top + 1) * dt
+      a = 0.0_wp
+      b = 0.0_wp
+      c = 0.0_wp
+      sgn = 1.0_wp
+      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
       do k = top + 1, bot
-         e = e + (h(k)**2 + (h(k) + sdt(k))**2) / (mesh%z(k) * mesh%dt)
+         sd = st%s(k) * dt
+         r = node_momentum(mesh, st, top, bot, k)
+         sgn = -sgn
+         jprime = jprime + sgn * (r + sd)
+         jordan = jordan + abs(r) + abs(sd)
+         iz = 1.0_wp / mesh%z(k)
+         a = a + (hd**2 + (hd + sd)**2) * iz
+         b = b + sgn_k * (2.0_wp * hd + sd) * iz
+         c = c + iz
+         sgn_k = -sgn_k
+         if (k < bot) hd = r - st%s(k + 1) * dt - hd
       end do
+      ! the same face terms as fragment_h
+      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
+      if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
+          mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+          (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
+         jprime = jprime - 2.0_wp * load_top
+      jordan_abs = 0.0_wp
+      e = 0.0_wp
+      if (bot == top) return
+      ! hd now holds hd_bot; d = h_bot from the bottom face's equation minus hd_bot
+      d = r - load_bot - hd
+      if (tr_bot) d = mesh%z(bot) * st%w_in_bot - hd
+      if (eq_top .and. eq_bot) then
+         jordan_abs = abs(d)
+         beta = 0.5_wp * d
+      else if (eq_top) then
+         beta = 0.0_wp
+      else if (eq_bot) then
+         beta = d
+      else
+         beta = -b / (2.0_wp * c)
+      end if
+      e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
    end subroutine fragment_wave
 
    !> The characteristic intervals of the fragment's cells at t^n (at_n: read from s^n and
@@ -152,7 +209,7 @@ contains
       real(wp), intent(out) :: jprime, jordan, jordan_abs
       real(wp) :: r(top:bot), h_dn(top+1:max(top+1, bot)), h_up(top+1:max(top+1, bot))
       real(wp) :: dt, load_top, load_bot, scale, sgn, res, alpha, num, den
-      logical :: eq_top, eq_bot
+      logical :: eq_top, eq_bot, tr_top, tr_bot
       integer :: i, k, o
 
       dt = mesh%dt
@@ -168,7 +225,8 @@ contains
             sdt(k) = st%s(k) * dt
          end if
       end do
-      call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot)
+      call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot, &
+                          tr_top, tr_bot)
       ! J' = sum (-1)^(i-top) (r_i + s_i dt), s_i the cell above node i
       jprime = 0.0_wp
       scale = 0.0_wp
@@ -206,11 +264,17 @@ contains
       h_dn(top + 1) = 0.0_wp
       if (eq_top .and. at_n) h_dn(top + 1) = r(top) - load_top
       if (eq_top .and. .not. at_n) h_dn(top + 1) = r(top) + load_top - sdt(top + 1)
+      if (tr_top .and. at_n) h_dn(top + 1) = r(top) - mesh%z(1) * st%w_in_top
+      if (tr_top .and. .not. at_n) h_dn(top + 1) = mesh%z(1) * st%w_in_top - sdt(top + 1)
       do k = top + 1, bot - 1
          h_dn(k + 1) = r(k) - sdt(k + o) - h_dn(k)
       end do
       if (eq_bot) then
-         if (at_n) then
+         if (tr_bot .and. at_n) then
+            h_up(bot) = r(bot) - mesh%z(bot) * st%w_in_bot - sdt(bot)
+         else if (tr_bot) then
+            h_up(bot) = mesh%z(bot) * st%w_in_bot
+         else if (at_n) then
             h_up(bot) = r(bot) - sdt(bot) + load_bot
          else
             h_up(bot) = r(bot) - load_bot
@@ -286,15 +350,20 @@ contains
       p = p / mesh%dt
    end function node_momentum
 
-   !> Which faces of the fragment are free (give an equation), with the load terms -I/2 (top)
-   !> and +I/2 (bottom) moved to the side of the unknowns.
+   !> Which faces of the fragment give an equation: a free face, with the load terms -I/2 (top)
+   !> and +I/2 (bottom) moved to the side of the unknowns, and a transmitting end (tr_*), where
+   !> the wave that came in over the step is known (st%w_in_*): at t^{n+1} it is the interval
+   !> of the end cell's incoming wave; at t^n the end node moved by it plus the end cell's
+   !> outgoing interval. A held end gives none. A transmitting end is used only where the
+   !> other end is not a free face: under gravity its equation lacks a term (not derived), and
+   !> the free face's reading is exact there (Example 1's splinter under g).
    pure subroutine face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, &
-                                  load_top, load_bot)
+                                  load_top, load_bot, tr_top, tr_bot)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
       integer, intent(in) :: top, bot
       real(wp), intent(in) :: i_top, i_bot
-      logical, intent(out) :: eq_top, eq_bot
+      logical, intent(out) :: eq_top, eq_bot, tr_top, tr_bot
       real(wp), intent(out) :: load_top, load_bot
       load_top = 0.0_wp
       load_bot = 0.0_wp
@@ -310,5 +379,9 @@ contains
          eq_bot = mesh%bottom == end_free .or. (mesh%bottom == end_base .and. .not. st%base_contact)
          if (mesh%bottom == end_free) load_bot = 0.5_wp * i_bot
       end if
+      tr_top = top == 0 .and. mesh%top == end_transmit .and. .not. eq_bot
+      tr_bot = bot == mesh%n .and. mesh%bottom == end_transmit .and. .not. eq_top
+      eq_top = eq_top .or. tr_top
+      eq_bot = eq_bot .or. tr_bot
    end subroutine face_equations
 end module spb_wave
