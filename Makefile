@@ -8,6 +8,7 @@
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): figure, table
+#   make golden REF=REV  every output of the Release program against revision REV's (scripts/golden.py)
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
@@ -27,12 +28,12 @@ RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug debug-configure run test test-translator figures bench fragmentation clean help
+.PHONY: all setup build debug debug-configure run test test-translator figures bench fragmentation golden clean help
 
 all: build
 
 help:
-	@sed -n '1,11p' Makefile
+	@sed -n '1,12p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -80,3 +81,7 @@ fragmentation: build
 
 clean:
 	rm -rf build
+
+REF ?= HEAD
+golden: build
+	python3 scripts/golden.py --exe $(BUILD_RELEASE)/bin/spallbar --ref-rev $(REF) --work $(BUILD_RELEASE)/golden

@@ -12,9 +12,10 @@ contains
       integer, intent(inout) :: n          !! entries in use
       integer, intent(in) :: value
       integer, allocatable :: grown(:)
-      if (.not. allocated(list)) allocate(list(8))
+      if (.not. allocated(list)) allocate(list(8), source=0)
       if (n == size(list)) then
-         allocate(grown(max(8, 2 * size(list))))
+         ! the unused tail is 0: a checkpoint writes the whole list, the same bytes every run
+         allocate(grown(max(8, 2 * size(list))), source=0)
          grown(1:n) = list(1:n)
          call move_alloc(grown, list)
       end if

@@ -97,10 +97,12 @@ contains
       allocate(st%ua(0:n), st%ub(0:n), st%dua(0:n), st%dub(0:n))
       allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%sec(0:n), st%strength(0:n))
       st%joined = .true.
-      allocate(st%cracked(0:n), st%skip_test(8))
+      allocate(st%cracked(0:n))
+      allocate(st%skip_test(8), source=0)
       st%cracked = .false.
       call init_strength(deck, mesh, st)
-      allocate(st%cell_strength(n), st%cut(16), st%is_cut(n))
+      allocate(st%cell_strength(n), st%is_cut(n))
+      allocate(st%cut(16), source=0)
       st%is_cut = .false.
       st%cell_strength = cell_strengths(deck, mesh)
       if (mesh%full_mass) then

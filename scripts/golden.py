@@ -1,0 +1,269 @@
+#!/usr/bin/env python3
+"""Golden comparison: every observable output of two spallbar programs, byte for byte.
+
+    golden.py --exe NEW (--ref-exe OLD | --ref-rev GIT_REV) [--work DIR] [--long]
+              [--fuzz N] [--ranks 1,3] [--keep]
+
+A refactoring that claims "no change in behaviour" (issue 18) runs this against the program
+it started from. For each case both programs run in the same directory with the same
+relative paths (the outputs name the deck's path), one after the other; then:
+
+  * every output file (PREFIX.his/.prf/.evt/.frg, sweep tables, the decks' own output
+    files) must be identical byte for byte;
+  * HDF5 files (PREFIX.h5, PREFIX_sweep.h5, checkpoints) must show no difference under
+    h5diff (data and attributes) and list the same objects (h5ls -r);
+  * stdout must be identical but for the run time ("N steps in T s"), stderr and the exit
+    status identical, and the same set of files left behind.
+
+Cases: every deck under input/ (input/long/ with --long), HDF5 and x-t field variants of
+four of them, a checkpointed run and its restart by the other program from the same
+checkpoint (old checkpoints still restart), the sweeps of input/sweeps/ on each rank count
+(MPI ranks > 1 where the program was built with MPI), bad command lines, and N hostile
+decks from tests/fuzz_decks.py (seeded). --ref-rev builds that revision's Release program
+in DIR/ref-build first (a git worktree). Prints one line per difference and a summary;
+exit 0 when there is none, 1 otherwise.
+"""
+import argparse
+import os
+import random
+import re
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+
+TIME_RE = re.compile(rb"steps in +[-+0-9.Ee]+ s")
+HDF5_SUFFIXES = (".h5",)
+
+
+def build_rev(rev, work):
+    """Release build of a git revision of this repository; returns its executable."""
+    src = os.path.join(work, "ref-src")
+    build = os.path.join(work, "ref-build")
+    if os.path.exists(src):
+        subprocess.run(["git", "-C", ROOT, "worktree", "remove", "--force", src],
+                       capture_output=True)
+        shutil.rmtree(src, ignore_errors=True)
+    subprocess.run(["git", "-C", ROOT, "worktree", "add", "--detach", src, rev], check=True,
+                   capture_output=True)
+    subprocess.run(["cmake", "-S", src, "-B", build, "-G", "Ninja",
+                    "-DCMAKE_Fortran_COMPILER=gfortran", "-DCMAKE_BUILD_TYPE=Release",
+                    "-DSPALLBAR_BUILD_TESTING=OFF"], check=True, capture_output=True)
+    subprocess.run(["cmake", "--build", build, "-j", str(os.cpu_count() or 2)], check=True,
+                   capture_output=True)
+    return os.path.join(build, "bin", "spallbar")
+
+
+def snapshot(folder):
+    """Relative paths of the files under folder."""
+    out = set()
+    for d, _, files in os.walk(folder):
+        for f in files:
+            out.add(os.path.relpath(os.path.join(d, f), folder))
+    return out
+
+
+class Golden:
+    def __init__(self, new, old, work):
+        self.new, self.old, self.work = new, old, work
+        self.cases = 0
+        self.diffs = []
+        self.files_compared = 0
+
+    def differ(self, case, what):
+        self.diffs.append(f"{case}: {what}")
+        print(f"DIFF {case}: {what}", flush=True)
+
+    def run_both(self, case, setup, argv, cwd_rel=".", env=None, restart_from=None):
+        """Run argv (the program first, as the placeholder EXE) in a fresh copy made by
+        setup(folder) for each program; compare what each leaves."""
+        self.cases += 1
+        results = {}
+        for tag, exe in (("old", self.old), ("new", self.new)):
+            folder = os.path.join(self.work, "run")
+            shutil.rmtree(folder, ignore_errors=True)
+            os.makedirs(folder)
+            setup(folder)
+            if restart_from:
+                restart_from(folder)
+            before = snapshot(folder)
+            cwd = os.path.join(folder, cwd_rel)
+            cmd = [exe if a == "EXE" else a for a in argv]
+            p = subprocess.run(cmd, cwd=cwd, capture_output=True, env=env, timeout=3600,
+                               stdin=subprocess.DEVNULL)
+            keep = os.path.join(self.work, tag)
+            shutil.rmtree(keep, ignore_errors=True)
+            shutil.move(folder, keep)
+            results[tag] = (p.returncode, TIME_RE.sub(b"steps in T s", p.stdout), p.stderr,
+                            snapshot(keep) - before)
+        (rc_o, out_o, err_o, files_o), (rc_n, out_n, err_n, files_n) = results["old"], results["new"]
+        if rc_o != rc_n:
+            self.differ(case, f"exit status {rc_o} -> {rc_n}")
+        if err_o != err_n:
+            self.differ(case, f"stderr {err_o[:200]!r} -> {err_n[:200]!r}")
+        if out_o != out_n:
+            self.differ(case, f"stdout differs ({first_diff(out_o, out_n)})")
+        if files_o != files_n:
+            self.differ(case, f"files left: only old {sorted(files_o - files_n)}, only new "
+                              f"{sorted(files_n - files_o)}")
+        for rel in sorted(files_o & files_n):
+            self.compare_file(case, rel)
+        return results
+
+    def compare_file(self, case, rel):
+        a = os.path.join(self.work, "old", rel)
+        b = os.path.join(self.work, "new", rel)
+        self.files_compared += 1
+        if rel.endswith(HDF5_SUFFIXES) or rel.endswith(".h5.part"):
+            p = subprocess.run(["h5diff", "-c", a, b], capture_output=True, text=True)
+            if p.returncode != 0:
+                self.differ(case, f"{rel}: h5diff: {p.stdout.strip()[:300]}")
+            la = subprocess.run(["h5ls", "-r", a], capture_output=True, text=True).stdout
+            lb = subprocess.run(["h5ls", "-r", b], capture_output=True, text=True).stdout
+            if la != lb:
+                self.differ(case, f"{rel}: the objects differ (h5ls -r)")
+            return
+        with open(a, "rb") as fa, open(b, "rb") as fb:
+            da, db = fa.read(), fb.read()
+        if da != db:
+            self.differ(case, f"{rel}: {first_diff(da, db)}")
+
+
+def first_diff(a, b):
+    la, lb = a.splitlines(), b.splitlines()
+    for k, (x, y) in enumerate(zip(la, lb)):
+        if x != y:
+            return f"line {k + 1}: {x[:120]!r} -> {y[:120]!r}"
+    return f"{len(la)} vs {len(lb)} lines"
+
+
+def copy_input(folder):
+    shutil.copytree(os.path.join(ROOT, "input"), os.path.join(folder, "input"))
+
+
+def add_to_run(text, extra):
+    """The deck with extra assignments at the start of its &run group."""
+    m = re.search(r"&run\b", text, re.IGNORECASE)
+    if not m:
+        return "&run " + extra + " /\n" + text
+    return text[:m.end()] + "\n  " + extra + "\n" + text[m.end():]
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--exe", required=True)
+    ap.add_argument("--ref-exe")
+    ap.add_argument("--ref-rev")
+    ap.add_argument("--work", default="golden_work")
+    ap.add_argument("--long", action="store_true")
+    ap.add_argument("--fuzz", type=int, default=200)
+    ap.add_argument("--ranks", default="1,3")
+    a = ap.parse_args(argv[1:])
+    work = os.path.abspath(a.work)
+    os.makedirs(work, exist_ok=True)
+    if a.ref_rev:
+        old = build_rev(a.ref_rev, work)
+    elif a.ref_exe:
+        old = os.path.abspath(a.ref_exe)
+    else:
+        ap.error("--ref-exe or --ref-rev")
+    g = Golden(os.path.abspath(a.exe), old, work)
+
+    # every deck of input/
+    decks = []
+    for d, _, files in os.walk(os.path.join(ROOT, "input")):
+        rel = os.path.relpath(d, os.path.join(ROOT, "input"))
+        if rel.startswith("sweeps") or (rel.startswith("long") and not a.long):
+            continue
+        decks += [os.path.normpath(os.path.join(rel, f)) for f in sorted(files) if f.endswith(".nml")]
+    for deck in sorted(decks):
+        d, f = os.path.split(deck)
+        g.run_both(f"deck {deck}", copy_input, ["EXE", f, "--output", "out_" + f[:-4]],
+                   cwd_rel=os.path.join("input", d))
+
+    # HDF5, x-t fields
+    for deck in ("example2.nml", "example3_case1_delay.nml", "expanding_bar.nml",
+                 "example3_case2/accelerate_fragment_h19.nml"):
+        def setup(folder, deck=deck):
+            copy_input(folder)
+            path = os.path.join(folder, "input", deck)
+            text = open(path).read()
+            open(path, "w").write(add_to_run(text, "hdf5 = .true., field_every = 7"))
+        d, f = os.path.split(deck)
+        g.run_both(f"hdf5 {deck}", setup, ["EXE", f, "--output", "h5_" + f[:-4]],
+                   cwd_rel=os.path.join("input", d))
+
+    # a checkpointed run, and restarts of the old program's checkpoint by both
+    def ck_setup(folder, t_end="1.0e-3"):
+        copy_input(folder)
+        path = os.path.join(folder, "input", "example2.nml")
+        lines = []
+        for line in open(path).read().splitlines():
+            if re.match(r"\s*t_end\s*=", line):
+                line = f"  t_end = {t_end}"
+            if not re.match(r"\s*profile_times\s*=", line):
+                lines.append(line)
+        open(path, "w").write(add_to_run("\n".join(lines) + "\n", "checkpoint = 'ck.h5', "
+                                         "checkpoint_every = 40, hdf5 = .true."))
+    g.run_both("checkpoint example2", ck_setup, ["EXE", "example2.nml", "--output", "ck"],
+               cwd_rel="input")
+    old_ck = os.path.join(work, "ck_from_old.h5")
+    shutil.copy(os.path.join(work, "old", "input", "ck.h5"), old_ck)
+
+    def restart_setup(folder):
+        ck_setup(folder)
+        inp = os.path.join(folder, "input")
+        subprocess.run([old, "example2.nml", "--output", "ck", "-q"], cwd=inp,
+                       capture_output=True)
+        ck_setup_more = open(os.path.join(inp, "example2.nml")).read()
+        open(os.path.join(inp, "example2.nml"), "w").write(
+            ck_setup_more.replace("t_end = 1.0e-3", "t_end = 2.0e-3"))
+        shutil.copy(old_ck, os.path.join(inp, "ck.h5"))
+    g.run_both("restart from the old program's checkpoint", restart_setup,
+               ["EXE", "example2.nml", "--output", "ck", "--restart", "ck.h5"], cwd_rel="input")
+
+    # sweeps
+    mpi = shutil.which("mpirun")
+    for sweep in sorted(os.listdir(os.path.join(ROOT, "input", "sweeps"))):
+        if not sweep.endswith(".nml"):
+            continue
+        for ranks in [int(r) for r in a.ranks.split(",")]:
+            cmd = ["EXE", "--sweep", sweep, "--output", f"sw_{sweep[:-4]}", "-q"]
+            if ranks > 1:
+                if not mpi:
+                    continue
+                cmd = [mpi, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
+            g.run_both(f"sweep {sweep} on {ranks} rank(s)", copy_input, cmd,
+                       cwd_rel=os.path.join("input", "sweeps"))
+
+    # command lines
+    for args in ([], ["--help"], ["--version"], ["nothere.nml"], ["example2.nml", "--bogus"],
+                 ["example2.nml", "--output"], ["--sweep"], ["example2.nml", "--restart",
+                                                              "missing.h5"]):
+        g.run_both(f"command line {args}", copy_input, ["EXE"] + args, cwd_rel="input")
+
+    # hostile decks (the fuzzer's generator, seeded)
+    import fuzz_decks
+    rng = random.Random(20261123)
+    for k in range(a.fuzz):
+        base = fuzz_decks.BASES[rng.randrange(len(fuzz_decks.BASES))]
+        label, text, files, _, _ = fuzz_decks.mutations(rng, base)
+
+        def setup(folder, text=text, files=files):
+            for f, t in files.items():
+                with open(os.path.join(folder, f), "w", encoding="latin-1") as fh:
+                    fh.write(t)
+            with open(os.path.join(folder, "deck.nml"), "wb") as fh:
+                fh.write(text)
+        g.run_both(f"fuzz case {k} ({label})", setup, ["EXE", "deck.nml"])
+
+    print(f"golden: {g.cases} cases, {g.files_compared} output files compared, "
+          f"{len(g.diffs)} differences (old {old}, new {g.new})")
+    return 1 if g.diffs else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
