@@ -20,14 +20,13 @@ module spb_contact
    use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id
    use spb_arrays, only: append
    use spb_wave, only: region_wave
-   use spb_fracture, only: events_admissible
+   use spb_problem, only: events_admissible, timing_accelerate, timing_delay, timing_min, &
+      shift_above, shift_fragment
    implicit none
    private
    public :: contact_step, timing_accelerate, timing_delay, timing_min, shift_above, &
       shift_fragment, collision_stress
 
-   integer, parameter :: timing_accelerate = 1, timing_delay = 2, timing_min = 3
-   integer, parameter :: shift_above = 1, shift_fragment = 2
 
 contains
 

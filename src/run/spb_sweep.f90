@@ -14,10 +14,11 @@ module spb_sweep
    use spb_strings, only: itoa, rtoa
    use spb_sys, only: stop_signal, sys_rename
    use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo
-   use spb_mesh, only: mesh_t, build_mesh
-   use spb_load, only: load_t, build_load
+   use spb_mesh, only: mesh_t
+   use spb_load, only: load_t
+   use spb_problem, only: problem_t
    use spb_random, only: realization_seed
-   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t
+   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model
    use spb_diag, only: frag_info_t, fragment_list
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
@@ -293,6 +294,7 @@ contains
       type(deck_t) :: cdeck
       type(mesh_t) :: mesh
       type(load_t) :: load
+      type(problem_t) :: prob
       character(len=200), allocatable :: report(:)
       real(wp) :: value
       integer :: iv, realization, nrep
@@ -300,8 +302,7 @@ contains
       l_hist = 0.0_wp
       do iv = 1, max(1, deck%sweep%n_values)
          call case_deck(deck, (iv - 1) * nrep + 1, cdeck, value, realization, err)
-         if (.not. allocated(err)) call build_mesh(cdeck, mesh, report, err)
-         if (.not. allocated(err)) call build_load(cdeck%load, load, err)
+         if (.not. allocated(err)) call setup_model(cdeck, prob, mesh, load, report, err)
          if (allocated(err)) then
             if (deck%sweep%n_values > 0) err%message = '&sweep: values(' // itoa(iv) // ') = ' &
                // rtoa(value) // ' for ' // trim(deck%sweep%vary) // ': ' // err%message

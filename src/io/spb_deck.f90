@@ -12,11 +12,14 @@ module spb_deck
    use spb_strings, only: itoa, rtoa, lower, ltoa
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment
    use spb_sys, only: fp_traps_off, fp_traps_restore
+   use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, load_none, &
+      load_power, load_table, load_exponential, face_top, face_bottom, timing_accelerate, &
+      timing_delay, timing_min, shift_above, shift_fragment, events_admissible, events_paper
    implicit none
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
    public :: read_deck, validate_deck, write_echo, deck_items, echo_item_t, unset, is_set, &
-      known_groups, sweep_cfg, set_deck_value
+      known_groups, sweep_cfg, set_deck_value, problem_from_deck
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
@@ -128,6 +131,87 @@ module spb_deck
    end type deck_t
 
 contains
+
+   !> The problem a validated deck describes: the keywords become codes, the "not given"
+   !> markers defaults or logicals (a load table's rows are read by spb_load_table).
+   function problem_from_deck(deck) result(prob)
+      type(deck_t), intent(in) :: deck
+      type(problem_t) :: prob
+      integer :: n, j
+      n = deck%seg%n
+      prob%nseg = n
+      allocate(prob%length(n), prob%young(n), prob%density(n), prob%strength(n), &
+               prob%velocity(n), prob%dry(n), prob%gap(n))
+      prob%length(:) = deck%seg%length(1:n)
+      prob%young(:) = deck%seg%young(1:n)
+      prob%density(:) = deck%seg%density(1:n)
+      prob%strength(:) = deck%seg%strength(1:n)
+      prob%velocity(:) = deck%seg%velocity(1:n)
+      prob%dry = .false.
+      prob%gap = 0.0_wp
+      do j = 1, n - 1
+         prob%dry(j) = deck%seg%interface(j) == 'dry'
+         if (is_set(deck%seg%gap(j))) prob%gap(j) = deck%seg%gap(j)
+      end do
+      prob%cells = deck%mesh%cells
+      prob%ref_segment = deck%mesh%ref_segment
+      prob%dt = deck%mesh%dt
+      prob%stretch = deck%mesh%fit == 'stretch'
+      prob%t_end = deck%run%t_end
+      prob%top = end_of(deck%ends%top)
+      prob%bottom = end_of(deck%ends%bottom)
+      prob%base_gap = deck%ends%base_gap
+      select case (deck%load%kind)
+      case ('power')
+         prob%load_kind = load_power
+      case ('exponential')
+         prob%load_kind = load_exponential
+      case ('table')
+         prob%load_kind = load_table
+      case default
+         prob%load_kind = load_none
+      end select
+      prob%load_face = merge(face_bottom, face_top, deck%load%face == 'bottom')
+      if (is_set(deck%load%p0)) prob%p0 = deck%load%p0
+      prob%has_t_k = is_set(deck%load%t_k)
+      if (prob%has_t_k) prob%t_k = deck%load%t_k
+      prob%exponent = deck%load%exponent
+      prob%has_t_cut = is_set(deck%load%t_cut)
+      if (prob%has_t_cut) prob%t_cut = deck%load%t_cut
+      prob%static_start = deck%init%state == 'static'
+      prob%strain_rate = deck%init%strain_rate
+      prob%weibull = deck%field%kind == 'weibull'
+      if (is_set(deck%field%modulus)) prob%weibull_modulus = deck%field%modulus
+      if (is_set(deck%field%scale)) prob%weibull_scale = deck%field%scale
+      prob%seed = deck%field%seed
+      prob%gravity = deck%run%gravity
+      prob%full_mass = deck%run%model == 'full-mass'
+      select case (deck%run%timing)
+      case ('delay')
+         prob%timing = timing_delay
+      case ('min')
+         prob%timing = timing_min
+      case default
+         prob%timing = timing_accelerate
+      end select
+      prob%shift = merge(shift_fragment, shift_above, deck%run%shift == 'fragment')
+      prob%events = merge(events_paper, events_admissible, deck%run%events == 'paper')
+      prob%eps_rel = deck%run%eps_rel
+   contains
+      integer function end_of(word)
+         character(len=*), intent(in) :: word
+         select case (word)
+         case ('fixed')
+            end_of = end_fixed
+         case ('transmit')
+            end_of = end_transmit
+         case ('base')
+            end_of = end_base
+         case default
+            end_of = end_free
+         end select
+      end function end_of
+   end function problem_from_deck
 
    logical elemental function is_set(x)
       real(wp), intent(in) :: x

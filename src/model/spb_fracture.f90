@@ -13,15 +13,12 @@ module spb_fracture
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
    use spb_arrays, only: append
    use spb_wave, only: fragment_characteristics, region_wave
+   use spb_problem, only: events_admissible, events_paper
    implicit none
    private
    public :: fracture_step, events_admissible, events_paper, node_energy, fragment_span
    public :: shift_span, span_mass, new_fragment_id, first_overlap
 
-   !> Event rules: 'admissible' keeps the continuum state a break or a lift-off acts on (no
-   !> wave energy is created, no Jordan component is left); 'paper' is the paper's literal
-   !> stage-1/stage-2 correction (doc/method.md, "Admissible events").
-   integer, parameter :: events_admissible = 1, events_paper = 2
 
 contains
 

@@ -3,13 +3,12 @@ module spb_mesh
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t
+   use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base
    implicit none
    private
-   public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base, end_code
+   public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base
    public :: max_cells, max_steps, fit_tolerance
 
-   integer, parameter :: end_free = 1, end_fixed = 2, end_transmit = 3, end_base = 4
    integer, parameter :: max_cells = 50000000   !! refuse meshes larger than this
    integer, parameter :: max_steps = 2000000000 !! refuse runs longer than this
    !> 'strict' accepts a segment when L_j/(a_j dt) is within this relative distance of a
@@ -47,23 +46,9 @@ module spb_mesh
 
 contains
 
-   integer function end_code(name)
-      character(len=*), intent(in) :: name
-      select case (name)
-      case ('fixed')
-         end_code = end_fixed
-      case ('transmit')
-         end_code = end_transmit
-      case ('base')
-         end_code = end_base
-      case default
-         end_code = end_free
-      end select
-   end function end_code
-
-   !> Build the mesh from a validated deck; report holds one line per stretched segment.
-   subroutine build_mesh(deck, mesh, report, err)
-      type(deck_t), intent(in) :: deck
+   !> Build the mesh of the problem; report holds one line per stretched segment.
+   subroutine build_mesh(prob, mesh, report, err)
+      type(problem_t), intent(in) :: prob
       type(mesh_t), intent(out) :: mesh
       character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
       type(spb_error_t), allocatable, intent(out) :: err
@@ -72,23 +57,23 @@ contains
       real(wp), allocatable :: a(:), zz(:), ncont(:)
       real(wp) :: dt, steps_real
 
-      nseg = deck%seg%n
+      nseg = prob%nseg
       mesh%nseg = nseg
       allocate(report(0), a(nseg), zz(nseg), ncont(nseg))
-      a = sqrt(deck%seg%young(1:nseg) / deck%seg%density(1:nseg))
-      zz = deck%seg%density(1:nseg) * a
-      r = deck%mesh%ref_segment
-      if (.not. (deck%mesh%dt > 0.0_wp) .and. deck%mesh%cells > max_cells) then
-         call make_error(err, '&mesh: cells = ' // itoa(deck%mesh%cells) // '; the limit is ' // &
+      a = sqrt(prob%young / prob%density)
+      zz = prob%density * a
+      r = prob%ref_segment
+      if (.not. (prob%dt > 0.0_wp) .and. prob%cells > max_cells) then
+         call make_error(err, '&mesh: cells = ' // itoa(prob%cells) // '; the limit is ' // &
                          itoa(max_cells))
          return
       end if
-      if (deck%mesh%dt > 0.0_wp) then
-         dt = deck%mesh%dt
+      if (prob%dt > 0.0_wp) then
+         dt = prob%dt
       else
-         dt = deck%seg%length(r) / (a(r) * real(deck%mesh%cells, wp))
+         dt = prob%length(r) / (a(r) * real(prob%cells, wp))
       end if
-      ncont = deck%seg%length(1:nseg) / (a * dt)
+      ncont = prob%length / (a * dt)
       allocate(cells(nseg))
       do j = 1, nseg
          if (ncont(j) > real(max_cells, wp)) then
@@ -97,18 +82,18 @@ contains
             return
          end if
          cells(j) = nint(ncont(j))
-         if (deck%mesh%fit == 'strict') then
+         if (.not. prob%stretch) then
             if (cells(j) < 1 .or. abs(ncont(j) - real(cells(j), wp)) > &
                 fit_tolerance * max(1.0_wp, ncont(j))) then
                call make_error(err, '&segments: length(' // itoa(j) // ') = ' // &
-                  rtoa(deck%seg%length(j)) // ' m is ' // rtoa(ncont(j)) // &
+                  rtoa(prob%length(j)) // ' m is ' // rtoa(ncont(j)) // &
                   ' cells of dx = a dt = ' // rtoa(a(j) * dt) // ' m, not a whole number ' // &
                   '(&mesh fit = ''strict''; use fit = ''stretch'' or change the length)')
                return
             end if
          else if (cells(j) < 1) then
             call make_error(err, '&segments: length(' // itoa(j) // ') = ' // &
-               rtoa(deck%seg%length(j)) // ' m is less than half a cell of dx = a dt = ' // &
+               rtoa(prob%length(j)) // ' m is less than half a cell of dx = a dt = ' // &
                rtoa(a(j) * dt) // ' m (&mesh fit = ''stretch'' would make it a whole cell; ' // &
                'use a smaller dt or more cells)')
             return
@@ -119,26 +104,26 @@ contains
                          // ' cells; the limit is ' // itoa(max_cells))
          return
       end if
-      steps_real = deck%run%t_end / dt
+      steps_real = prob%t_end / dt
       if (steps_real < 0.5_wp) then
-         call make_error(err, '&run: t_end = ' // rtoa(deck%run%t_end) // ' s is shorter than ' // &
+         call make_error(err, '&run: t_end = ' // rtoa(prob%t_end) // ' s is shorter than ' // &
                          'half a step of dt = ' // rtoa(dt) // ' s')
          return
       end if
       if (steps_real > real(max_steps, wp)) then
-         call make_error(err, '&run: t_end = ' // rtoa(deck%run%t_end) // ' s needs ' // &
+         call make_error(err, '&run: t_end = ' // rtoa(prob%t_end) // ' s needs ' // &
             rtoa(steps_real) // ' steps of dt = ' // rtoa(dt) // ' s; the limit is ' // itoa(max_steps))
          return
       end if
       mesh%dt = dt
       ! a t_end within round-off of a grid time is that grid time
       mesh%nsteps = max(1, ceiling(steps_real - 1.0e-9_wp))
-      mesh%top = end_code(deck%ends%top)
-      mesh%bottom = end_code(deck%ends%bottom)
+      mesh%top = prob%top
+      mesh%bottom = prob%bottom
       mesh%n = sum(cells)
       mesh%wave_speed = a
       mesh%impedance = zz
-      mesh%length_req = deck%seg%length(1:nseg)
+      mesh%length_req = prob%length
       allocate(mesh%first(nseg), mesh%last(nseg), mesh%length(nseg))
       k = 0
       do j = 1, nseg
@@ -146,7 +131,7 @@ contains
          k = k + cells(j)
          mesh%last(j) = k
          mesh%length(j) = real(cells(j), wp) * (a(j) * dt)
-         if (deck%mesh%fit == 'stretch') then
+         if (prob%stretch) then
             report = [character(len=200) :: report, 'segment ' // itoa(j) // ': ' // &
                itoa(cells(j)) // ' cells, length ' // rtoa(mesh%length_req(j)) // ' -> ' // &
                rtoa(mesh%length(j)) // ' m (relative change ' // &
@@ -162,7 +147,7 @@ contains
                mesh%dx(k) = a(j) * dt
                mesh%dm(k) = zz(j) * dt
                mesh%z(k) = zz(j)
-               mesh%stiff(k) = deck%seg%young(j) / mesh%dx(k)
+               mesh%stiff(k) = prob%young(j) / mesh%dx(k)
             end do
          end do
          mesh%x(0) = 0.0_wp
@@ -183,7 +168,7 @@ contains
          if (mesh%top == end_transmit) mesh%ma(0) = 0.5_wp * mesh%dm(1)
          if (mesh%bottom == end_transmit) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          ! the naive model has no half masses at free faces: a free end node is a full mass
-         mesh%full_mass = deck%run%model == 'full-mass'
+         mesh%full_mass = prob%full_mass
          if (mesh%full_mass .and. mesh%top == end_free) mesh%ma(0) = 0.5_wp * mesh%dm(1)
          if (mesh%full_mass .and. mesh%bottom == end_free) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          mesh%inv_m = 1.0_wp / (mesh%ma + mesh%mb)

@@ -6,7 +6,7 @@
 !> velocity over the step that ends at t^n.
 module spb_state
    use spb_kinds, only: wp
-   use spb_deck, only: deck_t
+   use spb_problem, only: problem_t
    use spb_mesh, only: mesh_t, end_fixed, end_free, end_base, end_transmit
    use spb_static, only: static_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
@@ -84,15 +84,15 @@ module spb_state
 contains
 
    !> Initial state (2.4): unstressed or in self-weight equilibrium, plus segment velocities.
-   subroutine init_state(deck, mesh, st)
-      type(deck_t), intent(in) :: deck
+   subroutine init_state(prob, mesh, st)
+      type(problem_t), intent(in) :: prob
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(out) :: st
       integer :: n, j, i, k
       real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap, xc
 
       n = mesh%n
-      g = deck%run%gravity
+      g = prob%gravity
       dt = mesh%dt
       allocate(st%ua(0:n), st%ub(0:n), st%dua(0:n), st%dub(0:n))
       allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%sec(0:n), st%strength(0:n))
@@ -100,11 +100,11 @@ contains
       allocate(st%cracked(0:n))
       allocate(st%skip_test(8), source=0)
       st%cracked = .false.
-      call init_strength(deck, mesh, st)
+      call init_strength(prob, mesh, st)
       allocate(st%cell_strength(n), st%is_cut(n))
       allocate(st%cut(16), source=0)
       st%is_cut = .false.
-      st%cell_strength = cell_strengths(deck, mesh)
+      st%cell_strength = cell_strengths(prob, mesh)
       if (mesh%full_mass) then
          ! breaking happens in springs: no node ever splits
          st%n_breakable = count(st%cell_strength >= 0.0_wp)
@@ -116,7 +116,7 @@ contains
       st%frag_id = 0
       st%frag_id(0) = 1
       st%n_frag_ids = 1
-      if (deck%init%state == 'static') then
+      if (prob%static_start) then
          call static_state(mesh, g, u, s, st%s_static_top, st%s_static_bot)
       else
          u = 0.0_wp
@@ -125,27 +125,27 @@ contains
       ! node velocities: the segment's; at an interface the momentum-weighted mean
       do j = 1, mesh%nseg
          do k = mesh%first(j), mesh%last(j)
-            v(k) = deck%seg%velocity(j)
+            v(k) = prob%velocity(j)
          end do
       end do
-      v(0) = deck%seg%velocity(1)
+      v(0) = prob%velocity(1)
       do j = 1, mesh%nseg - 1
          i = mesh%last(j)
-         va = deck%seg%velocity(j)
-         vb = deck%seg%velocity(j + 1)
+         va = prob%velocity(j)
+         vb = prob%velocity(j + 1)
          v(i) = (mesh%ma(i) * va + mesh%mb(i) * vb) * mesh%inv_m(i)
       end do
-      if (abs(deck%init%strain_rate) > 0.0_wp) then
+      if (abs(prob%strain_rate) > 0.0_wp) then
          ! uniform stretching about the centre of mass (free or transmitting ends)
          associate (m => mesh%ma + mesh%mb)
             xc = sum(m * mesh%x) / sum(m)
-            v = v + deck%init%strain_rate * (mesh%x - xc)
+            v = v + prob%strain_rate * (mesh%x - xc)
             ! a free face moves in the first step with the mean velocity of its cell: that is
             ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
             ! (spb_wave); the face's own v(x) would start one that grows linearly
-            if (mesh%top == end_free) v(0) = v(0) + deck%init%strain_rate * 0.5_wp * mesh%dx(1)
+            if (mesh%top == end_free) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
             if (mesh%bottom == end_free .or. mesh%bottom == end_base) &
-               v(n) = v(n) - deck%init%strain_rate * 0.5_wp * mesh%dx(n)
+               v(n) = v(n) - prob%strain_rate * 0.5_wp * mesh%dx(n)
          end associate
       end if
       if (mesh%top == end_fixed) v(0) = 0.0_wp
@@ -166,18 +166,18 @@ contains
       ! the gap, unless touching and moving together (then joined)
       do j = 1, mesh%nseg - 1
          i = mesh%last(j)
-         if (deck%seg%interface(j) /= 'dry') cycle
+         if (.not. prob%dry(j)) cycle
          st%cracked(i) = .true.
          st%strength(i) = 0.0_wp
-         va = deck%seg%velocity(j)
-         vb = deck%seg%velocity(j + 1)
-         if (deck%seg%gap(j) > 0.0_wp .or. abs(va - vb) > 0.0_wp) then
+         va = prob%velocity(j)
+         vb = prob%velocity(j + 1)
+         if (prob%gap(j) > 0.0_wp .or. abs(va - vb) > 0.0_wp) then
             st%joined(i) = .false.
             st%dua(i) = va * dt
             st%dub(i) = vb * dt
             ! everything below the interface moves down by its gap (earlier gaps are in
             ! already); O(n) per gapped interface only
-            gap = deck%seg%gap(j)
+            gap = prob%gap(j)
             if (gap > 0.0_wp) then
                st%ub(i) = st%ub(i) + gap
                st%ua(i+1:n) = st%ua(i+1:n) + gap
@@ -197,8 +197,8 @@ contains
       if (mesh%bottom == end_base) then
          ! touching and at rest: in contact; moving onto it: the first step lands by the
          ! timing rule (and logs the event); moving away from it: not in contact
-         st%u_base = st%ua(n) + deck%ends%base_gap
-         st%base_contact = deck%ends%base_gap <= 0.0_wp .and. .not. (abs(st%dua(n)) > 0.0_wp)
+         st%u_base = st%ua(n) + prob%base_gap
+         st%base_contact = prob%base_gap <= 0.0_wp .and. .not. (abs(st%dua(n)) > 0.0_wp)
          if (st%base_contact) st%dua(n) = 0.0_wp
       end if
       st%s = 0.0_wp
@@ -213,7 +213,7 @@ contains
       ! (3.1) starts from the bar half's own velocity with S^{-1/2} = 0; since the support
       ! half's increment is 0, that is the value that makes the step's (3.1) do so.
       st%sec = 0.0_wp
-      if (deck%init%state == 'static') then
+      if (prob%static_start) then
          do i = 1, n - 1
             st%sec(i) = s(i) + 0.5_wp * mesh%dm(i) * g
          end do
@@ -226,11 +226,11 @@ contains
          ! a bar moving against a fixed end at t = 0 collides with it at t^0
          if (mesh%top == end_fixed) then
             st%landing_top = .true.
-            st%v_land_top = deck%seg%velocity(1)
+            st%v_land_top = prob%velocity(1)
          end if
          if (mesh%bottom == end_fixed) then
             st%landing_bot = .true.
-            st%v_land_bot = deck%seg%velocity(mesh%nseg)
+            st%v_land_bot = prob%velocity(mesh%nseg)
          end if
          if (mesh%top == end_transmit) st%sec(0) = s(1)
          if (mesh%bottom == end_transmit) st%sec(n) = s(n)
@@ -245,13 +245,13 @@ contains
    !> Node strengths: the weaker of the two cells' strengths at each interior node (a
    !> segment's strength inside it, the weaker one at a bonded interface, seed section 2);
    !> one cell breakable: its strength; ends never break.
-   subroutine init_strength(deck, mesh, st)
-      type(deck_t), intent(in) :: deck
+   subroutine init_strength(prob, mesh, st)
+      type(problem_t), intent(in) :: prob
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       integer :: i
       real(wp) :: ra, rb, cs(mesh%n)
-      cs = cell_strengths(deck, mesh)
+      cs = cell_strengths(prob, mesh)
       st%strength = -1.0_wp
       do i = 1, mesh%n - 1
          ra = cs(i)
@@ -270,20 +270,20 @@ contains
    !> Tensile strength of every cell [Pa] (< 0 unbreakable): its segment's, or with
    !> &strength_field kind = 'weibull' a Weibull sample (spb_random, the deck's seed) for
    !> every cell of a segment whose strength is >= 0, drawn from the top cell down.
-   function cell_strengths(deck, mesh) result(cs)
-      type(deck_t), intent(in) :: deck
+   function cell_strengths(prob, mesh) result(cs)
+      type(problem_t), intent(in) :: prob
       type(mesh_t), intent(in) :: mesh
       real(wp) :: cs(mesh%n)
       type(rng_t) :: g
       real(wp) :: u
       integer :: k
-      cs = deck%seg%strength(mesh%seg)
-      if (deck%field%kind /= 'weibull') return
-      g = rng_seed(deck%field%seed)
+      cs = prob%strength(mesh%seg)
+      if (.not. prob%weibull) return
+      g = rng_seed(prob%seed)
       do k = 1, mesh%n
          if (cs(k) < 0.0_wp) cycle
          call rng_uniform(g, u)
-         cs(k) = weibull(u, deck%field%modulus, deck%field%scale)
+         cs(k) = weibull(u, prob%weibull_modulus, prob%weibull_scale)
       end do
    end function cell_strengths
 

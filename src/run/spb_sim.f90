@@ -9,7 +9,9 @@ module spb_sim
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_sys, only: stop_signal
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t
+   use spb_deck, only: deck_t, problem_from_deck
+   use spb_problem, only: problem_t, load_table
+   use spb_load_table, only: read_table
    use spb_mesh, only: mesh_t, build_mesh, end_base
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
@@ -17,19 +19,19 @@ module spb_sim
    use spb_wave, only: wave_t, wave_energy
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t
    use spb_events, only: event_list_t, ev_fracture
-   use spb_fracture, only: fracture_step, events_admissible, events_paper
-   use spb_contact, only: contact_step, timing_accelerate, timing_delay, timing_min, &
-      shift_above, shift_fragment
+   use spb_fracture, only: fracture_step
+   use spb_contact, only: contact_step
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
       resume_outputs
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    implicit none
    private
-   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t
+   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model
 
    type :: sim_t
-      type(deck_t) :: deck
+      type(deck_t) :: deck                           !! for the outputs' echo and checkpoints
+      type(problem_t) :: prob                        !! what the model solves
       type(mesh_t) :: mesh
       type(load_t) :: load
       type(state_t) :: st
@@ -55,7 +57,7 @@ contains
          return
       end if
       call face_load_integrals(sim%mesh, sim%load, sim%st%n, q_top, q_bot)
-      wv = wave_energy(sim%mesh, sim%st, sim%deck%run%gravity, q_top, q_bot)
+      wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
       w_wave = sim%st%w_wave
       e_lost_w = sim%st%e_lost_wave
    end subroutine measure
@@ -81,38 +83,44 @@ contains
       type(sim_t), intent(out) :: sim
       type(spb_error_t), allocatable, intent(out) :: err
       sim%deck = deck
-      call build_mesh(deck, sim%mesh, sim%report, err)
+      call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err)
       if (allocated(err)) return
-      call build_load(deck%load, sim%load, err)
-      if (allocated(err)) return
-      call init_state(deck, sim%mesh, sim%st)
+      call init_state(sim%prob, sim%mesh, sim%st)
    end subroutine sim_setup
+
+   !> The problem of a validated deck, its mesh and its load (the load table read here, after
+   !> the mesh: a deck with faults in both reports the mesh's first).
+   subroutine setup_model(deck, prob, mesh, load, report, err)
+      type(deck_t), intent(in) :: deck
+      type(problem_t), intent(out) :: prob
+      type(mesh_t), intent(out) :: mesh
+      type(load_t), intent(out) :: load
+      character(len=200), allocatable, intent(out) :: report(:)   !! mesh fit report
+      type(spb_error_t), allocatable, intent(out) :: err
+      prob = problem_from_deck(deck)
+      call build_mesh(prob, mesh, report, err)
+      if (allocated(err)) return
+      if (prob%load_kind == load_table) then
+         call read_table(deck%load%table, prob%table_t, prob%table_p, err)
+         if (allocated(err)) return
+      end if
+      call build_load(prob, load)
+   end subroutine setup_model
 
    !> One step of the whole method: the trial update, collisions by the timing rule, then
    !> fracture and separation at t^{n+1}.
    pure subroutine sim_step(sim, events)
       type(sim_t), intent(inout) :: sim
       type(event_list_t), intent(inout) :: events   !! events of this step are appended
-      integer :: timing, policy, rules
       real(wp) :: i_top, i_bot
-      select case (sim%deck%run%timing)
-      case ('delay')
-         timing = timing_delay
-      case ('min')
-         timing = timing_min
-      case default
-         timing = timing_accelerate
-      end select
-      policy = shift_above
-      if (sim%deck%run%shift == 'fragment') policy = shift_fragment
-      call advance(sim%mesh, sim%load, sim%deck%run%gravity, sim%st)
-      rules = events_admissible
-      if (sim%deck%run%events == 'paper') rules = events_paper
-      call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
-      call contact_step(sim%mesh, sim%st, sim%deck%run%gravity, timing, policy, events, i_top, &
-                        i_bot, rules, sim%deck%run%eps_rel)
-      call fracture_step(sim%mesh, sim%st, sim%deck%run%gravity, sim%deck%run%eps_rel, events, &
-                         rules, i_top, i_bot)
+      associate (p => sim%prob)
+         call advance(sim%mesh, sim%load, p%gravity, sim%st)
+         call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
+         call contact_step(sim%mesh, sim%st, p%gravity, p%timing, p%shift, events, i_top, &
+                           i_bot, p%events, p%eps_rel)
+         call fracture_step(sim%mesh, sim%st, p%gravity, p%eps_rel, events, p%events, i_top, &
+                            i_bot)
+      end associate
    end subroutine sim_step
 
    !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
@@ -151,7 +159,7 @@ contains
          call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
          if (allocated(err)) return
       end if
-      g = sim%deck%run%gravity
+      g = sim%prob%gravity
       every = sim%deck%run%history_every
       nprof = sim%deck%run%n_profiles
       allocate(prof_step(nprof))

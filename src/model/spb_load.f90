@@ -3,18 +3,13 @@
 module spb_load
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp
-   use spb_error, only: spb_error_t, make_error
-   use spb_strings, only: itoa, rtoa
-   use spb_deck, only: load_cfg, is_set
-   use spb_sys, only: fp_traps_off, fp_traps_restore
+   use spb_problem, only: problem_t, load_none, load_power, load_table, load_exponential, &
+      face_top, face_bottom
    implicit none
    private
    public :: load_t, load_none, load_power, load_table, load_exponential, face_top, face_bottom
-   public :: build_load, read_table, load_integral, step_load, log1p_acc, expm1_acc
+   public :: build_load, load_integral, step_load, log1p_acc, expm1_acc
 
-   integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
-   integer, parameter :: face_top = 1, face_bottom = 2
-   integer, parameter :: max_table_rows = 1000000
 
    type :: load_t
       integer :: kind = load_none         !! load_none | load_power | load_table
@@ -29,119 +24,35 @@ module spb_load
 
 contains
 
-   !> Load from the validated deck (reads the table file for kind = 'table').
-   subroutine build_load(cfg, load, err)
-      type(load_cfg), intent(in) :: cfg
+   !> The end load of the problem (a table's rows come with it, read by spb_load_table).
+   pure subroutine build_load(prob, load)
+      type(problem_t), intent(in) :: prob
       type(load_t), intent(out) :: load
-      type(spb_error_t), allocatable, intent(out) :: err
-      load%face = face_top
-      if (cfg%face == 'bottom') load%face = face_bottom
-      select case (cfg%kind)
-      case ('power')
+      load%face = prob%load_face
+      select case (prob%load_kind)
+      case (load_power)
          load%kind = load_power
-         load%p0 = cfg%p0
-         load%exponent = cfg%exponent
-         if (is_set(cfg%t_k)) load%t_k = cfg%t_k
-         if (is_set(cfg%t_cut)) then
-            load%t_cut = cfg%t_cut
-         else if (is_set(cfg%t_k)) then
-            load%t_cut = cfg%t_k
+         load%p0 = prob%p0
+         load%exponent = prob%exponent
+         if (prob%has_t_k) load%t_k = prob%t_k
+         if (prob%has_t_cut) then
+            load%t_cut = prob%t_cut
+         else if (prob%has_t_k) then
+            load%t_cut = prob%t_k
          end if
-      case ('exponential')
+      case (load_exponential)
          load%kind = load_exponential
-         load%p0 = cfg%p0
-         load%t_k = cfg%t_k
-         if (is_set(cfg%t_cut)) load%t_cut = cfg%t_cut
-      case ('table')
+         load%p0 = prob%p0
+         load%t_k = prob%t_k
+         if (prob%has_t_cut) load%t_cut = prob%t_cut
+      case (load_table)
          load%kind = load_table
-         call read_table(cfg%table, load%t, load%p, err)
+         load%t = prob%table_t
+         load%p = prob%table_p
       case default
          load%kind = load_none
       end select
    end subroutine build_load
-
-   !> Read a two-column table t [s], p [Pa]; '#' and '!' start comments.
-   subroutine read_table(path, t, p, err)
-      character(len=*), intent(in) :: path
-      real(wp), allocatable, intent(out) :: t(:), p(:)
-      type(spb_error_t), allocatable, intent(out) :: err
-      integer :: u, ios, nrow, line, k
-      character(len=1024) :: buf
-      character(len=256) :: msg
-      real(wp) :: tt, pp
-      real(wp), allocatable :: tw(:), pw(:)
-      logical :: traps(3)
-
-      open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call make_error(err, '&load: table = ''' // trim(path) // ''': cannot open: ' // trim(msg))
-         return
-      end if
-      allocate(tw(64), pw(64))
-      nrow = 0
-      line = 0
-      call fp_traps_off(traps)
-      do
-         read(u, '(a)', iostat=ios) buf
-         if (ios /= 0) exit
-         line = line + 1
-         k = scan(buf, '#!')
-         if (k > 0) buf(k:) = ' '
-         if (len_trim(buf) == 0) cycle
-         read(buf, *, iostat=ios) tt, pp
-         if (ios /= 0) then
-            call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // itoa(line) &
-                            // ': expected two numbers t p')
-            exit
-         end if
-         if (.not. (ieee_is_finite(tt) .and. ieee_is_finite(pp))) then
-            call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // itoa(line) &
-                            // ': values must be finite')
-            exit
-         end if
-         if (tt < 0.0_wp) then
-            call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // itoa(line) &
-                            // ': time must be >= 0, got ' // rtoa(tt))
-            exit
-         end if
-         if (nrow >= 1) then
-            if (tt < tw(nrow)) then
-               call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // &
-                  itoa(line) // ': times must not decrease (' // rtoa(tt) // ' after ' // &
-                  rtoa(tw(nrow)) // ')')
-               exit
-            end if
-         end if
-         if (nrow >= 2) then
-            if (.not. (tt > tw(nrow - 1))) then
-               call make_error(err, '&load: table = ''' // trim(path) // ''' line ' // &
-                  itoa(line) // ': a time may repeat once (a jump), not three times')
-               exit
-            end if
-         end if
-         if (nrow >= max_table_rows) then
-            call make_error(err, '&load: table = ''' // trim(path) // ''' has more than ' // &
-                            itoa(max_table_rows) // ' rows')
-            exit
-         end if
-         if (nrow == size(tw)) then
-            tw = [tw, tw]
-            pw = [pw, pw]
-         end if
-         nrow = nrow + 1
-         tw(nrow) = tt
-         pw(nrow) = pp
-      end do
-      call fp_traps_restore(traps)
-      close(u)
-      if (allocated(err)) return
-      if (nrow < 2) then
-         call make_error(err, '&load: table = ''' // trim(path) // ''' needs at least two rows')
-         return
-      end if
-      t = tw(1:nrow)
-      p = pw(1:nrow)
-   end subroutine read_table
 
    !> log(1 + x) accurate for small x (Goldberg's correction; F2008 has no log1p).
    pure elemental real(wp) function log1p_acc(x) result(r)

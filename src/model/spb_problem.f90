@@ -1,0 +1,78 @@
+!> The problem the model solves: the bar, its ends, the load, the initial state and the
+!> event rules, as numbers and integer codes.
+!>
+!> Only the deck module builds it (problem_from_deck); mesh, load, state and the stepping
+!> take it and know nothing of the deck's keywords. No strings and no "not given" markers:
+!> what the deck left out is either a default here or a logical saying so.
+module spb_problem
+   use spb_kinds, only: wp
+   implicit none
+   private
+   public :: problem_t
+   public :: end_free, end_fixed, end_transmit, end_base
+   public :: load_none, load_power, load_table, load_exponential, face_top, face_bottom
+   public :: timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment
+   public :: events_admissible, events_paper
+
+   !> End conditions of the bar.
+   integer, parameter :: end_free = 1, end_fixed = 2, end_transmit = 3, end_base = 4
+   !> Kinds of end load, and the face it acts on.
+   integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
+   integer, parameter :: face_top = 1, face_bottom = 2
+   !> Collision timing rules (5.2)-(5.3) and shift policies (METHOD.md §6).
+   integer, parameter :: timing_accelerate = 1, timing_delay = 2, timing_min = 3
+   integer, parameter :: shift_above = 1, shift_fragment = 2
+   !> Event rules: 'admissible' keeps the continuum state a break or a lift-off acts on (no
+   !> wave energy is created, no Jordan component is left); 'paper' is the paper's literal
+   !> stage-1/stage-2 correction (doc/method.md, "Admissible events").
+   integer, parameter :: events_admissible = 1, events_paper = 2
+
+   type :: problem_t
+      ! the bar, per segment j = 1..nseg (top to bottom)
+      integer :: nseg = 0                          !! segments
+      real(wp), allocatable :: length(:)           !! asked length [m]
+      real(wp), allocatable :: young(:)            !! Young's modulus [Pa]
+      real(wp), allocatable :: density(:)          !! [kg/m^3]
+      real(wp), allocatable :: strength(:)         !! tensile strength [Pa]; < 0 unbreakable
+      real(wp), allocatable :: velocity(:)         !! initial rigid velocity [m/s]
+      logical, allocatable :: dry(:)               !! interface below segment j is dry
+      real(wp), allocatable :: gap(:)              !! initial gap at that dry interface [m]
+      ! the mesh
+      integer :: cells = 0                         !! cells of the reference segment
+      integer :: ref_segment = 1                   !! the segment whose cells set dt
+      real(wp) :: dt = 0.0_wp                      !! time step [s]; 0: from cells
+      logical :: stretch = .false.                 !! fit each segment's length to whole cells
+      real(wp) :: t_end = 0.0_wp                   !! end time [s]
+      ! ends and the rigid base
+      integer :: top = end_free                    !! end_* code of node 0
+      integer :: bottom = end_free                 !! end_* code of node n
+      real(wp) :: base_gap = 0.0_wp                !! gap to the base [m]
+      ! the end load
+      integer :: load_kind = load_none             !! load_* code
+      integer :: load_face = face_top              !! face_* code
+      real(wp) :: p0 = 0.0_wp                      !! pressure scale [Pa]
+      logical :: has_t_k = .false.                 !! the deck gave t_k
+      real(wp) :: t_k = 0.0_wp                     !! decay time [s] (when has_t_k)
+      real(wp) :: exponent = 0.0_wp                !! power-law exponent [-]
+      logical :: has_t_cut = .false.               !! the deck gave t_cut
+      real(wp) :: t_cut = 0.0_wp                   !! p = 0 after t_cut [s] (when has_t_cut)
+      real(wp), allocatable :: table_t(:)          !! load_table: times [s], non-decreasing
+      real(wp), allocatable :: table_p(:)          !! load_table: pressures [Pa]
+      ! the initial state
+      logical :: static_start = .false.            !! start in self-weight equilibrium
+      real(wp) :: strain_rate = 0.0_wp             !! uniform stretching about the centre of
+                                                   !! mass [1/s]
+      ! strength per cell
+      logical :: weibull = .false.                 !! Weibull strengths (else the segment's)
+      real(wp) :: weibull_modulus = 0.0_wp         !! Weibull modulus m [-]
+      real(wp) :: weibull_scale = 0.0_wp           !! Weibull scale [Pa]
+      integer :: seed = 1                          !! generator seed (spb_random)
+      ! the physics and the event rules
+      real(wp) :: gravity = 0.0_wp                 !! acceleration along +x [m/s^2]
+      logical :: full_mass = .false.               !! the paper's naive comparison model
+      integer :: timing = timing_accelerate        !! timing_* code
+      integer :: shift = shift_above               !! shift_* code
+      integer :: events = events_admissible        !! events_* code
+      real(wp) :: eps_rel = 1.0e-9_wp              !! round-off guard of the event tests [-]
+   end type problem_t
+end module spb_problem
