@@ -17,7 +17,7 @@ relative paths (the outputs name the deck's path), one after the other; then:
 
 Cases: every deck under input/ (input/long/ with --long), HDF5 and x-t field variants of
 four of them, a checkpointed run and its restart by the other program from the same
-checkpoint (old checkpoints still restart), the sweeps of input/sweeps/ on each rank count
+checkpoint (old checkpoints still restart), a run the energy guard stops, the sweeps of input/sweeps/ on each rank count
 (MPI ranks > 1 where the program was built with MPI), bad command lines, and N hostile
 decks from tests/fuzz_decks.py (seeded). --ref-rev builds that revision's Release program
 in DIR/ref-build first (a git worktree). Prints one line per difference and a summary;
@@ -238,6 +238,16 @@ def main(argv):
                 cmd = [mpi, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
             g.run_both(f"sweep {sweep} on {ranks} rank(s)", copy_input, cmd,
                        cwd_rel=os.path.join("input", "sweeps"))
+
+    # runs that end early: the energy guard (exit 3), a progress line on a terminal-less stderr
+    guard_deck = ("&run t_end = 0.04, timing = 'accelerate', events = 'paper', history_every = 7,\n"
+                  "     profile_times = 1e-3, 2e-3 /\n&mesh dt = 1e-5 /\n"
+                  "&segments n = 2, length = 0.01, 0.01, young = 2e9, 2e9, density = 2000, 2000,\n"
+                  "  strength = 0, 0, velocity = 1, -1 /\n")
+
+    def guard_setup(folder):
+        open(os.path.join(folder, "guard.nml"), "w").write(guard_deck)
+    g.run_both("energy guard stop", guard_setup, ["EXE", "guard.nml"])
 
     # command lines
     for args in ([], ["--help"], ["--version"], ["nothere.nml"], ["example2.nml", "--bogus"],

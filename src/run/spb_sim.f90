@@ -25,9 +25,29 @@ module spb_sim
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
       resume_outputs
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
+   use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
+      act_check, act_field, act_checkpoint, act_progress
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model
+
+   !> The between-step actions run every check_every steps (finiteness, energy guard) and
+   !> every progress_every steps (progress line, flush), besides the deck's own periods.
+   integer, parameter :: check_every = 64, progress_every = 1024
+
+   !> What a run carries from step to step besides the simulation: its outputs, the
+   !> events of the step, the schedule, and the clock.
+   type :: run_t
+      type(outputs_t) :: out
+      type(event_list_t) :: events
+      type(schedule_t) :: sched
+      logical :: to_files = .true.                   !! write the outputs
+      logical :: progress = .false.                  !! show a progress line on stderr
+      logical :: ck_on = .false.                     !! write checkpoints
+      integer :: next_profile = 1                    !! index of the next profile in sched%at
+      integer(int64) :: c0 = 0, c_last = 0, rate = 1 !! system_clock at the start, at the
+                                                     !! last progress line; ticks per second
+   end type run_t
 
    type :: sim_t
       type(deck_t) :: deck                           !! for the outputs' echo and checkpoints
@@ -127,288 +147,344 @@ contains
    !> only the summary, as a sweep's cases do). With resume: go on from a checkpoint, the
    !> outputs continuing those of the run that wrote it (bit-identical to one run).
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
-   !> signal stops the run.
+   !> signal stops the run. What happens between steps is the schedule's (spb_schedule).
    subroutine sim_run(sim, prefix, progress, summary, err, files, resume)
       type(sim_t), intent(inout) :: sim
-      character(len=*), intent(in) :: prefix
+      character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! show a progress line on stderr
       type(run_summary_t), intent(out) :: summary
       type(spb_error_t), allocatable, intent(out) :: err
       logical, intent(in), optional :: files   !! write the outputs (default .true.)
       type(checkpoint_t), intent(in), optional :: resume   !! continue from this checkpoint
-      type(outputs_t) :: out
-      type(event_list_t) :: events
-      integer :: ip, nprof, every, n, k, j, ck_every, sig
-      integer, allocatable :: prof_step(:)
-      integer(int64) :: c0, c_last, c_now, rate
-      real(wp) :: g, sec_max
-      logical :: wrote_row, to_files, ck_on
+      type(run_t) :: run
+      integer(int64) :: c_now
+      logical :: stop_now
 
-      to_files = .true.
-      if (present(files)) to_files = files
-      ck_on = to_files .and. len_trim(sim%deck%run%checkpoint) > 0
-      ck_every = sim%deck%run%checkpoint_every
-      if (ck_on) call check_checkpoint_path(trim(sim%deck%run%checkpoint), err)
+      run%to_files = .true.
+      if (present(files)) run%to_files = files
+      run%progress = progress
+      call start_run(sim, run, summary, prefix, err, resume)
       if (allocated(err)) return
-      if (present(resume)) then
-         call resume_outputs(prefix, sim%deck, sim%mesh, sim%report, resume%marks, out, err)
-         if (allocated(err)) return
-         sim%st = resume%st
-         summary = resume%summary
-      else if (to_files) then
-         call open_outputs(prefix, sim%deck, sim%mesh, sim%report, out, err)
-         if (allocated(err)) return
-      end if
-      g = sim%prob%gravity
-      every = sim%deck%run%history_every
-      nprof = sim%deck%run%n_profiles
-      allocate(prof_step(nprof))
-      prof_step = nint(sim%deck%run%profile_times(1:nprof) / sim%mesh%dt)
-      ! the first profile still to write
-      ip = 1
-      if (present(resume)) then
-         do while (ip <= nprof)
-            if (prof_step(ip) > sim%st%n) exit
-            ip = ip + 1
-         end do
-      end if
-      call system_clock(c0, rate)
-      c_last = c0
-      if (.not. present(resume)) then
-         block
-            type(energies_t) :: e0
-            type(wave_t) :: w0
-            real(wp) :: w_w, e_l
-            e0 = energies(sim%mesh, sim%st, g)
-            call measure(sim, e0, w0, w_w, e_l)
-            summary%e_mech0 = w0%e_wave + e0%e_pot + w0%e_gravity
-            summary%guard_scale = w0%e_wave
-            if (sim%mesh%full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
-            summary%ledger_w0 = summary%e_mech0 - w_w + e_l
-         end block
-         summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
-         call row()
-         call profiles()
-         if (sim%deck%run%field_every > 0 .and. to_files) call write_field(out, sim%mesh, sim%st)
-      end if
-      n = sim%st%n
-      sig = 0
-      do while (n < sim%mesh%nsteps)
-         ! steps with nothing to write, check or break are taken in one cache-blocked call,
-         ! up to the step before the next one that has work of its own
-         k = next_stop(n) - n
-         if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
-            call advance_joined(sim%mesh, sim%load, g, sim%st, k - 1, max_sec_bottom=sec_max)
-            summary%max_reaction_bottom = max(summary%max_reaction_bottom, sec_max)
-            n = n + k - 1
-         end if
-         n = n + 1
-         events%n = 0
-         call sim_step(sim, events)
-         summary%max_reaction_bottom = max(summary%max_reaction_bottom, sim%st%sec(sim%mesh%n))
-         if (events%n > 0) then
-            if (to_files) call write_events(out, events)
-            summary%events = summary%events + events%n
-            do j = 1, events%n
-               associate (ev => events%e(j))
-                  summary%n_kind(ev%kind) = summary%n_kind(ev%kind) + 1
-                  if (ev%kind == ev_fracture) then
-                     if (summary%first_fracture_t < 0.0_wp) summary%first_fracture_t = ev%t
-                     summary%fracture_stress_sum = summary%fracture_stress_sum + abs(ev%stress)
-                  end if
-               end associate
-            end do
-         end if
-         wrote_row = .false.
-         if (mod(n, every) == 0) then
-            call row()
-            wrote_row = .true.
-            if (allocated(err)) exit
-         else if (mod(n, 64) == 0) then
-            ! between rows: the state's finiteness and the energy guard every 64 steps
-            block
-               type(energies_t) :: e
-               type(wave_t) :: wv
-               real(wp) :: w_w, e_l
-               e = energies(sim%mesh, sim%st, g)
-               if (ieee_is_finite(e%ledger)) then
-                  call measure(sim, e, wv, w_w, e_l)
-                  call guard(e, wv, w_w)
-                  if (allocated(err)) call row()
-               else
-                  call row()
-               end if
-            end block
-            if (allocated(err)) exit
-         end if
-         call profiles()
-         if (sim%deck%run%field_every > 0) then
-            if (mod(n, sim%deck%run%field_every) == 0 .and. to_files) &
-               call write_field(out, sim%mesh, sim%st)
-         end if
-         sig = stop_signal()
-         if (ck_on) then
-            ! the state after everything of step n that an uninterrupted run writes too
-            ! (max: Fortran may evaluate mod before the test of ck_every)
-            if (n == sim%mesh%nsteps .or. sig /= 0 .or. &
-                (ck_every > 0 .and. mod(n, max(ck_every, 1)) == 0)) call checkpoint()
-            if (allocated(err)) exit
-         end if
-         if (sig /= 0) then
-            ! SIGTERM/SIGINT: end here with the outputs complete up to this step
-            if (.not. wrote_row) call row()
-            call make_error(err, 'run: stopped by signal ' // itoa(sig) // &
-               ' at step ' // itoa(sim%st%n) // ' (t = ' // &
-               rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
-               'written and closed' // trim(merge(' (and the checkpoint)', '                     ', &
-               ck_on)), code=128 + sig)
-            exit
-         end if
-         if (mod(n, 1024) == 0) then
-            call system_clock(c_now)
-            if (real(c_now - c_last, wp) > 0.5_wp * real(rate, wp)) then
-               c_last = c_now
-               if (to_files) call flush_outputs(out)
-               if (progress) call show_progress(n, real(c_now - c0, wp) / real(rate, wp))
-            end if
-         end if
+      if (.not. present(resume)) call first_rows(sim, run, summary, err)
+      do while (sim%st%n < sim%mesh%nsteps)
+         call take_steps(sim, run, summary)
+         call after_step(sim, run, summary, err, stop_now)
+         if (stop_now) exit
       end do
       ! the last row at t_end when it is not a history_every row (written after the
       ! checkpoint: a run extended from there does not have it)
       if (.not. allocated(err) .and. sim%st%n == sim%mesh%nsteps .and. &
-          mod(sim%mesh%nsteps, every) /= 0) call row()
+          .not. is_due(run%sched, act_row, sim%mesh%nsteps)) call row(sim, run, summary, err)
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
-      if (to_files) then
+      if (run%to_files) then
          block
             type(spb_error_t), allocatable :: err_close
-            call close_outputs(out, err_close)
+            call close_outputs(run%out, err_close)
             if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
          end block
       end if
       summary%steps = sim%st%n
-      summary%wall = real(c_now - c0, wp) / real(max(rate, 1_int64), wp)
-   contains
-      !> The first step after n that writes, checks or reports something (a multiple of 64
-      !> for the guard and the progress line, a history row, a profile, a field row, the end).
-      integer function next_stop(n_now) result(m)
-         integer, intent(in) :: n_now
-         integer(int64) :: m8
-         m8 = min(int(sim%mesh%nsteps, int64), (n_now / 64 + 1) * 64_int64, &
-                  (n_now / every + 1) * int(every, int64))
-         if (ip <= nprof) then
-            if (prof_step(ip) > n_now) m8 = min(m8, int(prof_step(ip), int64))
-         end if
-         associate (fe => sim%deck%run%field_every)
-            if (fe > 0) m8 = min(m8, (n_now / fe + 1) * int(fe, int64))
-         end associate
-         if (ck_on .and. ck_every > 0) m8 = min(m8, (n_now / ck_every + 1) * int(ck_every, int64))
-         m = int(m8)
-      end function next_stop
-      !> Write the checkpoint of step n (its outputs written through first).
-      subroutine checkpoint()
-         type(output_marks_t) :: marks
-         call mark_outputs(out, marks)
-         summary%checkpoints = summary%checkpoints + 1
-         summary%steps = sim%st%n
-         call write_checkpoint(trim(sim%deck%run%checkpoint), sim%deck, sim%mesh, sim%load, &
-                               sim%st, summary, marks, err)
-      end subroutine checkpoint
-      subroutine row()
-         type(energies_t) :: e
-         type(wave_t) :: wv
-         real(wp) :: s_top, s_bot, w_w, e_l
-         integer :: i
-         e = energies(sim%mesh, sim%st, g)
-         call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
-         if (.not. ieee_is_finite(e%ledger)) then
-            ! the first node whose displacements, increments or cell stress above are bad
-            do i = 0, sim%mesh%n
-               if (.not. (ieee_is_finite(sim%st%ua(i)) .and. ieee_is_finite(sim%st%ub(i)) .and. &
-                          ieee_is_finite(sim%st%dua(i)) .and. ieee_is_finite(sim%st%dub(i)) &
-                          .and. ieee_is_finite(sim%st%s(i)))) exit
-            end do
-            call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
-               ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &
-               itoa(min(i, sim%mesh%n)), code=exit_runtime)
-            if (to_files) call flush_outputs(out)
-            return
-         end if
-         call measure(sim, e, wv, w_w, e_l)
-         ! the Jordan amplitude relative to the largest momentum scale so far (the current one
-         ! vanishes once a bar has come to rest or radiated its waves away)
-         summary%jordan_scale = max(summary%jordan_scale, wv%momentum_scale)
-         if (summary%jordan_scale > 0.0_wp) wv%jordan = wv%jordan_abs / summary%jordan_scale
-         summary%e_kin_end = e%e_kin
-         summary%w_ext_end = e%w_ext
-         if (to_files) call write_history_row(out, real(sim%st%n, wp) * sim%mesh%dt, sim%st%sec(sim%mesh%n), &
-            sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
-            e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
-            e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
-            g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
-            sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
-            w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim))
-         if (sim%st%n == 0) summary%ledger0 = e%ledger
-         call guard(e, wv, w_w)
-         summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
-         summary%wave_drift = max(summary%wave_drift, abs(wv%e_wave + e%e_pot + wv%e_gravity - &
-            w_w + e_l - summary%ledger_w0))
-         summary%max_jordan = max(summary%max_jordan, wv%jordan)
-         summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
-                                    abs(e%e_pot), abs(e%w_ext))
-      end subroutine row
-      !> Stop when the mechanical energy exceeds the initial energy plus the work of the
-      !> loads (gravity's work is in e_pot) by more than energy_guard times the scale. The
-      !> energy is the wave measure (spb_wave), which no zig-zag growth can hide from.
-      subroutine guard(e, wv, w_w)
-         type(energies_t), intent(in) :: e
-         type(wave_t), intent(in) :: wv
-         real(wp), intent(in) :: w_w      !! work in that measure [J/m^2]
-         real(wp) :: excess
-         character(len=16) :: b1, b2
+      summary%wall = real(c_now - run%c0, wp) / real(max(run%rate, 1_int64), wp)
+   end subroutine sim_run
+
+   !> Open (or resume) the outputs, check the checkpoint path, and lay out the schedule.
+   subroutine start_run(sim, run, summary, prefix, err, resume)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      character(len=*), intent(in) :: prefix
+      type(spb_error_t), allocatable, intent(out) :: err
+      type(checkpoint_t), intent(in), optional :: resume
+      integer :: nprof
+      associate (opt => sim%deck%run)
+         run%ck_on = run%to_files .and. len_trim(opt%checkpoint) > 0
+         if (run%ck_on) call check_checkpoint_path(trim(opt%checkpoint), err)
          if (allocated(err)) return
-         summary%guard_scale = max(summary%guard_scale, abs(w_w))
-         excess = (wv%e_wave + e%e_pot + wv%e_gravity - summary%e_mech0) - w_w
-         if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
-            excess / summary%guard_scale)
-         if (sim%deck%run%energy_guard > 0.0_wp .and. &
-             excess > sim%deck%run%energy_guard * summary%guard_scale .and. &
+         if (present(resume)) then
+            call resume_outputs(prefix, sim%deck, sim%mesh, sim%report, resume%marks, run%out, err)
+            if (allocated(err)) return
+            sim%st = resume%st
+            summary = resume%summary
+         else if (run%to_files) then
+            call open_outputs(prefix, sim%deck, sim%mesh, sim%report, run%out, err)
+            if (allocated(err)) return
+         end if
+         run%sched%n_end = sim%mesh%nsteps
+         call schedule_every(run%sched, act_row, opt%history_every)
+         call schedule_every(run%sched, act_check, check_every)
+         call schedule_every(run%sched, act_field, opt%field_every)
+         if (run%ck_on) call schedule_every(run%sched, act_checkpoint, opt%checkpoint_every)
+         call schedule_every(run%sched, act_progress, progress_every)
+         nprof = opt%n_profiles
+         call schedule_at(run%sched, nint(opt%profile_times(1:nprof) / sim%mesh%dt))
+      end associate
+      ! the first profile still to write
+      run%next_profile = 1
+      if (present(resume)) then
+         do while (run%next_profile <= size(run%sched%at))
+            if (run%sched%at(run%next_profile) > sim%st%n) exit
+            run%next_profile = run%next_profile + 1
+         end do
+      end if
+      call system_clock(run%c0, run%rate)
+      run%c_last = run%c0
+   end subroutine start_run
+
+   !> The energy references and the rows, profiles and fields of t = 0.
+   subroutine first_rows(sim, run, summary, err)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(energies_t) :: e0
+      type(wave_t) :: w0
+      real(wp) :: w_w, e_l
+      e0 = energies(sim%mesh, sim%st, sim%prob%gravity)
+      call measure(sim, e0, w0, w_w, e_l)
+      summary%e_mech0 = w0%e_wave + e0%e_pot + w0%e_gravity
+      summary%guard_scale = w0%e_wave
+      if (sim%mesh%full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
+      summary%ledger_w0 = summary%e_mech0 - w_w + e_l
+      summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
+      call row(sim, run, summary, err)
+      call profiles(sim, run)
+      if (run%sched%every(act_field) > 0 .and. run%to_files) &
+         call write_field(run%out, sim%mesh, sim%st)
+   end subroutine first_rows
+
+   !> The steps up to the next one at which an action is due: those before it in one
+   !> cache-blocked call where the bar is joined and nothing can break, then that step with
+   !> its events (written and counted).
+   subroutine take_steps(sim, run, summary)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      integer :: k, j
+      real(wp) :: sec_max
+      k = next_due(run%sched, sim%st%n, run%next_profile) - sim%st%n
+      if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
+         call advance_joined(sim%mesh, sim%load, sim%prob%gravity, sim%st, k - 1, &
+                             max_sec_bottom=sec_max)
+         summary%max_reaction_bottom = max(summary%max_reaction_bottom, sec_max)
+      end if
+      run%events%n = 0
+      call sim_step(sim, run%events)
+      summary%max_reaction_bottom = max(summary%max_reaction_bottom, sim%st%sec(sim%mesh%n))
+      if (run%events%n == 0) return
+      if (run%to_files) call write_events(run%out, run%events)
+      summary%events = summary%events + run%events%n
+      do j = 1, run%events%n
+         associate (ev => run%events%e(j))
+            summary%n_kind(ev%kind) = summary%n_kind(ev%kind) + 1
+            if (ev%kind == ev_fracture) then
+               if (summary%first_fracture_t < 0.0_wp) summary%first_fracture_t = ev%t
+               summary%fracture_stress_sum = summary%fracture_stress_sum + abs(ev%stress)
+            end if
+         end associate
+      end do
+   end subroutine take_steps
+
+   !> What is due after step n: the row or the check between rows, profiles, the field row,
+   !> a checkpoint, the end on a stop signal, the progress line. stop_now: the run ends here.
+   subroutine after_step(sim, run, summary, err, stop_now)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      type(spb_error_t), allocatable, intent(inout) :: err
+      logical, intent(out) :: stop_now
+      integer :: n, sig
+      logical :: wrote_row
+      integer(int64) :: c_now
+      n = sim%st%n
+      stop_now = .true.
+      wrote_row = .false.
+      if (is_due(run%sched, act_row, n)) then
+         call row(sim, run, summary, err)
+         wrote_row = .true.
+         if (allocated(err)) return
+      else if (is_due(run%sched, act_check, n)) then
+         call check_between_rows(sim, run, summary, err)
+         if (allocated(err)) return
+      end if
+      call profiles(sim, run)
+      if (is_due(run%sched, act_field, n) .and. run%to_files) &
+         call write_field(run%out, sim%mesh, sim%st)
+      sig = stop_signal()
+      if (run%ck_on) then
+         ! the state after everything of step n that an uninterrupted run writes too
+         if (n == sim%mesh%nsteps .or. sig /= 0 .or. is_due(run%sched, act_checkpoint, n)) &
+            call checkpoint(sim, run, summary, err)
+         if (allocated(err)) return
+      end if
+      if (sig /= 0) then
+         ! SIGTERM/SIGINT: end here with the outputs complete up to this step
+         if (.not. wrote_row) call row(sim, run, summary, err)
+         call make_error(err, 'run: stopped by signal ' // itoa(sig) // &
+            ' at step ' // itoa(sim%st%n) // ' (t = ' // &
+            rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
+            'written and closed' // trim(merge(' (and the checkpoint)', '                     ', &
+            run%ck_on)), code=128 + sig)
+         return
+      end if
+      if (is_due(run%sched, act_progress, n)) then
+         call system_clock(c_now)
+         if (real(c_now - run%c_last, wp) > 0.5_wp * real(run%rate, wp)) then
+            run%c_last = c_now
+            if (run%to_files) call flush_outputs(run%out)
+            if (run%progress) call show_progress(sim, n, real(c_now - run%c0, wp) / &
+                                                 real(run%rate, wp))
+         end if
+      end if
+      stop_now = .false.
+   end subroutine after_step
+
+   !> Between rows: the state's finiteness and the energy guard (a failing one writes its row).
+   subroutine check_between_rows(sim, run, summary, err)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(energies_t) :: e
+      type(wave_t) :: wv
+      real(wp) :: w_w, e_l
+      e = energies(sim%mesh, sim%st, sim%prob%gravity)
+      if (ieee_is_finite(e%ledger)) then
+         call measure(sim, e, wv, w_w, e_l)
+         call guard(sim, summary, e, wv, w_w, err)
+         if (allocated(err)) call row(sim, run, summary, err)
+      else
+         call row(sim, run, summary, err)
+      end if
+   end subroutine check_between_rows
+
+   !> Write the checkpoint of step n (its outputs written through first).
+   subroutine checkpoint(sim, run, summary, err)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(output_marks_t) :: marks
+      call mark_outputs(run%out, marks)
+      summary%checkpoints = summary%checkpoints + 1
+      summary%steps = sim%st%n
+      call write_checkpoint(trim(sim%deck%run%checkpoint), sim%deck, sim%mesh, sim%load, &
+                            sim%st, summary, marks, err)
+   end subroutine checkpoint
+
+   !> One history row (and the run summary's running values); a state that is not finite
+   !> ends the run here (exit 3), naming the first bad node.
+   subroutine row(sim, run, summary, err)
+      type(sim_t), intent(inout) :: sim
+      type(run_t), intent(inout) :: run
+      type(run_summary_t), intent(inout) :: summary
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(energies_t) :: e
+      type(wave_t) :: wv
+      real(wp) :: s_top, s_bot, w_w, e_l, g
+      integer :: i
+      g = sim%prob%gravity
+      e = energies(sim%mesh, sim%st, g)
+      call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
+      if (.not. ieee_is_finite(e%ledger)) then
+         ! the first node whose displacements, increments or cell stress above are bad
+         do i = 0, sim%mesh%n
+            if (.not. (ieee_is_finite(sim%st%ua(i)) .and. ieee_is_finite(sim%st%ub(i)) .and. &
+                       ieee_is_finite(sim%st%dua(i)) .and. ieee_is_finite(sim%st%dub(i)) &
+                       .and. ieee_is_finite(sim%st%s(i)))) exit
+         end do
+         call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
+            ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &
+            itoa(min(i, sim%mesh%n)), code=exit_runtime)
+         if (run%to_files) call flush_outputs(run%out)
+         return
+      end if
+      call measure(sim, e, wv, w_w, e_l)
+      ! the Jordan amplitude relative to the largest momentum scale so far (the current one
+      ! vanishes once a bar has come to rest or radiated its waves away)
+      summary%jordan_scale = max(summary%jordan_scale, wv%momentum_scale)
+      if (summary%jordan_scale > 0.0_wp) wv%jordan = wv%jordan_abs / summary%jordan_scale
+      summary%e_kin_end = e%e_kin
+      summary%w_ext_end = e%w_ext
+      if (run%to_files) call write_history_row(run%out, real(sim%st%n, wp) * sim%mesh%dt, &
+         sim%st%sec(sim%mesh%n), &
+         sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
+         e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
+         e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
+         g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
+         sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
+         w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim))
+      if (sim%st%n == 0) summary%ledger0 = e%ledger
+      call guard(sim, summary, e, wv, w_w, err)
+      summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
+      summary%wave_drift = max(summary%wave_drift, abs(wv%e_wave + e%e_pot + wv%e_gravity - &
+         w_w + e_l - summary%ledger_w0))
+      summary%max_jordan = max(summary%max_jordan, wv%jordan)
+      summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
+                                 abs(e%e_pot), abs(e%w_ext))
+   end subroutine row
+
+   !> Stop when the mechanical energy exceeds the initial energy plus the work of the
+   !> loads (gravity's work is in e_pot) by more than energy_guard times the scale. The
+   !> energy is the wave measure (spb_wave), which no zig-zag growth can hide from.
+   subroutine guard(sim, summary, e, wv, w_w, err)
+      type(sim_t), intent(in) :: sim
+      type(run_summary_t), intent(inout) :: summary
+      type(energies_t), intent(in) :: e
+      type(wave_t), intent(in) :: wv
+      real(wp), intent(in) :: w_w      !! work in that measure [J/m^2]
+      type(spb_error_t), allocatable, intent(inout) :: err
+      real(wp) :: excess
+      character(len=16) :: b1, b2
+      if (allocated(err)) return
+      summary%guard_scale = max(summary%guard_scale, abs(w_w))
+      excess = (wv%e_wave + e%e_pot + wv%e_gravity - summary%e_mech0) - w_w
+      if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
+         excess / summary%guard_scale)
+      associate (limit => sim%deck%run%energy_guard)
+         if (limit > 0.0_wp .and. excess > limit * summary%guard_scale .and. &
              summary%guard_scale > 0.0_wp) then
             write(b1, '(es10.3)') excess
             write(b2, '(es10.3)') excess / summary%guard_scale
             call make_error(err, 'run: mechanical energy exceeds the initial energy plus the ' // &
                'work of the loads by ' // trim(adjustl(b1)) // ' J/m^2 (' // &
                trim(adjustl(b2)) // ' of the energy scale, above ' // &
-               '&run energy_guard = ' // rtoa(sim%deck%run%energy_guard) // ') at step ' // &
+               '&run energy_guard = ' // rtoa(limit) // ') at step ' // &
                itoa(sim%st%n) // ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // &
                ' s); outputs up to here are written', code=exit_runtime)
          end if
-      end subroutine guard
-      subroutine profiles()
-         type(frag_info_t), allocatable :: list(:)
-         do while (ip <= nprof)
-            if (prof_step(ip) /= sim%st%n) exit
-            if (.not. to_files) then
-               ip = ip + 1
-               cycle
-            end if
-            call write_profile(out, sim%mesh, sim%st, sim%deck%run%profile_times(ip))
+      end associate
+   end subroutine guard
+
+   !> The profiles (and fragment lists) due at this step.
+   subroutine profiles(sim, run)
+      type(sim_t), intent(in) :: sim
+      type(run_t), intent(inout) :: run
+      type(frag_info_t), allocatable :: list(:)
+      do while (run%next_profile <= size(run%sched%at))
+         if (run%sched%at(run%next_profile) /= sim%st%n) exit
+         if (run%to_files) then
+            call write_profile(run%out, sim%mesh, sim%st, &
+                               sim%deck%run%profile_times(run%next_profile))
             call fragment_list(sim%mesh, sim%st, list)
-            call write_fragments(out, real(sim%st%n, wp) * sim%mesh%dt, sim%mesh%dt, list)
-            ip = ip + 1
-         end do
-      end subroutine profiles
-      subroutine show_progress(n_done, elapsed)
-         integer, intent(in) :: n_done
-         real(wp), intent(in) :: elapsed
-         real(wp) :: frac, speed
-         character(len=120) :: line
-         frac = real(n_done, wp) / real(sim%mesh%nsteps, wp)
-         speed = real(n_done, wp) / max(elapsed, 1.0e-9_wp)
-         write(line, '(a,f6.1,a,es9.2,a,f9.1,a)') 'spallbar: ', 100.0_wp * frac, '%  ', speed, &
-            ' steps/s  ETA ', real(sim%mesh%nsteps - n_done, wp) / speed, ' s'
-         write(error_unit, '(a)', advance='no') achar(13) // trim(line)
-         flush(error_unit)
-      end subroutine show_progress
-   end subroutine sim_run
+            call write_fragments(run%out, real(sim%st%n, wp) * sim%mesh%dt, sim%mesh%dt, list)
+         end if
+         run%next_profile = run%next_profile + 1
+      end do
+   end subroutine profiles
+
+   !> The progress line on stderr: share done, speed, time to go.
+   subroutine show_progress(sim, n_done, elapsed)
+      type(sim_t), intent(in) :: sim
+      integer, intent(in) :: n_done            !! steps done
+      real(wp), intent(in) :: elapsed          !! wall time so far [s]
+      real(wp) :: frac, speed
+      character(len=120) :: line
+      frac = real(n_done, wp) / real(sim%mesh%nsteps, wp)
+      speed = real(n_done, wp) / max(elapsed, 1.0e-9_wp)
+      write(line, '(a,f6.1,a,es9.2,a,f9.1,a)') 'spallbar: ', 100.0_wp * frac, '%  ', speed, &
+         ' steps/s  ETA ', real(sim%mesh%nsteps - n_done, wp) / speed, ' s'
+      write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+      flush(error_unit)
+   end subroutine show_progress
 end module spb_sim
