@@ -138,10 +138,22 @@ contains
                rtoa(mesh%length(j) / mesh%length_req(j) - 1.0_wp) // ')']
          end if
       end do
+      call fill_cells(prob, a, zz, mesh)
+   end subroutine build_mesh
+
+   !> The per-cell and per-node arrays of a mesh whose segments' cell ranges and dt are set:
+   !> dx = a dt, masses Z dt, stiffness E/dx, positions, half masses, cumulative mass.
+   pure subroutine fill_cells(prob, a, zz, mesh)
+      type(problem_t), intent(in) :: prob
+      real(wp), intent(in) :: a(:), zz(:)     !! wave speed [m/s], impedance per segment
+      type(mesh_t), intent(inout) :: mesh
+      integer :: i, j, k
+      real(wp) :: dt
+      dt = mesh%dt
       associate (n => mesh%n)
          allocate(mesh%seg(n), mesh%dx(n), mesh%dm(n), mesh%z(n), mesh%stiff(n))
          allocate(mesh%x(0:n), mesh%ma(0:n), mesh%mb(0:n), mesh%inv_m(0:n))
-         do j = 1, nseg
+         do j = 1, mesh%nseg
             do k = mesh%first(j), mesh%last(j)
                mesh%seg(k) = j
                mesh%dx(k) = a(j) * dt
@@ -151,7 +163,7 @@ contains
             end do
          end do
          mesh%x(0) = 0.0_wp
-         do j = 1, nseg
+         do j = 1, mesh%nseg
             do k = mesh%first(j), mesh%last(j)
                ! positions from the segment start, so each interface sits at its sum of lengths
                mesh%x(k) = mesh%x(mesh%first(j) - 1) + real(k - mesh%first(j) + 1, wp) * mesh%dx(k)
@@ -178,5 +190,5 @@ contains
             mesh%m_above(k) = mesh%m_above(k - 1) + mesh%dm(k)
          end do
       end associate
-   end subroutine build_mesh
+   end subroutine fill_cells
 end module spb_mesh

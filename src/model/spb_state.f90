@@ -122,34 +122,7 @@ contains
          u = 0.0_wp
          s = 0.0_wp
       end if
-      ! node velocities: the segment's; at an interface the momentum-weighted mean
-      do j = 1, mesh%nseg
-         do k = mesh%first(j), mesh%last(j)
-            v(k) = prob%velocity(j)
-         end do
-      end do
-      v(0) = prob%velocity(1)
-      do j = 1, mesh%nseg - 1
-         i = mesh%last(j)
-         va = prob%velocity(j)
-         vb = prob%velocity(j + 1)
-         v(i) = (mesh%ma(i) * va + mesh%mb(i) * vb) * mesh%inv_m(i)
-      end do
-      if (abs(prob%strain_rate) > 0.0_wp) then
-         ! uniform stretching about the centre of mass (free or transmitting ends)
-         associate (m => mesh%ma + mesh%mb)
-            xc = sum(m * mesh%x) / sum(m)
-            v = v + prob%strain_rate * (mesh%x - xc)
-            ! a free face moves in the first step with the mean velocity of its cell: that is
-            ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
-            ! (spb_wave); the face's own v(x) would start one that grows linearly
-            if (mesh%top == end_free) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
-            if (mesh%bottom == end_free .or. mesh%bottom == end_base) &
-               v(n) = v(n) - prob%strain_rate * 0.5_wp * mesh%dx(n)
-         end associate
-      end if
-      if (mesh%top == end_fixed) v(0) = 0.0_wp
-      if (mesh%bottom == end_fixed) v(n) = 0.0_wp
+      v = initial_velocities(prob, mesh)
       ! a transmitting end continues the bar without end: beyond it the bar keeps the motion
       ! its end had at t = 0 (as it keeps the static stress), so a bar in uniform motion stays
       ! in it and no end depends on the frame of reference
@@ -206,6 +179,58 @@ contains
       ! s^{-1} = s^0 - E (du_{k-1} - du_k)/dx, for the strain-energy product at the first row
       st%s_old = 0.0_wp
       st%s_old(1:n) = st%s(1:n) - mesh%stiff * (st%dub(0:n-1) - st%dua(1:n))
+      call init_sections(prob, mesh, s, st)
+      st%s_scale = maxval(abs(s))
+   end subroutine init_state
+
+   !> Node velocities at t = 0: the segment's, at an interface the momentum-weighted mean;
+   !> with a strain rate the uniform stretching about the centre of mass; held ends at rest.
+   pure function initial_velocities(prob, mesh) result(v)
+      type(problem_t), intent(in) :: prob
+      type(mesh_t), intent(in) :: mesh
+      real(wp) :: v(0:mesh%n)                  !! [m/s]
+      integer :: i, j, k, n
+      real(wp) :: va, vb, xc
+      n = mesh%n
+      do j = 1, mesh%nseg
+         do k = mesh%first(j), mesh%last(j)
+            v(k) = prob%velocity(j)
+         end do
+      end do
+      v(0) = prob%velocity(1)
+      do j = 1, mesh%nseg - 1
+         i = mesh%last(j)
+         va = prob%velocity(j)
+         vb = prob%velocity(j + 1)
+         v(i) = (mesh%ma(i) * va + mesh%mb(i) * vb) * mesh%inv_m(i)
+      end do
+      if (abs(prob%strain_rate) > 0.0_wp) then
+         ! uniform stretching about the centre of mass (free or transmitting ends)
+         associate (m => mesh%ma + mesh%mb)
+            xc = sum(m * mesh%x) / sum(m)
+            v = v + prob%strain_rate * (mesh%x - xc)
+            ! a free face moves in the first step with the mean velocity of its cell: that is
+            ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
+            ! (spb_wave); the face's own v(x) would start one that grows linearly
+            if (mesh%top == end_free) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
+            if (mesh%bottom == end_free .or. mesh%bottom == end_base) &
+               v(n) = v(n) - prob%strain_rate * 0.5_wp * mesh%dx(n)
+         end associate
+      end if
+      if (mesh%top == end_fixed) v(0) = 0.0_wp
+      if (mesh%bottom == end_fixed) v(n) = 0.0_wp
+   end function initial_velocities
+
+   !> Section stresses S^{-1/2} of the initial state, from its cell stresses s.
+   pure subroutine init_sections(prob, mesh, s, st)
+      type(problem_t), intent(in) :: prob
+      type(mesh_t), intent(in) :: mesh
+      real(wp), intent(in) :: s(:)             !! cell stresses at t = 0, cells 1..n [Pa]
+      type(state_t), intent(inout) :: st
+      integer :: i, n
+      real(wp) :: g
+      n = mesh%n
+      g = prob%gravity
       ! Section stresses S^{-1/2}. A bar in self-weight equilibrium starts at the fixed point
       ! of (3.1)-(3.2), S = s_above + dm_above g / 2 (= s_below - dm_below g / 2). An
       ! 'unstressed' bar had no stress before t = 0: S = s (a free-falling bar then keeps
@@ -239,8 +264,7 @@ contains
       do i = 1, n - 1
          if (.not. st%joined(i)) st%sec(i) = 0.0_wp
       end do
-      st%s_scale = maxval(abs(s))
-   end subroutine init_state
+   end subroutine init_sections
 
    !> Node strengths: the weaker of the two cells' strengths at each interior node (a
    !> segment's strength inside it, the weaker one at a bonded interface, seed section 2);

@@ -180,11 +180,11 @@ contains
       summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
-         call run_static(1, 0)
+         call run_static(deck, 1, 0, l_hist, progress, t0, rows, hists)
       else if (deck%sweep%distribution == 'dynamic') then
-         call run_dynamic()
+         call run_dynamic(deck, rank, nranks, l_hist, progress, t0, rows, hists)
       else
-         call run_static(nranks, rank)
+         call run_static(deck, nranks, rank, l_hist, progress, t0, rows, hists)
       end if
       summary%wall = par_wtime() - t0
       if (rank /= 0) return
@@ -203,87 +203,108 @@ contains
             ' cases went wrong (status column); ' // prefix // '.sweep and ' // prefix // &
             '_sweep.h5 are written', code=exit_runtime)
       end if
-   contains
-      !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
-      !> case order (rank 0 receives in the same order: no deadlock).
-      subroutine run_static(k, me)
-         integer, intent(in) :: k, me
-         integer :: c, done
-         real(wp) :: buf(n_columns + nbins)
-         done = 0
+   end subroutine run_sweep
+
+   !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
+   !> case order (rank 0 receives in the same order: no deadlock).
+   subroutine run_static(deck, k, me, l_hist, progress, t0, rows, hists)
+      type(deck_t), intent(in) :: deck
+      integer, intent(in) :: k, me             !! ranks, this rank
+      real(wp), intent(in) :: l_hist           !! histogram range [m]
+      logical, intent(in) :: progress          !! progress line on stderr (rank 0)
+      real(wp), intent(in) :: t0               !! par_wtime at the start [s]
+      real(wp), intent(inout) :: rows(:, :)    !! (column, case)
+      integer, intent(inout) :: hists(:, :)    !! (bin, case)
+      integer :: c, done, nc, nbins
+      real(wp) :: buf(n_columns + size(hists, 1))
+      nc = size(rows, 2)
+      nbins = size(hists, 1)
+      done = 0
+      do c = me + 1, nc, k
+         if (stop_signal() /= 0) exit
+         call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
+         done = done + 1
+         if (me == 0 .and. progress) call show(done * k, nc, t0)
+      end do
+      if (k == 1) return
+      if (me /= 0) then
          do c = me + 1, nc, k
-            if (stop_signal() /= 0) exit
-            call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
-            done = done + 1
-            if (me == 0 .and. progress) call show(done * k, nc)
+            buf(1:n_columns) = rows(:, c)
+            buf(n_columns + 1:) = real(hists(:, c), wp)
+            call par_send(buf, 0, c)
          end do
-         if (k == 1) return
-         if (me /= 0) then
-            do c = me + 1, nc, k
+      else
+         do c = 1, nc
+            if (mod(c - 1, k) == 0) cycle
+            call par_recv(buf, mod(c - 1, k), c)
+            rows(:, c) = buf(1:n_columns)
+            hists(:, c) = nint(buf(n_columns + 1:))
+         end do
+      end if
+   end subroutine run_static
+
+   !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
+   !> the other ranks compute. Case 0 means stop.
+   subroutine run_dynamic(deck, rank, nranks, l_hist, progress, t0, rows, hists)
+      type(deck_t), intent(in) :: deck
+      integer, intent(in) :: rank, nranks      !! this rank, ranks
+      real(wp), intent(in) :: l_hist           !! histogram range [m]
+      logical, intent(in) :: progress          !! progress line on stderr (rank 0)
+      real(wp), intent(in) :: t0               !! par_wtime at the start [s]
+      real(wp), intent(inout) :: rows(:, :)    !! (column, case)
+      integer, intent(inout) :: hists(:, :)    !! (bin, case)
+      integer :: c, next, active, worker, finished, nc, nbins
+      real(wp) :: buf(n_columns + size(hists, 1))
+      nc = size(rows, 2)
+      nbins = size(hists, 1)
+      if (rank == 0) then
+         next = 1
+         active = nranks - 1
+         finished = 0
+         do while (active > 0)
+            call par_recv(c, par_any, tag_request, got_source=worker)
+            if (c > 0) then
+               call par_recv(buf, worker, c)
+               rows(:, c) = buf(1:n_columns)
+               hists(:, c) = nint(buf(n_columns + 1:))
+               finished = finished + 1
+               if (progress) call show(finished, nc, t0)
+            end if
+            if (next <= nc .and. stop_signal() == 0) then
+               call par_send(next, worker, tag_work)
+               next = next + 1
+            else
+               call par_send(0, worker, tag_work)
+               active = active - 1
+            end if
+         end do
+      else
+         c = 0
+         do
+            call par_send(c, 0, tag_request)
+            if (c > 0) then
                buf(1:n_columns) = rows(:, c)
                buf(n_columns + 1:) = real(hists(:, c), wp)
                call par_send(buf, 0, c)
-            end do
-         else
-            do c = 1, nc
-               if (mod(c - 1, k) == 0) cycle
-               call par_recv(buf, mod(c - 1, k), c)
-               rows(:, c) = buf(1:n_columns)
-               hists(:, c) = nint(buf(n_columns + 1:))
-            end do
-         end if
-      end subroutine run_static
-      !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
-      !> the other ranks compute. Case 0 means stop.
-      subroutine run_dynamic()
-         integer :: c, next, active, worker, finished
-         real(wp) :: buf(n_columns + nbins)
-         if (rank == 0) then
-            next = 1
-            active = nranks - 1
-            finished = 0
-            do while (active > 0)
-               call par_recv(c, par_any, tag_request, got_source=worker)
-               if (c > 0) then
-                  call par_recv(buf, worker, c)
-                  rows(:, c) = buf(1:n_columns)
-                  hists(:, c) = nint(buf(n_columns + 1:))
-                  finished = finished + 1
-                  if (progress) call show(finished, nc)
-               end if
-               if (next <= nc .and. stop_signal() == 0) then
-                  call par_send(next, worker, tag_work)
-                  next = next + 1
-               else
-                  call par_send(0, worker, tag_work)
-                  active = active - 1
-               end if
-            end do
-         else
-            c = 0
-            do
-               call par_send(c, 0, tag_request)
-               if (c > 0) then
-                  buf(1:n_columns) = rows(:, c)
-                  buf(n_columns + 1:) = real(hists(:, c), wp)
-                  call par_send(buf, 0, c)
-               end if
-               call par_recv(c, 0, tag_work)
-               if (c == 0) exit
-               call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
-            end do
-         end if
-      end subroutine run_dynamic
-      subroutine show(n_done, n_all)
-         integer, intent(in) :: n_done, n_all
-         character(len=100) :: line
-         write(line, '(a,i0,a,i0,a,f8.1,a)') 'spallbar sweep: ', min(n_done, n_all), ' of ', &
-            n_all, ' cases, ', par_wtime() - t0, ' s'
-         write(error_unit, '(a)', advance='no') achar(13) // trim(line)
-         if (n_done >= n_all) write(error_unit, '(a)') ''
-         flush(error_unit)
-      end subroutine show
-   end subroutine run_sweep
+            end if
+            call par_recv(c, 0, tag_work)
+            if (c == 0) exit
+            call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
+         end do
+      end if
+   end subroutine run_dynamic
+
+   !> The sweep's progress line on stderr.
+   subroutine show(n_done, n_all, t0)
+      integer, intent(in) :: n_done, n_all     !! cases done, all cases
+      real(wp), intent(in) :: t0               !! par_wtime at the start [s]
+      character(len=100) :: line
+      write(line, '(a,i0,a,i0,a,f8.1,a)') 'spallbar sweep: ', min(n_done, n_all), ' of ', &
+         n_all, ' cases, ', par_wtime() - t0, ' s'
+      write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+      if (n_done >= n_all) write(error_unit, '(a)') ''
+      flush(error_unit)
+   end subroutine show
 
    !> Every value's deck and mesh must build (bad input: exit 2 before anything runs); the
    !> histogram range is the longest bar of the cases.
