@@ -238,6 +238,17 @@ def main(argv):
                 cmd = [mpi, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + cmd
             g.run_both(f"sweep {sweep} on {ranks} rank(s)", copy_input, cmd,
                        cwd_rel=os.path.join("input", "sweeps"))
+            if ranks > 1:
+                # the same with cases handed out one at a time
+                def dyn_setup(folder, sweep=sweep):
+                    copy_input(folder)
+                    path = os.path.join(folder, "input", "sweeps", sweep)
+                    text = open(path).read()
+                    m = re.search(r"&sweep\b", text, re.IGNORECASE)
+                    open(path, "w").write(text[:m.end()] + "\n  distribution = 'dynamic'\n" +
+                                          text[m.end():])
+                g.run_both(f"sweep {sweep} on {ranks} ranks, dynamic", dyn_setup, cmd,
+                           cwd_rel=os.path.join("input", "sweeps"))
 
     # runs that end early: the energy guard (exit 3), a progress line on a terminal-less stderr
     guard_deck = ("&run t_end = 0.04, timing = 'accelerate', events = 'paper', history_every = 7,\n"
