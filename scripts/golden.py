@@ -207,7 +207,7 @@ def main(argv):
             if not re.match(r"\s*profile_times\s*=", line):
                 lines.append(line)
         open(path, "w").write(add_to_run("\n".join(lines) + "\n", "checkpoint = 'ck.h5', "
-                                         "checkpoint_every = 40, hdf5 = .true."))
+                                         "checkpoint_every = 40, hdf5 = .true., field_every = 9"))
     g.run_both("checkpoint example2", ck_setup, ["EXE", "example2.nml", "--output", "ck"],
                cwd_rel="input")
     old_ck = os.path.join(work, "ck_from_old.h5")

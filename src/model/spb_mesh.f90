@@ -52,7 +52,7 @@ contains
       type(mesh_t), intent(out) :: mesh
       character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
       type(spb_error_t), allocatable, intent(out) :: err
-      integer :: j, nseg, k, i, r
+      integer :: j, nseg, k, r
       integer, allocatable :: cells(:)
       real(wp), allocatable :: a(:), zz(:), ncont(:)
       real(wp) :: dt, steps_real

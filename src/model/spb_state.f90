@@ -88,8 +88,8 @@ contains
       type(problem_t), intent(in) :: prob
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(out) :: st
-      integer :: n, j, i, k
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap, xc
+      integer :: n, j, i
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap
 
       n = mesh%n
       g = prob%gravity

@@ -22,8 +22,8 @@ module spb_sim
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
-      write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
-      resume_outputs
+      write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs
+   use spb_restart, only: resume_outputs
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress

@@ -1,0 +1,260 @@
+!> Restart: the outputs of a run continued from a checkpoint are the previous run's up to
+!> the checkpoint's marks, then this run's (bit-identical to one uninterrupted run).
+module spb_restart
+   use, intrinsic :: iso_fortran_env, only: int64
+   use spb_kinds, only: wp
+   use spb_error, only: spb_error_t, make_error, exit_runtime
+   use spb_strings, only: itoa
+   use spb_deck, only: deck_t
+   use spb_hdf5, only: h5file_t, h5_close, h5_flush, h5_open_read, h5_get, h5_get_columns, &
+      h5_copy, h5_append, h5_append_xt, h5_read_size
+   use spb_sys, only: sys_rename
+   use spb_mesh, only: mesh_t
+   use spb_output, only: outputs_t, output_marks_t, open_outputs, text_extensions, tail_len, &
+      history_columns, event_columns, find_header, column_line, text_unit, set_text_unit, &
+      no_unit, block_name, split
+   implicit none
+   private
+   public :: resume_outputs
+
+   character(len=*), parameter :: aside = '.restart'   !! suffix of the set-aside outputs
+   character(len=*), parameter :: hint = ' (a restart continues the outputs of the run ' // &
+      'that wrote the checkpoint: same directory and --output PREFIX)'
+
+contains
+
+   !> Outputs of a restarted run: fresh headers for this deck, then the body of the previous
+   !> run's files up to the marks (rows written after them are dropped), open for appending.
+   !> The previous files are set aside as PREFIX.ext.restart while this is done and removed
+   !> after; nothing is touched when they do not hold what the marks count.
+   subroutine resume_outputs(prefix, deck, mesh, report, marks, out, err)
+      character(len=*), intent(in) :: prefix
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(in) :: mesh
+      character(len=*), intent(in) :: report(:)
+      type(output_marks_t), intent(in) :: marks
+      type(outputs_t), intent(out) :: out
+      type(spb_error_t), allocatable, intent(out) :: err
+      integer(int64) :: sz, head(4)
+      integer :: k, nrows, u, ios
+      logical :: there, ok
+      character(len=tail_len) :: tail
+      ! the previous outputs: a header, then at least the body the checkpoint counts, ending
+      ! in the bytes it remembers
+      do k = 1, 4
+         associate (f => prefix // text_extensions(k))
+            inquire(file=f, exist=there)
+            if (.not. there) then
+               call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
+               return
+            end if
+            call find_header(f, k, head(k), sz)
+            if (head(k) < 0) then
+               call make_error(err, '--restart: ''' // f // ''' has no header line ''' // &
+                  column_line(k) // ''': not a spallbar output' // hint)
+            else if (sz - head(k) < marks%body(k)) then
+               call make_error(err, '--restart: ''' // f // ''' holds ' // &
+                  itoa(sz - head(k)) // ' bytes after its header, the checkpoint counts ' // &
+                  itoa(marks%body(k)) // hint)
+            else if (marks%tail_n(k) < 0) then
+               call make_error(err, '--restart: the checkpoint could not read the end of ''' // &
+                  f // ''' when it was written')
+            else if (marks%tail_n(k) > 0) then
+               open(newunit=u, file=f, access='stream', form='unformatted', status='old', &
+                    action='read', iostat=ios)
+               if (ios == 0) read(u, pos=head(k) + marks%body(k) - marks%tail_n(k) + 1, &
+                                  iostat=ios) tail(1:marks%tail_n(k))
+               if (ios == 0) close(u)
+               if (ios /= 0) then
+                  call make_error(err, '--restart: cannot read ''' // f // '''')
+               else if (tail(1:marks%tail_n(k)) /= marks%tail(k)(1:marks%tail_n(k))) then
+                  call make_error(err, '--restart: ''' // f // ''' is not the output of the ' // &
+                     'run that wrote the checkpoint (its rows differ at the checkpoint)' // hint)
+               end if
+            end if
+         end associate
+         if (allocated(err)) return
+      end do
+      if (deck%run%hdf5) then
+         call h5_read_size(prefix // '.h5', '/history/t', nrows)
+         if (nrows < marks%rows_his) then
+            call make_error(err, '--restart: ''' // prefix // '.h5'' holds ' // &
+               itoa(max(nrows, 0)) // ' history rows, the checkpoint counts ' // &
+               itoa(marks%rows_his) // hint)
+            return
+         end if
+      end if
+      do k = 1, 5
+         if (k == 5 .and. .not. deck%run%hdf5) exit
+         associate (f => prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)))
+            call sys_rename(f, f // aside, ok)
+            if (.not. ok) call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' &
+                                          // f // aside // '''')
+         end associate
+         if (allocated(err)) return
+      end do
+      call open_outputs(prefix, deck, mesh, report, out, err)
+      if (allocated(err)) return
+      do k = 1, 4
+         call copy_body(prefix, k, head(k), marks%body(k), out, err)
+         if (allocated(err)) return
+      end do
+      if (deck%run%hdf5) then
+         call replay_h5(prefix, mesh, marks, out, err)
+         if (allocated(err)) return
+      end if
+      do k = 1, 5
+         if (k == 5 .and. .not. deck%run%hdf5) exit
+         call remove_file(prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)) // aside)
+      end do
+   end subroutine resume_outputs
+
+   !> Append the body up to the mark of the set-aside file k to the fresh one.
+   subroutine copy_body(prefix, k, head, body, out, err)
+      character(len=*), intent(in) :: prefix
+      integer, intent(in) :: k                 !! text file (text_extensions)
+      integer(int64), intent(in) :: head       !! header bytes of the set-aside file
+      integer(int64), intent(in) :: body       !! body bytes the checkpoint counts
+      type(outputs_t), intent(inout) :: out
+      type(spb_error_t), allocatable, intent(inout) :: err
+      integer, parameter :: chunk = 1048576
+      character(len=:), allocatable :: buf
+      integer(int64) :: pos, m
+      integer :: src, dst, ios
+      character(len=256) :: msg
+      associate (f => prefix // text_extensions(k))
+         close(text_unit(out, k))
+         allocate(character(len=chunk) :: buf)
+         open(newunit=src, file=f // aside, access='stream', form='unformatted', &
+              status='old', action='read', iostat=ios, iomsg=msg)
+         if (ios == 0) open(newunit=dst, file=f, access='stream', form='unformatted', &
+              status='old', action='write', position='append', iostat=ios, iomsg=msg)
+         pos = head + 1
+         do while (ios == 0 .and. pos <= head + body)
+            m = min(int(chunk, int64), head + body - pos + 1)
+            read(src, pos=pos, iostat=ios, iomsg=msg) buf(1:m)
+            if (ios == 0) write(dst, iostat=ios, iomsg=msg) buf(1:m)
+            pos = pos + m
+         end do
+         close(src)
+         close(dst)
+         if (ios == 0) then
+            open(newunit=dst, file=f, status='old', action='write', position='append', &
+                 iostat=ios, iomsg=msg)
+         end if
+         if (ios /= 0) then
+            call make_error(err, '--restart: copying ''' // f // aside // ''' to ''' // f // &
+                            ''': ' // trim(msg), code=exit_runtime)
+            dst = no_unit
+         end if
+         call set_text_unit(out, k, dst)
+      end associate
+   end subroutine copy_body
+   !> PREFIX.h5: table rows and x-t times up to the marks, profile and fragment groups.
+   subroutine replay_h5(prefix, mesh, marks, out, err)
+      character(len=*), intent(in) :: prefix
+      type(mesh_t), intent(in) :: mesh
+      type(output_marks_t), intent(in) :: marks
+      type(outputs_t), intent(inout) :: out
+      type(spb_error_t), allocatable, intent(inout) :: err
+      type(h5file_t) :: old     !! the previous PREFIX.h5, read while it is replayed
+      integer :: k
+      call h5_open_read(old, prefix // '.h5' // aside)
+      call replay_table(prefix, old, '/history', history_columns, out, out%h_his, &
+                        marks%rows_his, err)
+      call replay_table(prefix, old, '/events', event_columns, out, out%h_evt, marks%rows_evt, &
+                        err)
+      if (marks%rows_xt > 0) call replay_xt(prefix, old, mesh, marks%rows_xt, out, err)
+      do k = 1, marks%n_prof
+         call h5_copy(old, '/fields/profiles/' // block_name(k), out%h5, &
+                      '/fields/profiles/' // block_name(k))
+      end do
+      out%n_prof = marks%n_prof
+      do k = 1, marks%n_frg
+         call h5_copy(old, '/fragments/' // block_name(k), out%h5, &
+                      '/fragments/' // block_name(k))
+      end do
+      out%n_frg = marks%n_frg
+      call h5_flush(out%h5)
+      if (allocated(old%error)) then
+         call make_error(err, '--restart: ' // old%error, code=exit_runtime)
+      else if (allocated(out%h5%error)) then
+         call make_error(err, '--restart: ' // out%h5%error, code=exit_runtime)
+      end if
+      call h5_close(old)
+   end subroutine replay_h5
+   !> The first rows of every column of a table (integer columns read as float64).
+   subroutine replay_table(prefix, old, path, columns, out, handle, rows, err)
+      character(len=*), intent(in) :: prefix, path, columns
+      type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
+      type(outputs_t), intent(inout) :: out
+      integer, intent(in) :: handle, rows      !! table handle in out%h5; rows to copy
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=32), allocatable :: names(:)
+      real(wp), allocatable :: col(:), table(:, :)
+      integer :: c, r
+      if (rows == 0) return
+      call split(columns, names)
+      allocate(table(size(names), rows))
+      do c = 1, size(names)
+         call h5_get(old, path // '/' // trim(names(c)), col)
+         if (.not. allocated(col)) then
+            call make_error(err, '--restart: ''' // prefix // '.h5'' has no ' // path // &
+                            '/' // trim(names(c)), code=exit_runtime)
+            return
+         end if
+         if (size(col) < rows) then
+            call make_error(err, '--restart: ''' // prefix // '.h5'' ' // path // '/' // &
+               trim(names(c)) // ' holds ' // itoa(size(col)) // ' rows, the ' // &
+               'checkpoint counts ' // itoa(rows), code=exit_runtime)
+            return
+         end if
+         table(c, :) = col(1:rows)
+      end do
+      do r = 1, rows
+         call h5_append(out%h5, handle, table(:, r))
+      end do
+   end subroutine replay_table
+   !> The first times of the x-t field, in blocks of columns.
+   subroutine replay_xt(prefix, old, mesh, rows_xt, out, err)
+      character(len=*), intent(in) :: prefix
+      type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
+      type(mesh_t), intent(in) :: mesh
+      integer, intent(in) :: rows_xt           !! times to copy
+      type(outputs_t), intent(inout) :: out
+      type(spb_error_t), allocatable, intent(inout) :: err
+      integer, parameter :: width = 64
+      real(wp), allocatable :: t(:), u(:, :), v(:, :), s(:, :)
+      integer :: c0, m, j
+      call h5_get(old, '/fields/xt/t', t)
+      if (.not. allocated(t)) then
+         call make_error(err, '--restart: ''' // prefix // '.h5'' has no /fields/xt', &
+                         code=exit_runtime)
+         return
+      end if
+      if (size(t) < rows_xt) then
+         call make_error(err, '--restart: ''' // prefix // '.h5'' /fields/xt holds ' // &
+            itoa(size(t)) // ' times, the checkpoint counts ' // itoa(rows_xt), &
+            code=exit_runtime)
+         return
+      end if
+      allocate(u(2 * mesh%n, width), v(2 * mesh%n, width), s(2 * mesh%n, width))
+      do c0 = 0, rows_xt - 1, width
+         m = min(width, rows_xt - c0)
+         call h5_get_columns(old, '/fields/xt/u', c0, u(:, 1:m))
+         call h5_get_columns(old, '/fields/xt/v', c0, v(:, 1:m))
+         call h5_get_columns(old, '/fields/xt/stress', c0, s(:, 1:m))
+         do j = 1, m
+            call h5_append_xt(out%h5, t(c0 + j), u(:, j), v(:, j), s(:, j))
+         end do
+      end do
+   end subroutine replay_xt
+
+   !> Delete a file if it is there.
+   subroutine remove_file(path)
+      character(len=*), intent(in) :: path
+      integer :: u, ios
+      open(newunit=u, file=path, status='old', iostat=ios)
+      if (ios == 0) close(u, status='delete')
+   end subroutine remove_file
+end module spb_restart
