@@ -30,6 +30,14 @@ module spb_checkpoint
    character(len=*), parameter :: format_name = 'spallbar checkpoint 1'
    character(len=1), parameter :: nl = achar(10)
 
+   !> One entry of a field list (state_fields, summary_fields): written or read back.
+   interface field
+      module procedure field_int, field_real, field_logical
+   end interface field
+   interface array_field
+      module procedure array_reals, array_ints, array_logicals
+   end interface array_field
+
    !> What a restart continues from.
    type :: checkpoint_t
       type(state_t) :: st
@@ -61,11 +69,12 @@ contains
       type(deck_t), intent(in) :: deck
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
-      type(state_t), intent(in) :: st
+      type(state_t), intent(inout) :: st       !! only read (state_fields also reads back)
       type(run_summary_t), intent(in) :: summary
       type(output_marks_t), intent(in) :: marks
       type(spb_error_t), allocatable, intent(out) :: err
       type(h5file_t) :: h5
+      type(run_summary_t) :: run_copy
       logical :: ok
       integer :: k
       call h5_create(h5, path // '.part')
@@ -86,30 +95,12 @@ contains
          call h5_write(h5, '/identity/load_t', load%t, 's')
          call h5_write(h5, '/identity/load_p', load%p, 'Pa')
       end if
-      call write_state(h5, st)
+      call h5_group(h5, '/state')
+      call state_fields(h5, st, .true.)
       ! the run's summary
       call h5_group(h5, '/run')
-      call h5_attr(h5, '/run', 'steps', summary%steps)
-      call h5_attr(h5, '/run', 'events', summary%events)
-      do k = 1, size(summary%n_kind)
-         call h5_attr(h5, '/run', 'n_kind_' // itoa(k), summary%n_kind(k))
-      end do
-      call h5_attr(h5, '/run', 'checkpoints', summary%checkpoints)
-      call h5_attr(h5, '/run', 'ledger0', summary%ledger0)
-      call h5_attr(h5, '/run', 'ledger_drift', summary%ledger_drift)
-      call h5_attr(h5, '/run', 'energy_scale', summary%energy_scale)
-      call h5_attr(h5, '/run', 'max_excess', summary%max_excess)
-      call h5_attr(h5, '/run', 'first_fracture_t', summary%first_fracture_t)
-      call h5_attr(h5, '/run', 'max_reaction_bottom', summary%max_reaction_bottom)
-      call h5_attr(h5, '/run', 'e_kin_end', summary%e_kin_end)
-      call h5_attr(h5, '/run', 'w_ext_end', summary%w_ext_end)
-      call h5_attr(h5, '/run', 'e_mech0', summary%e_mech0)
-      call h5_attr(h5, '/run', 'guard_scale', summary%guard_scale)
-      call h5_attr(h5, '/run', 'ledger_w0', summary%ledger_w0)
-      call h5_attr(h5, '/run', 'wave_drift', summary%wave_drift)
-      call h5_attr(h5, '/run', 'max_jordan', summary%max_jordan)
-      call h5_attr(h5, '/run', 'jordan_scale', summary%jordan_scale)
-      call h5_attr(h5, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
+      run_copy = summary
+      call summary_fields(h5, run_copy, .true.)
       ! how far the outputs reach (byte counts as float64: exact below 2^53)
       call h5_group(h5, '/outputs')
       do k = 1, 4
@@ -133,101 +124,201 @@ contains
                                     '.part'' to ''' // path // '''', code=exit_runtime)
    end subroutine write_checkpoint
 
-   !> Every component of state_t: arrays as datasets under /state with their lower bound
-   !> and size as attributes of /state, scalars as attributes, logicals as 0/1.
-   subroutine write_state(h5, st)
+   !> The one list of what the checkpoint keeps of state_t, written (writing) or read back:
+   !> arrays as datasets under /state with their lower bound and size as attributes of
+   !> /state, scalars as attributes, logicals as 0/1 (float64 bit for bit).
+   subroutine state_fields(h5, st, writing)
       type(h5file_t), intent(inout) :: h5
-      type(state_t), intent(in) :: st
-      call h5_group(h5, '/state')
-      call put_int('n', st%n)
-      call put_int('n_breakable', st%n_breakable)
-      call put_int('n_split', st%n_split)
-      call put_int('n_frag_ids', st%n_frag_ids)
-      call put_int('n_cut', st%n_cut)
-      call put_int('n_skip', st%n_skip)
-      call put_real('s_scale', st%s_scale)
-      call put_real('strain_cut', st%strain_cut)
-      call put_real('e_contact', st%e_contact)
-      call put_real('s_static_top', st%s_static_top)
-      call put_real('s_static_bot', st%s_static_bot)
-      call put_real('v_far_top', st%v_far_top)
-      call put_real('v_far_bot', st%v_far_bot)
-      call put_real('w_in_top', st%w_in_top)
-      call put_real('w_in_bot', st%w_in_bot)
-      call put_real('w_load', st%w_load)
-      call put_real('w_transmit', st%w_transmit)
-      call put_real('e_fracture', st%e_fracture)
-      call put_real('e_join', st%e_join)
-      call put_real('e_shift', st%e_shift)
-      call put_real('p_shift', st%p_shift)
-      call put_real('w_wave', st%w_wave)
-      call put_real('e_lost_wave', st%e_lost_wave)
-      call put_real('i_ends', st%i_ends)
-      call put_real('i_support', st%i_support)
-      call put_real('u_base', st%u_base)
-      call put_real('v_land_top', st%v_land_top)
-      call put_real('v_land_bot', st%v_land_bot)
-      call put_int('base_contact', merge(1, 0, st%base_contact))
-      call put_int('landing_top', merge(1, 0, st%landing_top))
-      call put_int('landing_bot', merge(1, 0, st%landing_bot))
-      call put_reals('ua', st%ua)
-      call put_reals('ub', st%ub)
-      call put_reals('dua', st%dua)
-      call put_reals('dub', st%dub)
-      call put_reals('s', st%s)
-      call put_reals('s_old', st%s_old)
-      call put_reals('sec', st%sec)
-      call put_reals('strength', st%strength)
-      call put_reals('cell_strength', st%cell_strength)
-      call put_ints('split', st%split)
-      call put_ints('frag_id', st%frag_id)
-      call put_ints('frag_parent', st%frag_parent)
-      call put_ints('frag_birth', st%frag_birth)
-      call put_ints('cut', st%cut)
-      call put_ints('skip_test', st%skip_test)
-      call put_logicals('joined', st%joined)
-      call put_logicals('is_cut', st%is_cut)
-      call put_logicals('cracked', st%cracked)
-   contains
-      subroutine put_int(name, v)
-         character(len=*), intent(in) :: name
-         integer, intent(in) :: v
-         call h5_attr(h5, '/state', name, v)
-      end subroutine put_int
-      subroutine put_real(name, v)
-         character(len=*), intent(in) :: name
-         real(wp), intent(in) :: v
-         call h5_attr(h5, '/state', name, v)
-      end subroutine put_real
-      subroutine bounds(name, lb, n)
-         character(len=*), intent(in) :: name
-         integer, intent(in) :: lb, n
+      type(state_t), intent(inout) :: st
+      logical, intent(in) :: writing
+      call field(h5, writing, '/state', 'n', st%n)
+      call field(h5, writing, '/state', 'n_breakable', st%n_breakable)
+      call field(h5, writing, '/state', 'n_split', st%n_split)
+      call field(h5, writing, '/state', 'n_frag_ids', st%n_frag_ids)
+      call field(h5, writing, '/state', 'n_cut', st%n_cut)
+      call field(h5, writing, '/state', 'n_skip', st%n_skip)
+      call field(h5, writing, '/state', 's_scale', st%s_scale)
+      call field(h5, writing, '/state', 'strain_cut', st%strain_cut)
+      call field(h5, writing, '/state', 'e_contact', st%e_contact)
+      call field(h5, writing, '/state', 's_static_top', st%s_static_top)
+      call field(h5, writing, '/state', 's_static_bot', st%s_static_bot)
+      call field(h5, writing, '/state', 'v_far_top', st%v_far_top)
+      call field(h5, writing, '/state', 'v_far_bot', st%v_far_bot)
+      call field(h5, writing, '/state', 'w_in_top', st%w_in_top)
+      call field(h5, writing, '/state', 'w_in_bot', st%w_in_bot)
+      call field(h5, writing, '/state', 'w_load', st%w_load)
+      call field(h5, writing, '/state', 'w_transmit', st%w_transmit)
+      call field(h5, writing, '/state', 'e_fracture', st%e_fracture)
+      call field(h5, writing, '/state', 'e_join', st%e_join)
+      call field(h5, writing, '/state', 'e_shift', st%e_shift)
+      call field(h5, writing, '/state', 'p_shift', st%p_shift)
+      call field(h5, writing, '/state', 'w_wave', st%w_wave)
+      call field(h5, writing, '/state', 'e_lost_wave', st%e_lost_wave)
+      call field(h5, writing, '/state', 'i_ends', st%i_ends)
+      call field(h5, writing, '/state', 'i_support', st%i_support)
+      call field(h5, writing, '/state', 'u_base', st%u_base)
+      call field(h5, writing, '/state', 'v_land_top', st%v_land_top)
+      call field(h5, writing, '/state', 'v_land_bot', st%v_land_bot)
+      call field(h5, writing, '/state', 'base_contact', st%base_contact)
+      call field(h5, writing, '/state', 'landing_top', st%landing_top)
+      call field(h5, writing, '/state', 'landing_bot', st%landing_bot)
+      call array_field(h5, writing, 'ua', st%ua)
+      call array_field(h5, writing, 'ub', st%ub)
+      call array_field(h5, writing, 'dua', st%dua)
+      call array_field(h5, writing, 'dub', st%dub)
+      call array_field(h5, writing, 's', st%s)
+      call array_field(h5, writing, 's_old', st%s_old)
+      call array_field(h5, writing, 'sec', st%sec)
+      call array_field(h5, writing, 'strength', st%strength)
+      call array_field(h5, writing, 'cell_strength', st%cell_strength)
+      call array_field(h5, writing, 'split', st%split)
+      call array_field(h5, writing, 'frag_id', st%frag_id)
+      call array_field(h5, writing, 'frag_parent', st%frag_parent)
+      call array_field(h5, writing, 'frag_birth', st%frag_birth)
+      call array_field(h5, writing, 'cut', st%cut)
+      call array_field(h5, writing, 'skip_test', st%skip_test)
+      call array_field(h5, writing, 'joined', st%joined)
+      call array_field(h5, writing, 'is_cut', st%is_cut)
+      call array_field(h5, writing, 'cracked', st%cracked)
+   end subroutine state_fields
+
+   !> The one list of what the checkpoint keeps of the run summary (attributes of /run).
+   subroutine summary_fields(h5, summary, writing)
+      type(h5file_t), intent(inout) :: h5
+      type(run_summary_t), intent(inout) :: summary
+      logical, intent(in) :: writing
+      integer :: k
+      call field(h5, writing, '/run', 'steps', summary%steps)
+      call field(h5, writing, '/run', 'events', summary%events)
+      do k = 1, size(summary%n_kind)
+         call field(h5, writing, '/run', 'n_kind_' // itoa(k), summary%n_kind(k))
+      end do
+      call field(h5, writing, '/run', 'checkpoints', summary%checkpoints)
+      call field(h5, writing, '/run', 'ledger0', summary%ledger0)
+      call field(h5, writing, '/run', 'ledger_drift', summary%ledger_drift)
+      call field(h5, writing, '/run', 'energy_scale', summary%energy_scale)
+      call field(h5, writing, '/run', 'max_excess', summary%max_excess)
+      call field(h5, writing, '/run', 'first_fracture_t', summary%first_fracture_t)
+      call field(h5, writing, '/run', 'max_reaction_bottom', summary%max_reaction_bottom)
+      call field(h5, writing, '/run', 'e_kin_end', summary%e_kin_end)
+      call field(h5, writing, '/run', 'w_ext_end', summary%w_ext_end)
+      call field(h5, writing, '/run', 'e_mech0', summary%e_mech0)
+      call field(h5, writing, '/run', 'guard_scale', summary%guard_scale)
+      call field(h5, writing, '/run', 'ledger_w0', summary%ledger_w0)
+      call field(h5, writing, '/run', 'wave_drift', summary%wave_drift)
+      call field(h5, writing, '/run', 'max_jordan', summary%max_jordan)
+      call field(h5, writing, '/run', 'jordan_scale', summary%jordan_scale)
+      call field(h5, writing, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
+   end subroutine summary_fields
+
+   !> A scalar field: an attribute of group, written or read back.
+   subroutine field_int(h5, writing, group, name, v)
+      type(h5file_t), intent(inout) :: h5
+      logical, intent(in) :: writing
+      character(len=*), intent(in) :: group, name
+      integer, intent(inout) :: v
+      if (writing) then
+         call h5_attr(h5, group, name, v)
+      else
+         call h5_get_attr(h5, group, name, v)
+      end if
+   end subroutine field_int
+
+   subroutine field_real(h5, writing, group, name, v)
+      type(h5file_t), intent(inout) :: h5
+      logical, intent(in) :: writing
+      character(len=*), intent(in) :: group, name
+      real(wp), intent(inout) :: v
+      if (writing) then
+         call h5_attr(h5, group, name, v)
+      else
+         call h5_get_attr(h5, group, name, v)
+      end if
+   end subroutine field_real
+
+   !> A logical as the integer 0 or 1.
+   subroutine field_logical(h5, writing, group, name, v)
+      type(h5file_t), intent(inout) :: h5
+      logical, intent(in) :: writing
+      character(len=*), intent(in) :: group, name
+      logical, intent(inout) :: v
+      integer :: flag
+      flag = merge(1, 0, v)
+      call field_int(h5, writing, group, name, flag)
+      if (.not. writing) v = flag /= 0
+   end subroutine field_logical
+
+   !> An array of /state: the dataset /state/NAME with the attributes NAME:lbound and
+   !> NAME:size of /state (an unallocated array is not written; read back, a missing or
+   !> inconsistent one is an error in h5%error). Integers come back through float64 (HDF5
+   !> converts; exact below 2^53), logicals as 0/1.
+   subroutine array_reals(h5, writing, name, a)
+      type(h5file_t), intent(inout) :: h5
+      logical, intent(in) :: writing
+      character(len=*), intent(in) :: name
+      real(wp), allocatable, intent(inout) :: a(:)
+      real(wp), allocatable :: v(:)
+      integer :: lb, n
+      if (writing) then
+         if (.not. allocated(a)) return
+         call h5_attr(h5, '/state', name // ':lbound', lbound(a, 1))
+         call h5_attr(h5, '/state', name // ':size', size(a))
+         if (size(a) > 0) call h5_write(h5, '/state/' // name, a, '-')
+         return
+      end if
+      if (allocated(a)) deallocate(a)
+      n = -1
+      call h5_get_attr(h5, '/state', name // ':lbound', lb)
+      call h5_get_attr(h5, '/state', name // ':size', n)
+      if (allocated(h5%error)) n = -1
+      if (n < 0) return
+      if (n > 0) call h5_get(h5, '/state/' // name, v)
+      if (.not. allocated(v)) allocate(v(0))
+      if (size(v) /= n) then
+         if (.not. allocated(h5%error)) h5%error = '/state/' // name // ' holds ' // &
+            itoa(size(v)) // ' values, its :size attribute says ' // itoa(n)
+         return
+      end if
+      allocate(a(lb:lb + n - 1), source=v)
+   end subroutine array_reals
+
+   subroutine array_ints(h5, writing, name, a)
+      type(h5file_t), intent(inout) :: h5
+      logical, intent(in) :: writing
+      character(len=*), intent(in) :: name
+      integer, allocatable, intent(inout) :: a(:)
+      integer :: lb, n
+      real(wp), allocatable :: v(:)
+      if (writing) then
+         if (.not. allocated(a)) return
+         lb = lbound(a, 1)
+         n = size(a)
          call h5_attr(h5, '/state', name // ':lbound', lb)
          call h5_attr(h5, '/state', name // ':size', n)
-      end subroutine bounds
-      subroutine put_reals(name, a)
-         character(len=*), intent(in) :: name
-         real(wp), allocatable, intent(in) :: a(:)
-         if (.not. allocated(a)) return
-         call bounds(name, lbound(a, 1), size(a))
-         if (size(a) > 0) call h5_write(h5, '/state/' // name, a, '-')
-      end subroutine put_reals
-      subroutine put_ints(name, a)
-         character(len=*), intent(in) :: name
-         integer, allocatable, intent(in) :: a(:)
-         if (.not. allocated(a)) return
-         call bounds(name, lbound(a, 1), size(a))
-         if (size(a) > 0) call h5_write(h5, '/state/' // name, a, '-')
-      end subroutine put_ints
-      subroutine put_logicals(name, a)
-         character(len=*), intent(in) :: name
-         logical, allocatable, intent(in) :: a(:)
-         integer, allocatable :: v(:)
+         if (n > 0) call h5_write(h5, '/state/' // name, a, '-')
+         return
+      end if
+      if (allocated(a)) deallocate(a)
+      call array_reals(h5, .false., name, v)
+      if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
+   end subroutine array_ints
+
+   subroutine array_logicals(h5, writing, name, a)
+      type(h5file_t), intent(inout) :: h5
+      logical, intent(in) :: writing
+      character(len=*), intent(in) :: name
+      logical, allocatable, intent(inout) :: a(:)
+      integer, allocatable :: v(:)
+      if (writing) then
          if (.not. allocated(a)) return
          allocate(v(lbound(a, 1):ubound(a, 1)), source=merge(1, 0, a))
-         call put_ints(name, v)
-      end subroutine put_logicals
-   end subroutine write_state
+         call array_ints(h5, .true., name, v)
+         return
+      end if
+      if (allocated(a)) deallocate(a)
+      call array_ints(h5, .false., name, v)
+      if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=v /= 0)
+   end subroutine array_logicals
 
    !> Read a checkpoint for the run set up from deck (mesh, load) and check that the
    !> restart can be identical to an uninterrupted run; every refusal is exit status 2.
@@ -239,10 +330,9 @@ contains
       type(checkpoint_t), intent(out) :: ck
       type(spb_error_t), allocatable, intent(out) :: err
       type(h5file_t) :: h5
-      character(len=:), allocatable :: text, here
-      real(wp) :: x
-      real(wp), allocatable :: times(:), tab(:)
-      integer :: k, i
+      character(len=:), allocatable :: text, why
+      real(wp), allocatable :: times(:)
+      integer :: i
       logical :: exists
       inquire(file=path, exist=exists)
       if (.not. exists) then
@@ -267,39 +357,12 @@ contains
                      ' (a restart is bit-identical only with the program that wrote it)')
          return
       end if
-      ! the deck
-      call h5_get_attr(h5, '/identity', 'deck', text)
-      here = deck_identity(deck)
-      if (text /= here) then
-         call refuse('was written for another deck: ' // first_difference(text, here) // &
-                     ' (only title, t_end, checkpoint, checkpoint_every and later ' // &
-                     'profile_times may change)')
+      why = identity_problem(h5, deck, mesh, load)
+      if (len(why) > 0) then
+         call refuse(why)
          return
       end if
-      call h5_get_attr(h5, '/identity', 'dt', x)
-      call h5_get_attr(h5, '/identity', 'cells', i)
-      if (.not. same([x], [mesh%dt]) .or. i /= mesh%n) then
-         call refuse('has dt = ' // rtoa(x) // ' s and ' // itoa(i) // ' cells, this ' // &
-                     'deck''s mesh dt = ' // rtoa(mesh%dt) // ' s and ' // itoa(mesh%n) // ' cells')
-         return
-      end if
-      if (load%kind == load_table) then
-         call h5_get(h5, '/identity/load_t', tab)
-         if (.not. allocated(tab)) allocate(tab(0))
-         if (.not. same(tab, load%t)) then
-            call refuse('was written with another &load table (its times differ from ''' // &
-                        trim(deck%load%table) // ''')')
-            return
-         end if
-         call h5_get(h5, '/identity/load_p', tab)
-         if (.not. allocated(tab)) allocate(tab(0))
-         if (.not. same(tab, load%p)) then
-            call refuse('was written with another &load table (its pressures differ from ''' &
-                        // trim(deck%load%table) // ''')')
-            return
-         end if
-      end if
-      call read_state(h5, ck%st)
+      call state_fields(h5, ck%st, .false.)
       if (allocated(h5%error)) then
          call refuse('cannot be read: ' // h5%error)
          return
@@ -336,45 +399,12 @@ contains
          return
       end if
       ! the run's summary
-      call h5_get_attr(h5, '/run', 'steps', ck%summary%steps)
-      call h5_get_attr(h5, '/run', 'events', ck%summary%events)
-      do k = 1, size(ck%summary%n_kind)
-         call h5_get_attr(h5, '/run', 'n_kind_' // itoa(k), ck%summary%n_kind(k))
-      end do
-      call h5_get_attr(h5, '/run', 'checkpoints', ck%summary%checkpoints)
-      call h5_get_attr(h5, '/run', 'ledger0', ck%summary%ledger0)
-      call h5_get_attr(h5, '/run', 'ledger_drift', ck%summary%ledger_drift)
-      call h5_get_attr(h5, '/run', 'energy_scale', ck%summary%energy_scale)
-      call h5_get_attr(h5, '/run', 'max_excess', ck%summary%max_excess)
-      call h5_get_attr(h5, '/run', 'first_fracture_t', ck%summary%first_fracture_t)
-      call h5_get_attr(h5, '/run', 'max_reaction_bottom', ck%summary%max_reaction_bottom)
-      call h5_get_attr(h5, '/run', 'e_kin_end', ck%summary%e_kin_end)
-      call h5_get_attr(h5, '/run', 'w_ext_end', ck%summary%w_ext_end)
-      call h5_get_attr(h5, '/run', 'e_mech0', ck%summary%e_mech0)
-      call h5_get_attr(h5, '/run', 'guard_scale', ck%summary%guard_scale)
-      call h5_get_attr(h5, '/run', 'ledger_w0', ck%summary%ledger_w0)
-      call h5_get_attr(h5, '/run', 'wave_drift', ck%summary%wave_drift)
-      call h5_get_attr(h5, '/run', 'max_jordan', ck%summary%max_jordan)
-      call h5_get_attr(h5, '/run', 'jordan_scale', ck%summary%jordan_scale)
-      call h5_get_attr(h5, '/run', 'fracture_stress_sum', ck%summary%fracture_stress_sum)
-      do k = 1, 4
-         call h5_get_attr(h5, '/outputs', 'body' // text_extensions(k), x)
-         ck%marks%body(k) = int(x, kind(ck%marks%body))
-         call h5_get_attr(h5, '/outputs', 'tail_bytes' // text_extensions(k), ck%marks%tail_n(k))
-         call h5_get_attr(h5, '/outputs', 'tail' // text_extensions(k), text)
-         ! a string attribute comes back without trailing blanks: pad to its length
-         ck%marks%tail(k) = text
-         if (ck%marks%tail_n(k) > tail_len) then
-            call refuse('holds a tail of ' // itoa(ck%marks%tail_n(k)) // ' bytes for ' // &
-                        text_extensions(k) // ' (at most ' // itoa(tail_len) // ')')
-            return
-         end if
-      end do
-      call h5_get_attr(h5, '/outputs', 'rows_history', ck%marks%rows_his)
-      call h5_get_attr(h5, '/outputs', 'rows_events', ck%marks%rows_evt)
-      call h5_get_attr(h5, '/outputs', 'rows_xt', ck%marks%rows_xt)
-      call h5_get_attr(h5, '/outputs', 'profiles', ck%marks%n_prof)
-      call h5_get_attr(h5, '/outputs', 'fragment_blocks', ck%marks%n_frg)
+      call summary_fields(h5, ck%summary, .false.)
+      why = read_marks(h5, ck%marks)
+      if (len(why) > 0) then
+         call refuse(why)
+         return
+      end if
       if (allocated(h5%error)) then
          call refuse('cannot be read: ' // h5%error)
          return
@@ -388,108 +418,82 @@ contains
       end subroutine refuse
    end subroutine read_checkpoint
 
-   !> Inverse of write_state.
-   subroutine read_state(h5, st)
+   !> Why the checkpoint's identity does not fit this run ('' when it does): the deck, the
+   !> mesh, a load table.
+   function identity_problem(h5, deck, mesh, load) result(why)
       type(h5file_t), intent(inout) :: h5
-      type(state_t), intent(out) :: st
-      integer :: flag
-      call h5_get_attr(h5, '/state', 'n', st%n)
-      call h5_get_attr(h5, '/state', 'n_breakable', st%n_breakable)
-      call h5_get_attr(h5, '/state', 'n_split', st%n_split)
-      call h5_get_attr(h5, '/state', 'n_frag_ids', st%n_frag_ids)
-      call h5_get_attr(h5, '/state', 'n_cut', st%n_cut)
-      call h5_get_attr(h5, '/state', 'n_skip', st%n_skip)
-      call h5_get_attr(h5, '/state', 's_scale', st%s_scale)
-      call h5_get_attr(h5, '/state', 'strain_cut', st%strain_cut)
-      call h5_get_attr(h5, '/state', 'e_contact', st%e_contact)
-      call h5_get_attr(h5, '/state', 's_static_top', st%s_static_top)
-      call h5_get_attr(h5, '/state', 's_static_bot', st%s_static_bot)
-      call h5_get_attr(h5, '/state', 'v_far_top', st%v_far_top)
-      call h5_get_attr(h5, '/state', 'v_far_bot', st%v_far_bot)
-      call h5_get_attr(h5, '/state', 'w_in_top', st%w_in_top)
-      call h5_get_attr(h5, '/state', 'w_in_bot', st%w_in_bot)
-      call h5_get_attr(h5, '/state', 'w_load', st%w_load)
-      call h5_get_attr(h5, '/state', 'w_transmit', st%w_transmit)
-      call h5_get_attr(h5, '/state', 'e_fracture', st%e_fracture)
-      call h5_get_attr(h5, '/state', 'e_join', st%e_join)
-      call h5_get_attr(h5, '/state', 'e_shift', st%e_shift)
-      call h5_get_attr(h5, '/state', 'p_shift', st%p_shift)
-      call h5_get_attr(h5, '/state', 'w_wave', st%w_wave)
-      call h5_get_attr(h5, '/state', 'e_lost_wave', st%e_lost_wave)
-      call h5_get_attr(h5, '/state', 'i_ends', st%i_ends)
-      call h5_get_attr(h5, '/state', 'i_support', st%i_support)
-      call h5_get_attr(h5, '/state', 'u_base', st%u_base)
-      call h5_get_attr(h5, '/state', 'v_land_top', st%v_land_top)
-      call h5_get_attr(h5, '/state', 'v_land_bot', st%v_land_bot)
-      call h5_get_attr(h5, '/state', 'base_contact', flag)
-      st%base_contact = flag /= 0
-      call h5_get_attr(h5, '/state', 'landing_top', flag)
-      st%landing_top = flag /= 0
-      call h5_get_attr(h5, '/state', 'landing_bot', flag)
-      st%landing_bot = flag /= 0
-      call get_reals('ua', st%ua)
-      call get_reals('ub', st%ub)
-      call get_reals('dua', st%dua)
-      call get_reals('dub', st%dub)
-      call get_reals('s', st%s)
-      call get_reals('s_old', st%s_old)
-      call get_reals('sec', st%sec)
-      call get_reals('strength', st%strength)
-      call get_reals('cell_strength', st%cell_strength)
-      call get_ints('split', st%split)
-      call get_ints('frag_id', st%frag_id)
-      call get_ints('frag_parent', st%frag_parent)
-      call get_ints('frag_birth', st%frag_birth)
-      call get_ints('cut', st%cut)
-      call get_ints('skip_test', st%skip_test)
-      call get_logicals('joined', st%joined)
-      call get_logicals('is_cut', st%is_cut)
-      call get_logicals('cracked', st%cracked)
-   contains
-      !> Lower bound and size of an array (a missing one is an error in h5%error).
-      subroutine bounds(name, lb, n)
-         character(len=*), intent(in) :: name
-         integer, intent(out) :: lb, n
-         n = -1
-         call h5_get_attr(h5, '/state', name // ':lbound', lb)
-         call h5_get_attr(h5, '/state', name // ':size', n)
-         if (allocated(h5%error)) n = -1
-      end subroutine bounds
-      subroutine get_reals(name, a)
-         character(len=*), intent(in) :: name
-         real(wp), allocatable, intent(out) :: a(:)
-         real(wp), allocatable :: v(:)
-         integer :: lb, n
-         call bounds(name, lb, n)
-         if (n < 0) return
-         if (n > 0) call h5_get(h5, '/state/' // name, v)
-         if (.not. allocated(v)) allocate(v(0))
-         if (have(name, size(v), n)) allocate(a(lb:lb + n - 1), source=v)
-      end subroutine get_reals
-      !> Integers come back through float64 (HDF5 converts; exact below 2^53).
-      subroutine get_ints(name, a)
-         character(len=*), intent(in) :: name
-         integer, allocatable, intent(out) :: a(:)
-         real(wp), allocatable :: v(:)
-         call get_reals(name, v)
-         if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
-      end subroutine get_ints
-      subroutine get_logicals(name, a)
-         character(len=*), intent(in) :: name
-         logical, allocatable, intent(out) :: a(:)
-         integer, allocatable :: v(:)
-         call get_ints(name, v)
-         if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=v /= 0)
-      end subroutine get_logicals
-      !> The dataset holds the size its attribute states (else an error in h5%error).
-      logical function have(name, got, n)
-         character(len=*), intent(in) :: name
-         integer, intent(in) :: got, n
-         have = got == n
-         if (.not. have .and. .not. allocated(h5%error)) h5%error = '/state/' // name // &
-            ' holds ' // itoa(got) // ' values, its :size attribute says ' // itoa(n)
-      end function have
-   end subroutine read_state
+      type(deck_t), intent(in) :: deck
+      type(mesh_t), intent(in) :: mesh
+      type(load_t), intent(in) :: load
+      character(len=:), allocatable :: why
+      character(len=:), allocatable :: text, here
+      real(wp) :: x
+      real(wp), allocatable :: tab(:)
+      integer :: i
+      why = ''
+      ! the deck
+      call h5_get_attr(h5, '/identity', 'deck', text)
+      here = deck_identity(deck)
+      if (text /= here) then
+         why = ('was written for another deck: ' // first_difference(text, here) // &
+                     ' (only title, t_end, checkpoint, checkpoint_every and later ' // &
+                     'profile_times may change)')
+         return
+      end if
+      call h5_get_attr(h5, '/identity', 'dt', x)
+      call h5_get_attr(h5, '/identity', 'cells', i)
+      if (.not. same([x], [mesh%dt]) .or. i /= mesh%n) then
+         why = ('has dt = ' // rtoa(x) // ' s and ' // itoa(i) // ' cells, this ' // &
+                     'deck''s mesh dt = ' // rtoa(mesh%dt) // ' s and ' // itoa(mesh%n) // ' cells')
+         return
+      end if
+      if (load%kind == load_table) then
+         call h5_get(h5, '/identity/load_t', tab)
+         if (.not. allocated(tab)) allocate(tab(0))
+         if (.not. same(tab, load%t)) then
+            why = ('was written with another &load table (its times differ from ''' // &
+                        trim(deck%load%table) // ''')')
+            return
+         end if
+         call h5_get(h5, '/identity/load_p', tab)
+         if (.not. allocated(tab)) allocate(tab(0))
+         if (.not. same(tab, load%p)) then
+            why = ('was written with another &load table (its pressures differ from ''' &
+                        // trim(deck%load%table) // ''')')
+            return
+         end if
+      end if
+   end function identity_problem
+
+   !> The marks of the outputs; why they cannot be used ('' when they can).
+   function read_marks(h5, marks) result(why)
+      type(h5file_t), intent(inout) :: h5
+      type(output_marks_t), intent(inout) :: marks
+      character(len=:), allocatable :: why
+      character(len=:), allocatable :: text
+      real(wp) :: x
+      integer :: k
+      why = ''
+      do k = 1, 4
+         call h5_get_attr(h5, '/outputs', 'body' // text_extensions(k), x)
+         marks%body(k) = int(x, kind(marks%body))
+         call h5_get_attr(h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
+         call h5_get_attr(h5, '/outputs', 'tail' // text_extensions(k), text)
+         ! a string attribute comes back without trailing blanks: pad to its length
+         marks%tail(k) = text
+         if (marks%tail_n(k) > tail_len) then
+            why = ('holds a tail of ' // itoa(marks%tail_n(k)) // ' bytes for ' // &
+                        text_extensions(k) // ' (at most ' // itoa(tail_len) // ')')
+            return
+         end if
+      end do
+      call h5_get_attr(h5, '/outputs', 'rows_history', marks%rows_his)
+      call h5_get_attr(h5, '/outputs', 'rows_events', marks%rows_evt)
+      call h5_get_attr(h5, '/outputs', 'rows_xt', marks%rows_xt)
+      call h5_get_attr(h5, '/outputs', 'profiles', marks%n_prof)
+      call h5_get_attr(h5, '/outputs', 'fragment_blocks', marks%n_frg)
+   end function read_marks
+
 
    !> The deck values a restart must not change: 'group name = value' lines of the echo,
    !> without title, t_end, checkpoint, checkpoint_every and profile_times (checked apart).
