@@ -13,6 +13,18 @@ module spb_prescan
 
    integer, parameter :: key_len = 64
 
+   !> Where the scan of the deck text is.
+   type :: lexer_t
+      integer :: n = 0                       !! length of the text
+      integer :: i = 1                       !! next character
+      integer :: line = 1                    !! its line
+      integer :: group_line = 0              !! line of the open group
+      logical :: in_group = .false.          !! inside a group
+      character(len=:), allocatable :: group !! the open (or last) group's name
+      character(len=:), allocatable :: var   !! the last variable assigned
+      character(len=key_len), allocatable :: whole(:)   !! 'group:variable' set whole
+   end type lexer_t
+
    type :: deck_scan_t
       character(len=key_len), allocatable :: groups(:)   !! group names in order of appearance
       character(len=key_len), allocatable :: keys(:)     !! 'group:variable' for every assignment
@@ -60,199 +72,240 @@ contains
       character(len=*), intent(in) :: known_groups(:)    !! accepted group names
       type(deck_scan_t), intent(out) :: scan
       type(spb_error_t), allocatable, intent(out) :: err
-      integer :: i, n, line, j, group_line, depth, string_line, name_start
-      character :: c, quote
-      character(len=:), allocatable :: group, word, var
-      character(len=key_len), allocatable :: whole(:)   ! 'group:variable' set without subscript
-      logical :: in_group, subscripted
+      type(lexer_t) :: lx
+      character :: c
 
-      allocate(scan%groups(0), scan%keys(0), whole(0), scan%first(0), scan%last(0))
+      allocate(scan%groups(0), scan%keys(0), lx%whole(0), scan%first(0), scan%last(0))
       scan%text = text
-      n = len(text)
-      i = 1
-      line = 1
-      group_line = 0
-      in_group = .false.
-      group = ''
-      var = ''
-      do while (i <= n)
-         c = text(i:i)
+      lx%n = len(text)
+      lx%group = ''
+      lx%var = ''
+      do while (lx%i <= lx%n)
+         c = text(lx%i:lx%i)
          if (c == achar(10)) then
-            line = line + 1
-            i = i + 1
+            lx%line = lx%line + 1
+            lx%i = lx%i + 1
          else if (c == '!') then
-            do while (i <= n)
-               if (text(i:i) == achar(10)) exit
-               if (is_control(text(i:i))) then
-                  if (in_group) then
-                     call make_error(err, '&' // group // ': line ' // itoa(line) // &
-                        ': character code ' // itoa(iachar(text(i:i))) // ' in a comment is not deck text')
-                  else
-                     call make_error(err, 'deck: line ' // itoa(line) // ': character code ' // &
-                        itoa(iachar(text(i:i))) // ' in a comment is not deck text')
-                  end if
-                  return
-               end if
-               i = i + 1
-            end do
+            call skip_comment(lx, text, err)
          else if (c == '''' .or. c == '"') then
-            if (.not. in_group) then
-               call make_error(err, 'deck: line ' // itoa(line) // ': text outside any &group')
-               return
-            end if
-            quote = c
-            string_line = line
-            i = i + 1
-            j = i
-            do
-               if (i - j > path_len - 1) then
-                  ! longer than any string variable: gfortran would cut it with a warning
-                  call make_error(err, '&' // group // ': ' // var // ': a string longer than ' &
-                                  // itoa(path_len - 1) // ' characters (line ' // &
-                                  itoa(string_line) // ')')
-                  return
-               end if
-               if (i > n) then
-                  call make_error(err, '&' // group // ': unterminated string starting at line ' &
-                                  // itoa(string_line))
-                  return
-               end if
-               if (text(i:i) == quote) then
-                  if (i < n) then
-                     if (text(i+1:i+1) == quote) then
-                        i = i + 2
-                        cycle
-                     end if
-                  end if
-                  i = i + 1
-                  exit
-               end if
-               if (text(i:i) == achar(10)) line = line + 1
-               if (is_control(text(i:i))) then
-                  call make_error(err, '&' // group // ': line ' // itoa(line) // &
-                                  ': character code ' // itoa(iachar(text(i:i))) // &
-                                  ' in a string is not deck text')
-                  return
-               end if
-               i = i + 1
-            end do
+            call skip_string(lx, text, err)
          else if (c == '&' .or. c == '$') then
-            j = i + 1
-            call read_word(text, j, word)
-            if (len(word) == 0) then
-               call make_error(err, 'deck: line ' // itoa(line) // ': ''' // c // ''' without a group name')
-               return
-            end if
-            if (word == 'end') then
-               if (.not. in_group) then
-                  call make_error(err, 'deck: line ' // itoa(line) // ': &end outside any group')
-                  return
-               end if
-               in_group = .false.
-               call close_assignment(scan, i - 1)
-            else
-               if (in_group) then
-                  call make_error(err, '&' // group // ': not terminated by ''/'' before &' // word &
-                                  // ' at line ' // itoa(line))
-                  return
-               end if
-               if (.not. any(known_groups == word)) then
-                  call make_error(err, '&' // word // ': unknown group at line ' // itoa(line) &
-                                  // ' (known: ' // join_groups(known_groups) // ')')
-                  return
-               end if
-               if (any(scan%groups == word)) then
-                  call make_error(err, '&' // word // ': group given twice (again at line ' &
-                                  // itoa(line) // ')')
-                  return
-               end if
-               scan%groups = [character(len=key_len) :: scan%groups, word]
-               group = word
-               group_line = line
-               in_group = .true.
-            end if
-            i = j
+            call group_marker(lx, text, known_groups, scan, err)
          else if (c == '/') then
-            if (.not. in_group) then
-               call make_error(err, 'deck: line ' // itoa(line) // ': ''/'' outside any group')
+            if (.not. lx%in_group) then
+               call make_error(err, 'deck: line ' // itoa(lx%line) // ': ''/'' outside any group')
                return
             end if
-            in_group = .false.
-            call close_assignment(scan, i - 1)
-            i = i + 1
+            lx%in_group = .false.
+            call close_assignment(scan, lx%i - 1)
+            lx%i = lx%i + 1
          else if (is_letter(c)) then
-            name_start = i
-            j = i
-            call read_word(text, j, word)
-            if (.not. in_group) then
-               call make_error(err, 'deck: line ' // itoa(line) // ': text outside any &group ('''&
-                               // word // '''); comments start with !')
-               return
-            end if
-            ! An assignment is a name, an optional subscript, then '='.
-            i = j
-            do while (i <= n)
-               if (text(i:i) /= ' ' .and. text(i:i) /= achar(9)) exit
-               i = i + 1
-            end do
-            subscripted = .false.
-            if (i <= n) then
-               if (text(i:i) == '(') then
-                  subscripted = .true.
-                  depth = 0
-                  do while (i <= n)
-                     if (text(i:i) == '(') depth = depth + 1
-                     if (text(i:i) == ')') depth = depth - 1
-                     if (text(i:i) == achar(10)) line = line + 1
-                     i = i + 1
-                     if (depth == 0) exit
-                  end do
-                  do while (i <= n)
-                     if (text(i:i) /= ' ' .and. text(i:i) /= achar(9)) exit
-                     i = i + 1
-                  end do
-               end if
-            end if
-            if (i <= n) then
-               if (text(i:i) == '=') then
-                  ! a whole variable set twice is a typo somewhere (the namelist read would
-                  ! silently keep the last value); elements, var(2) = ..., may be set apart
-                  var = word
-                  if (.not. subscripted) then
-                     if (any(whole == group // ':' // word)) then
-                        call make_error(err, '&' // group // ': ' // word // ': given twice ' // &
-                                        '(again at line ' // itoa(line) // ')')
-                        return
-                     end if
-                     whole = [character(len=key_len) :: whole, group // ':' // word]
-                  end if
-                  scan%keys = [character(len=key_len) :: scan%keys, group // ':' // word]
-                  call close_assignment(scan, name_start - 1)
-                  scan%first = [scan%first, name_start]
-                  scan%last = [scan%last, 0]
-                  i = i + 1
-               end if
-            end if
+            call name_or_assignment(lx, text, scan, err)
          else if (c == achar(13) .or. c == achar(9) .or. c == ' ') then
-            i = i + 1
+            lx%i = lx%i + 1
          else
-            if (.not. in_group) then
-               call make_error(err, 'deck: line ' // itoa(line) // ': text outside any &group')
+            if (.not. lx%in_group) then
+               call make_error(err, 'deck: line ' // itoa(lx%line) // ': text outside any &group')
                return
             end if
             if (iachar(c) < 32 .or. iachar(c) > 126) then
-               call make_error(err, '&' // group // ': line ' // itoa(line) &
+               call make_error(err, '&' // lx%group // ': line ' // itoa(lx%line) &
                                // ': character code ' // itoa(iachar(c)) // ' is not deck text')
                return
             end if
-            i = i + 1
+            lx%i = lx%i + 1
          end if
+         if (allocated(err)) return
       end do
-      if (in_group) then
-         call make_error(err, '&' // group // ': group opened at line ' // itoa(group_line) &
+      if (lx%in_group) then
+         call make_error(err, '&' // lx%group // ': group opened at line ' // itoa(lx%group_line) &
                          // ' is not terminated by ''/''')
       end if
    end subroutine scan_text
+
+   !> A comment from '!' to the end of the line: no control characters in it.
+   subroutine skip_comment(lx, text, err)
+      type(lexer_t), intent(inout) :: lx
+      character(len=*), intent(in) :: text
+      type(spb_error_t), allocatable, intent(inout) :: err
+      do while (lx%i <= lx%n)
+         if (text(lx%i:lx%i) == achar(10)) exit
+         if (is_control(text(lx%i:lx%i))) then
+            if (lx%in_group) then
+               call make_error(err, '&' // lx%group // ': line ' // itoa(lx%line) // &
+                  ': character code ' // itoa(iachar(text(lx%i:lx%i))) // &
+                  ' in a comment is not deck text')
+            else
+               call make_error(err, 'deck: line ' // itoa(lx%line) // ': character code ' // &
+                  itoa(iachar(text(lx%i:lx%i))) // ' in a comment is not deck text')
+            end if
+            return
+         end if
+         lx%i = lx%i + 1
+      end do
+   end subroutine skip_comment
+
+   !> A quoted string (a doubled quote stands for one), inside a group, terminated, not
+   !> longer than a string variable, without control characters.
+   subroutine skip_string(lx, text, err)
+      type(lexer_t), intent(inout) :: lx
+      character(len=*), intent(in) :: text
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character :: quote
+      integer :: j, string_line
+      if (.not. lx%in_group) then
+         call make_error(err, 'deck: line ' // itoa(lx%line) // ': text outside any &group')
+         return
+      end if
+      quote = text(lx%i:lx%i)
+      string_line = lx%line
+      lx%i = lx%i + 1
+      j = lx%i
+      do
+         if (lx%i - j > path_len - 1) then
+            ! longer than any string variable: gfortran would cut it with a warning
+            call make_error(err, '&' // lx%group // ': ' // lx%var // ': a string longer than ' &
+                            // itoa(path_len - 1) // ' characters (line ' // &
+                            itoa(string_line) // ')')
+            return
+         end if
+         if (lx%i > lx%n) then
+            call make_error(err, '&' // lx%group // ': unterminated string starting at line ' &
+                            // itoa(string_line))
+            return
+         end if
+         if (text(lx%i:lx%i) == quote) then
+            if (lx%i < lx%n) then
+               if (text(lx%i+1:lx%i+1) == quote) then
+                  lx%i = lx%i + 2
+                  cycle
+               end if
+            end if
+            lx%i = lx%i + 1
+            exit
+         end if
+         if (text(lx%i:lx%i) == achar(10)) lx%line = lx%line + 1
+         if (is_control(text(lx%i:lx%i))) then
+            call make_error(err, '&' // lx%group // ': line ' // itoa(lx%line) // &
+                            ': character code ' // itoa(iachar(text(lx%i:lx%i))) // &
+                            ' in a string is not deck text')
+            return
+         end if
+         lx%i = lx%i + 1
+      end do
+   end subroutine skip_string
+
+   !> '&name' (or '$name') opens a known group not given before; '&end' closes one.
+   subroutine group_marker(lx, text, known_groups, scan, err)
+      type(lexer_t), intent(inout) :: lx
+      character(len=*), intent(in) :: text
+      character(len=*), intent(in) :: known_groups(:)
+      type(deck_scan_t), intent(inout) :: scan
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=:), allocatable :: word
+      integer :: j
+      j = lx%i + 1
+      call read_word(text, j, word)
+      if (len(word) == 0) then
+         call make_error(err, 'deck: line ' // itoa(lx%line) // ': ''' // text(lx%i:lx%i) // &
+                         ''' without a group name')
+         return
+      end if
+      if (word == 'end') then
+         if (.not. lx%in_group) then
+            call make_error(err, 'deck: line ' // itoa(lx%line) // ': &end outside any group')
+            return
+         end if
+         lx%in_group = .false.
+         call close_assignment(scan, lx%i - 1)
+      else
+         if (lx%in_group) then
+            call make_error(err, '&' // lx%group // ': not terminated by ''/'' before &' // word &
+                            // ' at line ' // itoa(lx%line))
+            return
+         end if
+         if (.not. any(known_groups == word)) then
+            call make_error(err, '&' // word // ': unknown group at line ' // itoa(lx%line) &
+                            // ' (known: ' // join_groups(known_groups) // ')')
+            return
+         end if
+         if (any(scan%groups == word)) then
+            call make_error(err, '&' // word // ': group given twice (again at line ' &
+                            // itoa(lx%line) // ')')
+            return
+         end if
+         scan%groups = [character(len=key_len) :: scan%groups, word]
+         lx%group = word
+         lx%group_line = lx%line
+         lx%in_group = .true.
+      end if
+      lx%i = j
+   end subroutine group_marker
+
+   !> A name inside a group; followed by an optional subscript and '=' it starts an
+   !> assignment (a whole variable may be set once; elements, var(2) = ..., apart).
+   subroutine name_or_assignment(lx, text, scan, err)
+      type(lexer_t), intent(inout) :: lx
+      character(len=*), intent(in) :: text
+      type(deck_scan_t), intent(inout) :: scan
+      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=:), allocatable :: word
+      integer :: j, name_start, depth
+      logical :: subscripted
+      name_start = lx%i
+      j = lx%i
+      call read_word(text, j, word)
+      if (.not. lx%in_group) then
+         call make_error(err, 'deck: line ' // itoa(lx%line) // ': text outside any &group ('''&
+                         // word // '''); comments start with !')
+         return
+      end if
+      lx%i = j
+      call skip_blanks(lx, text)
+      subscripted = .false.
+      if (lx%i <= lx%n) then
+         if (text(lx%i:lx%i) == '(') then
+            subscripted = .true.
+            depth = 0
+            do while (lx%i <= lx%n)
+               if (text(lx%i:lx%i) == '(') depth = depth + 1
+               if (text(lx%i:lx%i) == ')') depth = depth - 1
+               if (text(lx%i:lx%i) == achar(10)) lx%line = lx%line + 1
+               lx%i = lx%i + 1
+               if (depth == 0) exit
+            end do
+            call skip_blanks(lx, text)
+         end if
+      end if
+      if (lx%i > lx%n) return
+      if (text(lx%i:lx%i) /= '=') return
+      ! a whole variable set twice is a typo somewhere (the namelist read would silently keep
+      ! the last value)
+      lx%var = word
+      if (.not. subscripted) then
+         if (any(lx%whole == lx%group // ':' // word)) then
+            call make_error(err, '&' // lx%group // ': ' // word // ': given twice ' // &
+                            '(again at line ' // itoa(lx%line) // ')')
+            return
+         end if
+         lx%whole = [character(len=key_len) :: lx%whole, lx%group // ':' // word]
+      end if
+      scan%keys = [character(len=key_len) :: scan%keys, lx%group // ':' // word]
+      call close_assignment(scan, name_start - 1)
+      scan%first = [scan%first, name_start]
+      scan%last = [scan%last, 0]
+      lx%i = lx%i + 1
+   end subroutine name_or_assignment
+
+   !> Past blanks and tabs (not line ends).
+   pure subroutine skip_blanks(lx, text)
+      type(lexer_t), intent(inout) :: lx
+      character(len=*), intent(in) :: text
+      do while (lx%i <= lx%n)
+         if (text(lx%i:lx%i) /= ' ' .and. text(lx%i:lx%i) /= achar(9)) exit
+         lx%i = lx%i + 1
+      end do
+   end subroutine skip_blanks
 
    !> End the open assignment (if any) at text position last.
    pure subroutine close_assignment(scan, last)
