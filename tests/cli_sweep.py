@@ -153,4 +153,9 @@ plain = os.path.join(indir, "example1.nml")
 p = run(exe, ["--sweep", plain, "-o", os.path.join(work, "plain")], work)
 check(p.returncode == 2 and "&sweep: required group is missing" in p.stderr,
       f"--sweep without &sweep: {p.stderr}")
+# the table cannot be written after the cases ran: a runtime failure (exit 3), not bad input
+os.makedirs(os.path.join(work, "blocked.sweep.part"))
+p = run(exe, ["--sweep", small_deck, "-o", os.path.join(work, "blocked"), "-q"], work)
+check(p.returncode == 3 and "cannot write" in p.stderr and "blocked.sweep" in p.stderr,
+      f"an unwritable table after the run: exit {p.returncode} {p.stderr.strip()}")
 sys.exit(check.finish())

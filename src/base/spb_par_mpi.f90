@@ -9,8 +9,8 @@ module spb_par
    use spb_kinds, only: wp
    implicit none
    private
-   public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, par_barrier, &
-      par_max, par_wtime, par_any, par_kind
+   public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, &
+      par_wtime, par_any, par_kind
 
    integer, parameter :: par_any = -1               !! any source (par_recv)
    character(len=*), parameter :: par_kind = 'MPI'  !! what this build runs sweeps on
@@ -45,16 +45,6 @@ contains
    integer function par_size()
       call MPI_Comm_size(MPI_COMM_WORLD, par_size)
    end function par_size
-
-   subroutine par_barrier()
-      call MPI_Barrier(MPI_COMM_WORLD)
-   end subroutine par_barrier
-
-   !> The largest value of x over all ranks, on every rank.
-   integer function par_max(x)
-      integer, intent(in) :: x
-      call MPI_Allreduce(x, par_max, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
-   end function par_max
 
    real(wp) function par_wtime()
       par_wtime = real(MPI_Wtime(), wp)

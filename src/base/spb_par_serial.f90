@@ -5,8 +5,8 @@ module spb_par
    use spb_kinds, only: wp
    implicit none
    private
-   public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, par_barrier, &
-      par_max, par_wtime, par_any, par_kind
+   public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, &
+      par_wtime, par_any, par_kind
 
    integer, parameter :: par_any = -1
    character(len=*), parameter :: par_kind = 'serial (built without MPI)'
@@ -33,14 +33,6 @@ contains
    integer function par_size()
       par_size = 1
    end function par_size
-
-   subroutine par_barrier()
-   end subroutine par_barrier
-
-   integer function par_max(x)
-      integer, intent(in) :: x
-      par_max = x
-   end function par_max
 
    real(wp) function par_wtime()
       integer(int64) :: c, rate

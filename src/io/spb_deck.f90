@@ -10,7 +10,7 @@ module spb_deck
       max_realizations
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, lower, ltoa
-   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment
+   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text
    use spb_sys, only: fp_traps_off, fp_traps_restore
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, load_none, &
       load_power, load_table, load_exponential, face_top, face_bottom, timing_accelerate, &
@@ -389,7 +389,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'run', k, var)
+            record = assignment_text(deck%scan, 'run', k, var)
             if (len(record) == 0) cycle
             read(record, nml=run, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -451,7 +451,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'mesh', k, var)
+            record = assignment_text(deck%scan, 'mesh', k, var)
             if (len(record) == 0) cycle
             read(record, nml=mesh, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -494,7 +494,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'segments', k, var)
+            record = assignment_text(deck%scan, 'segments', k, var)
             if (len(record) == 0) cycle
             read(record, nml=segments, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -540,7 +540,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'ends', k, var)
+            record = assignment_text(deck%scan, 'ends', k, var)
             if (len(record) == 0) cycle
             read(record, nml=ends, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -583,7 +583,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'load', k, var)
+            record = assignment_text(deck%scan, 'load', k, var)
             if (len(record) == 0) cycle
             read(record, nml=load, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -629,7 +629,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'initial', k, var)
+            record = assignment_text(deck%scan, 'initial', k, var)
             if (len(record) == 0) cycle
             read(record, nml=initial, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -666,7 +666,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'strength_field', k, var)
+            record = assignment_text(deck%scan, 'strength_field', k, var)
             if (len(record) == 0) cycle
             read(record, nml=strength_field, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then
@@ -705,7 +705,7 @@ contains
       if (ios /= 0) then
          ! find the assignment that fails by reading them one at a time
          do k = 1, size(deck%scan%keys)
-            record = assignment(deck%scan, 'sweep', k, var)
+            record = assignment_text(deck%scan, 'sweep', k, var)
             if (len(record) == 0) cycle
             read(record, nml=sweep, iostat=ios2, iomsg=msg2)
             if (ios2 /= 0) then

@@ -150,11 +150,10 @@ contains
       call check(h5, hdferr, 'h5oopen_f ' // path)
    end subroutine open_obj
 
-   subroutine close_obj(obj, is_dset)
-      integer(hid_t), intent(in) :: obj
-      logical, intent(in) :: is_dset
+   subroutine close_obj(obj)
+      integer(hid_t), intent(in) :: obj        !! a group or dataset opened by open_obj
       integer :: hdferr
-      if (is_dset .or. .not. is_dset) call h5oclose_f(obj, hdferr)
+      call h5oclose_f(obj, hdferr)
    end subroutine close_obj
 
    subroutine attr_string(h5, path, name, value)
@@ -182,7 +181,7 @@ contains
       end if
       call h5tclose_f(atype, hdferr)
       call h5sclose_f(space, hdferr)
-      call close_obj(obj, is_dset)
+      call close_obj(obj)
    end subroutine attr_string
 
    subroutine attr_real(h5, path, name, value)
@@ -206,7 +205,7 @@ contains
          call h5aclose_f(attr, hdferr)
       end if
       call h5sclose_f(space, hdferr)
-      call close_obj(obj, is_dset)
+      call close_obj(obj)
    end subroutine attr_real
 
    subroutine attr_int(h5, path, name, value)
@@ -230,7 +229,7 @@ contains
          call h5aclose_f(attr, hdferr)
       end if
       call h5sclose_f(space, hdferr)
-      call close_obj(obj, is_dset)
+      call close_obj(obj)
    end subroutine attr_int
 
    !> A fixed 1-D dataset with a units attribute.
@@ -650,7 +649,7 @@ contains
       call h5aexists_f(obj, name, exists, hdferr)
       if (.not. exists) then
          call check(h5, -1, 'finding attribute ' // path // ':' // name)
-         call close_obj(obj, is_dset)
+         call close_obj(obj)
          obj = -1
          return
       end if

@@ -9,7 +9,7 @@ module spb_prescan
    use spb_kinds, only: path_len
    implicit none
    private
-   public :: deck_scan_t, scan_deck, scan_text, has_group, has_var, assignment
+   public :: deck_scan_t, scan_deck, scan_text, has_group, has_var, assignment_text
 
    integer, parameter :: key_len = 64
 
@@ -319,7 +319,7 @@ contains
 
    !> Assignment k as a one-assignment namelist record '&group var = value /' (empty when
    !> it belongs to another group): reading these one by one finds the one that fails.
-   function assignment(scan, group, k, var) result(record)
+   function assignment_text(scan, group, k, var) result(record)
       type(deck_scan_t), intent(in) :: scan
       character(len=*), intent(in) :: group
       integer, intent(in) :: k                          !! 1 .. size(scan%keys)
@@ -332,7 +332,7 @@ contains
       if (scan%keys(k)(:c - 1) /= group) return
       record = '&' // group // ' ' // scan%text(scan%first(k):max(scan%first(k), scan%last(k))) &
                // ' /'
-   end function assignment
+   end function assignment_text
 
    !> True when the group appears in the deck.
    logical function has_group(scan, group)

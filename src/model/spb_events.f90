@@ -5,7 +5,7 @@ module spb_events
    implicit none
    private
    public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
-   public :: ev_base_collision, event_kind_name, event_kind_names
+   public :: ev_base_collision, event_kind_names
 
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
@@ -50,10 +50,4 @@ contains
       list%n = list%n + 1
       list%e(list%n) = ev
    end subroutine push_event
-
-   pure function event_kind_name(kind) result(name)
-      integer, intent(in) :: kind
-      character(len=:), allocatable :: name
-      name = trim(event_kind_names(max(1, min(4, kind))))
-   end function event_kind_name
 end module spb_events

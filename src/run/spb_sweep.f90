@@ -348,7 +348,8 @@ contains
       open(newunit=u, file=prefix // '.sweep.part', status='replace', action='write', &
            iostat=ios, iomsg=msg)
       if (ios /= 0) then
-         call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // trim(msg))
+         call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // trim(msg), &
+                         code=exit_runtime)
          return
       end if
       write(u, '(a)') '# spallbar ' // version // ' -- sweep: one row per case, in case order'
@@ -379,7 +380,8 @@ contains
       end do
       close(u, iostat=ios)
       call sys_rename(prefix // '.sweep.part', prefix // '.sweep', ok)
-      if (ios /= 0 .or. .not. ok) call make_error(err, '--output: cannot write ''' // prefix // &
+      if (ios /= 0 .or. .not. ok) call make_error(err, code=exit_runtime, message= &
+         '--output: cannot write ''' // prefix // &
          '.sweep''')
    end subroutine write_table
 
@@ -423,11 +425,12 @@ contains
       call h5_write(h5, '/histogram/counts', hists, '-')
       call h5_close(h5)
       if (allocated(h5%error)) then
-         call make_error(err, h5%error)
+         call make_error(err, h5%error, code=exit_runtime)
          return
       end if
       call sys_rename(prefix // '_sweep.h5.part', prefix // '_sweep.h5', ok)
-      if (.not. ok) call make_error(err, '--output: cannot write ''' // prefix // '_sweep.h5''')
+      if (.not. ok) call make_error(err, '--output: cannot write ''' // prefix // '_sweep.h5''', &
+                                    code=exit_runtime)
    contains
       pure function unit_of(name) result(unit)
          character(len=*), intent(in) :: name
