@@ -203,6 +203,8 @@ contains
    subroutine option_value(k, nargs, arg, e, missing)
       integer, intent(inout) :: k
       integer, intent(in) :: nargs
+      ! the caller's buffer receives the argument
+      ! allow(assumed-size-character-intent)
       character(len=*), intent(inout) :: arg
       type(spb_error_t), allocatable, intent(inout) :: e
       character(len=*), intent(in) :: missing

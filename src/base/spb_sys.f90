@@ -15,30 +15,37 @@ module spb_sys
 
    !> The signal that asked the run to stop (0: none). The one piece of module state in
    !> spallbar: a signal handler can reach nothing else. Written by the handler only.
-   integer(c_int), volatile, save :: caught = 0_c_int
+   integer(c_int), volatile :: caught = 0_c_int
 
    interface
       subroutine c_exit(status) bind(c, name='exit')
          import :: c_int
+         implicit none
          integer(c_int), value :: status
       end subroutine c_exit
       function c_isatty(fd) bind(c, name='isatty') result(r)
          import :: c_int
+         implicit none
          integer(c_int), value :: fd
          integer(c_int) :: r
       end function c_isatty
       function c_rename(old, new) bind(c, name='rename') result(r)
          import :: c_int, c_char
+         implicit none
+         ! C strings (char *), NUL-terminated by the caller
+         ! allow(assumed-size)
          character(kind=c_char), intent(in) :: old(*), new(*)
          integer(c_int) :: r
       end function c_rename
       function c_mallopt(param, value) bind(c, name='mallopt') result(r)
          import :: c_int
+         implicit none
          integer(c_int), value :: param, value
          integer(c_int) :: r
       end function c_mallopt
       function c_signal(signum, handler) bind(c, name='signal') result(previous)
          import :: c_int, c_funptr
+         implicit none
          integer(c_int), value :: signum
          type(c_funptr), value :: handler
          type(c_funptr) :: previous

@@ -509,6 +509,8 @@ contains
             select case (items(k)%name)
             case ('title', 't_end', 'checkpoint', 'checkpoint_every', 'profile_times')
                cycle
+            case default
+               ! every other value identifies the run
             end select
          end if
          text = text // '&' // items(k)%group // ' ' // items(k)%name // ' = ' // &

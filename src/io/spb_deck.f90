@@ -334,8 +334,9 @@ contains
       if (k > 0) then
          name = lower(trim(adjustl(msg(k + len(nomatch):))))
          if (len(name) >= 2) then
-            if (scan(name(1:1), '''"') > 0 .and. name(len(name):len(name)) == name(1:1)) &
+            if (scan(name(1:1), '''"') > 0 .and. name(len(name):len(name)) == name(1:1)) then
                name = name(2:len(name)-1)
+            end if
          end if
          k = scan(name, '(')
          if (k > 1) name = name(:k-1)
@@ -1106,8 +1107,9 @@ contains
             call beyond_n('strength', seg%strength(j))
             call beyond_n('velocity', seg%velocity(j))
             if (j >= seg%n) call beyond_n('gap', seg%gap(j))
-            if (len_trim(seg%interface(j)) > 0 .and. .not. allocated(err)) &
+            if (len_trim(seg%interface(j)) > 0 .and. .not. allocated(err)) then
                call make_error(err, '&segments: interface' // sj // ' is given but n = ' // itoa(seg%n))
+            end if
          end if
          if (allocated(err)) return
       end do

@@ -35,6 +35,7 @@ module spb_hdf5
       function h5pset_file_space_strategy(fcpl, strategy, persist, threshold) &
             bind(c, name='H5Pset_file_space_strategy') result(status)
          import :: c_int, c_bool, c_int64_t, c_long_long
+         implicit none
          integer(c_int64_t), value :: fcpl           ! hid_t
          integer(c_int), value :: strategy
          logical(c_bool), value :: persist
@@ -96,8 +97,9 @@ contains
       type(h5file_t), intent(inout) :: h5
       integer, intent(in) :: hdferr
       character(len=*), intent(in) :: what      !! operation and object
-      if (hdferr < 0 .and. .not. allocated(h5%error)) &
+      if (hdferr < 0 .and. .not. allocated(h5%error)) then
          h5%error = 'HDF5: ' // what // ' failed in ''' // h5%path // ''''
+      end if
    end subroutine check
 
    !> Create (truncate) the file.

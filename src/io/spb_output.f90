@@ -237,8 +237,9 @@ contains
          marks%tail_n(k) = int(min(int(tail_len, int64), marks%body(k)))
          open(newunit=r, file=out%prefix // text_extensions(k), access='stream', &
               form='unformatted', status='old', action='read', iostat=ios)
-         if (ios == 0 .and. marks%tail_n(k) > 0) &
+         if (ios == 0 .and. marks%tail_n(k) > 0) then
             read(r, pos=bytes(k) - marks%tail_n(k) + 1, iostat=ios) marks%tail(k)(1:marks%tail_n(k))
+         end if
          if (ios == 0) close(r)
          if (ios /= 0) marks%tail_n(k) = -1     ! a restart from this mark will refuse
          open(newunit=u, file=out%prefix // text_extensions(k), status='old', action='write', &

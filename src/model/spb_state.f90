@@ -213,8 +213,9 @@ contains
             ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
             ! (spb_wave); the face's own v(x) would start one that grows linearly
             if (mesh%top == end_free) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
-            if (mesh%bottom == end_free .or. mesh%bottom == end_base) &
+            if (mesh%bottom == end_free .or. mesh%bottom == end_base) then
                v(n) = v(n) - prob%strain_rate * 0.5_wp * mesh%dx(n)
+            end if
          end associate
       end if
       if (mesh%top == end_fixed) v(0) = 0.0_wp

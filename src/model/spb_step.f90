@@ -53,6 +53,8 @@ contains
          ! s_0 = -(E/dx) du_0^n (outgoing G) + (E/dx) [F(n+1) - F(n-1)] = 2 P^n (incident F)
          s_top = st%s_static_top - mesh%stiff(1) * (st%dub(0) - st%v_far_top * mesh%dt)
          if (load%face == face_top) s_top = s_top + 2.0_wp * p
+      case default
+         ! the other ends take no part here
       end select
       select case (mesh%bottom)
       case (end_free)
@@ -60,6 +62,8 @@ contains
       case (end_transmit)
          s_bot = st%s_static_bot + mesh%stiff(mesh%n) * (st%dua(mesh%n) - st%v_far_bot * mesh%dt)
          if (load%face /= face_top) s_bot = s_bot + 2.0_wp * p
+      case default
+         ! the other ends take no part here
       end select
    end subroutine end_stresses
 
@@ -398,6 +402,8 @@ contains
          st%w_in_top = (0.5_wp * st%s_static_top * dt + r%q_top) / mesh%z(1) + &
                        0.5_wp * st%v_far_top * dt
          st%w_wave = st%w_wave + mesh%z(1) * r%du_top * (2.0_wp * st%w_in_top - r%du_top) / dt
+      case default
+         ! the other ends take no part here
       end select
       select case (mesh%bottom)
       case (end_free)
@@ -406,6 +412,8 @@ contains
          st%w_in_bot = -(0.5_wp * st%s_static_bot * dt + r%q_bot) / mesh%z(n) + &
                        0.5_wp * st%v_far_bot * dt
          st%w_wave = st%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * st%w_in_bot - r%du_bot) / dt
+      case default
+         ! the other ends take no part here
       end select
 
       ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
@@ -423,6 +431,8 @@ contains
       case (end_transmit)
          st%sec(0) = section_stress_b(r%s_1, st%sec(0), du_top_old / dt, r%du_top / dt, &
                                        mesh%z(1), mesh%dm(1), g)
+      case default
+         ! the other ends take no part here
       end select
       select case (mesh%bottom)
       case (end_fixed)
@@ -443,6 +453,8 @@ contains
          else
             st%sec(n) = 0.0_wp
          end if
+      case default
+         ! the other ends take no part here
       end select
    end subroutine book_ends
 end module spb_step

@@ -156,8 +156,9 @@ contains
       if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
           mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
           (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
          jprime = jprime - 2.0_wp * load_top
+      end if
       jordan_abs = 0.0_wp
       e = 0.0_wp
       if (bot == top) return
@@ -255,8 +256,9 @@ contains
       if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
           mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
           (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) &
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
          jprime = jprime - 2.0_wp * load_top
+      end if
       jordan = scale
       jordan_abs = 0.0_wp
       if (bot == top) return

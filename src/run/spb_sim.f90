@@ -249,8 +249,9 @@ contains
       summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
       call row(sim, run, summary, err)
       call profiles(sim, run)
-      if (run%sched%every(act_field) > 0 .and. run%to_files) &
+      if (run%sched%every(act_field) > 0 .and. run%to_files) then
          call write_field(run%out, sim%mesh, sim%st)
+      end if
    end subroutine first_rows
 
    !> The steps up to the next one at which an action is due: those before it in one
@@ -308,13 +309,15 @@ contains
          if (allocated(err)) return
       end if
       call profiles(sim, run)
-      if (is_due(run%sched, act_field, n) .and. run%to_files) &
+      if (is_due(run%sched, act_field, n) .and. run%to_files) then
          call write_field(run%out, sim%mesh, sim%st)
+      end if
       sig = stop_signal()
       if (run%ck_on) then
          ! the state after everything of step n that an uninterrupted run writes too
-         if (n == sim%mesh%nsteps .or. sig /= 0 .or. is_due(run%sched, act_checkpoint, n)) &
+         if (n == sim%mesh%nsteps .or. sig /= 0 .or. is_due(run%sched, act_checkpoint, n)) then
             call checkpoint(sim, run, summary, err)
+         end if
          if (allocated(err)) return
       end if
       if (sig /= 0) then
