@@ -42,7 +42,7 @@ program spallbar
             write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
             call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
             write(output_unit, '(a,i0,a,es12.5,a)') '  restart from ' // restart_path // &
-               ' at step ', ck%st%n, ' (t = ', real(ck%st%n, wp) * sim%mesh%dt, ' s)'
+               ' at step ', ck%st%step, ' (t = ', real(ck%st%step, wp) * sim%mesh%dt, ' s)'
          end if
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &

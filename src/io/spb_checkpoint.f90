@@ -80,8 +80,8 @@ contains
       call h5_create(h5, path // '.part')
       call h5_deck_header(h5, deck)
       call h5_attr(h5, '/', 'format', format_name)
-      call h5_attr(h5, '/', 'step', st%n)
-      call h5_attr(h5, '/', 't', real(st%n, wp) * mesh%dt)
+      call h5_attr(h5, '/', 'step', st%step)
+      call h5_attr(h5, '/', 't', real(st%step, wp) * mesh%dt)
       ! what identifies the run
       call h5_group(h5, '/identity')
       call h5_attr(h5, '/identity', 'program', 'spallbar ' // version)
@@ -131,7 +131,7 @@ contains
       type(h5file_t), intent(inout) :: h5
       type(state_t), intent(inout) :: st
       logical, intent(in) :: writing
-      call field(h5, writing, '/state', 'n', st%n)
+      call field(h5, writing, '/state', 'n', st%step)   ! names as in 0.1 checkpoints
       call field(h5, writing, '/state', 'n_breakable', st%n_breakable)
       call field(h5, writing, '/state', 'n_split', st%n_split)
       call field(h5, writing, '/state', 'n_frag_ids', st%n_frag_ids)
@@ -168,7 +168,7 @@ contains
       call array_field(h5, writing, 'dub', st%dub)
       call array_field(h5, writing, 's', st%s)
       call array_field(h5, writing, 's_old', st%s_old)
-      call array_field(h5, writing, 'sec', st%sec)
+      call array_field(h5, writing, 'sec', st%section)
       call array_field(h5, writing, 'strength', st%strength)
       call array_field(h5, writing, 'cell_strength', st%cell_strength)
       call array_field(h5, writing, 'split', st%split)
@@ -376,9 +376,9 @@ contains
                      'has ' // itoa(mesh%n))
          return
       end if
-      if (ck%st%n > mesh%nsteps) then
-         call refuse('is at step ' // itoa(ck%st%n) // ' (t = ' // &
-                     rtoa(real(ck%st%n, wp) * mesh%dt) // ' s), after this deck''s t_end = ' // &
+      if (ck%st%step > mesh%nsteps) then
+         call refuse('is at step ' // itoa(ck%st%step) // ' (t = ' // &
+                     rtoa(real(ck%st%step, wp) * mesh%dt) // ' s), after this deck''s t_end = ' // &
                      rtoa(deck%run%t_end) // ' s (' // itoa(mesh%nsteps) // ' steps)')
          return
       end if
@@ -390,12 +390,12 @@ contains
       if (.not. allocated(times)) then
          allocate(times(0))
       end if
-      if (.not. same(pack(times, nint(times / mesh%dt) <= ck%st%n), &
+      if (.not. same(pack(times, nint(times / mesh%dt) <= ck%st%step), &
                      pack(deck%run%profile_times(1:deck%run%n_profiles), &
                           nint(deck%run%profile_times(1:deck%run%n_profiles) / mesh%dt) <= &
-                          ck%st%n))) then
+                          ck%st%step))) then
          call refuse('has other profile_times up to its t = ' // &
-                     rtoa(real(ck%st%n, wp) * mesh%dt) // ' s than &run profile_times here')
+                     rtoa(real(ck%st%step, wp) * mesh%dt) // ' s than &run profile_times here')
          return
       end if
       ! the run's summary

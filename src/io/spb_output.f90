@@ -471,7 +471,7 @@ contains
       real(wp) :: u(2 * mesh%n), v(2 * mesh%n), s(2 * mesh%n)
       if (.not. out%hdf5) return
       call half_rows(mesh, st, u, v, s)
-      call h5_append_xt(out%h5, real(st%n, wp) * mesh%dt, u, v, s)
+      call h5_append_xt(out%h5, real(st%step, wp) * mesh%dt, u, v, s)
    end subroutine write_field
 
    !> Unit of a history column.
@@ -648,8 +648,8 @@ contains
       character(len=:), allocatable :: g
       n = mesh%n
       dt = mesh%dt
-      write(out%prf, '(a)') '# t = ' // rtoa(real(st%n, wp) * dt)
-      write(out%prf, '(a)') '# step ' // itoa(st%n) // ', requested t = ' // rtoa(t_requested)
+      write(out%prf, '(a)') '# t = ' // rtoa(real(st%step, wp) * dt)
+      write(out%prf, '(a)') '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested)
       do i = 0, n
          if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, st%s(i)
          if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, st%s(i + 1)
@@ -659,9 +659,9 @@ contains
       g = '/fields/profiles/' // block_name(out%n_prof)
       call half_rows(mesh, st, u, v, s)
       call h5_group(out%h5, g)
-      call h5_attr(out%h5, g, 't', real(st%n, wp) * dt)
+      call h5_attr(out%h5, g, 't', real(st%step, wp) * dt)
       call h5_attr(out%h5, g, 't_requested', t_requested)
-      call h5_attr(out%h5, g, 'step', st%n)
+      call h5_attr(out%h5, g, 'step', st%step)
       call h5_write(out%h5, g // '/u', u, 'm')
       call h5_write(out%h5, g // '/v', v, 'm/s')
       call h5_write(out%h5, g // '/stress', s, 'Pa')

@@ -328,7 +328,7 @@ contains
          st%ub(i) = st%ub(i) - du_b_trial + du_join
          st%s(i) = st%s(i) + mesh%stiff(i) * (du_a_trial - du_join)
          st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * (du_join - du_b_trial)
-         st%sec(i) = section_stress_a(st%s_old(i), 0.0_wp, v_a, du_join / mesh%dt, mesh%z(i), &
+         st%section(i) = section_stress_a(st%s_old(i), 0.0_wp, v_a, du_join / mesh%dt, mesh%z(i), &
                                       mesh%dm(i), g)
       else
          ! joined at t^{n+1}: positions and stresses at t^{n+1} stay, the increment becomes
@@ -339,7 +339,7 @@ contains
          st%s_old(i + 1) = st%s_old(i + 1) - mesh%stiff(i + 1) * (du_join - du_b_trial)
          ! the next step computes the collision stress; this S^{n-1/2} makes (3.1) start
          ! from the upper half's own velocity with zero section stress
-         st%sec(i) = mesh%z(i) * (du_join - du_a_trial) / mesh%dt
+         st%section(i) = mesh%z(i) * (du_join - du_a_trial) / mesh%dt
          call skip_next(st, i)
       end if
       ! the halves now share one position (a shift closed the gap; if both sides were
@@ -725,7 +725,7 @@ contains
          st%ua(n) = st%ua(n) - du_trial
          st%ub(n) = st%ua(n)
          st%s(n) = st%s(n) + mesh%stiff(n) * du_trial
-         st%sec(n) = section_stress_a(st%s_old(n), 0.0_wp, dua0 / mesh%dt, 0.0_wp, mesh%z(n), &
+         st%section(n) = section_stress_a(st%s_old(n), 0.0_wp, dua0 / mesh%dt, 0.0_wp, mesh%z(n), &
                                       mesh%dm(n), g)
       else
          ! joined at t^{n+1}: as for a collision between fragments, s_old follows the
@@ -733,7 +733,7 @@ contains
          ! section stress starts from the bottom half's own velocity with S^{n+1/2} = 0, the
          ! collision stress (5.6), alpha -> infinity
          st%s_old(n) = st%s_old(n) - mesh%stiff(n) * du_trial
-         st%sec(n) = 0.0_wp
+         st%section(n) = 0.0_wp
          st%landing_bot = .true.
          st%v_land_bot = du_trial / mesh%dt
          call skip_next(st, n)
@@ -788,8 +788,8 @@ contains
       logical, intent(in) :: at_n              !! joined at t^n (else t^{n+1})
       real(wp), intent(in) :: corr, shift      !! correction (5.2) and the shift applied [m]
       type(event_list_t), intent(inout) :: events
-      ev%step = st%n
-      if (at_n) ev%step = st%n - 1
+      ev%step = st%step
+      if (at_n) ev%step = st%step - 1
       ev%node = node
       ev%t = real(ev%step, wp) * mesh%dt
       ev%x = mesh%x(node)

@@ -91,10 +91,10 @@ contains
       st%n_frag_ids = st%n_frag_ids + 1
       st%frag_id(node) = st%n_frag_ids
       st%frag_parent(node) = parent
-      st%frag_birth(node) = st%n
+      st%frag_birth(node) = st%step
    end subroutine new_fragment_id
 
-   !> Test every joined interior node at t^{n+1} = st%n dt and break those in tension
+   !> Test every joined interior node at t^{n+1} = st%step dt and break those in tension
    !> beyond their strength; append one event per fracture.
    pure subroutine fracture_step(mesh, st, g, eps_rel, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh
@@ -112,7 +112,7 @@ contains
       logical :: anchored_up, anchored_dn
 
       if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%base_contact)) return
-      st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%sec(mesh%n)))
+      st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
       eps = eps_rel * st%s_scale
       if (mesh%bottom == end_base .and. st%base_contact) call lift_off(mesh, st, g, eps, events, &
                                                                        rules, i_top, i_bot)
@@ -126,7 +126,7 @@ contains
       do i = 1, mesh%n - 1
          if (.not. st%joined(i)) cycle
          if (st%strength(i) < 0.0_wp) cycle
-         if (.not. (st%sec(i) < -st%strength(i) - eps)) cycle
+         if (.not. (st%section(i) < -st%strength(i) - eps)) cycle
          if (any(st%skip_test(1:st%n_skip) == i)) cycle
          nb = nb + 1
          cand(nb) = i
@@ -148,7 +148,7 @@ contains
       ! stage 1, (3.4)-(3.6): each adjacent cell loses exactly S; the new faces are free
       do m = 1, nb
          i = brk(m)
-         s_brk(m) = st%sec(i)
+         s_brk(m) = st%section(i)
          d_a(m) = -s_brk(m) * dt2 / mesh%dm(i)
          d_b(m) = -s_brk(m) * dt2 / mesh%dm(i + 1)
          call open_section(mesh, st, g, i, -d_a(m), d_b(m), -s_brk(m), -s_brk(m))
@@ -225,7 +225,7 @@ contains
                du_a(nb) = 2.0_wp * f(i)
                du_b(nb) = 2.0_wp * gw(i + 1)
             else
-               st%sec(i) = sig
+               st%section(i) = sig
             end if
             m = m + 1
          end do
@@ -233,7 +233,7 @@ contains
       end do
       do m = 1, nb
          i = brk(m)
-         s_brk(m) = st%sec(i)
+         s_brk(m) = st%section(i)
          ! the step redone from t^n for the two faces: u, du and the two cells' s^{n+1}
          call open_section(mesh, st, g, i, du_a(m) - st%dua(i), du_b(m) - st%dub(i), &
                            -mesh%stiff(i) * (du_a(m) - st%dua(i)), &
@@ -265,7 +265,7 @@ contains
       st%s(i + 1) = st%s(i + 1) + ds_b
       call open_node(st, i)
       st%strength(i) = 0.0_wp
-      st%sec(i) = 0.0_wp
+      st%section(i) = 0.0_wp
       st%n_breakable = st%n_breakable - 1
       st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
    end subroutine open_section
@@ -287,9 +287,9 @@ contains
       ev%kind = ev_fracture
       if (st%cracked(i)) ev%kind = ev_separation
       st%cracked(i) = .true.
-      ev%step = st%n
+      ev%step = st%step
       ev%node = i
-      ev%t = real(st%n, wp) * mesh%dt
+      ev%t = real(st%step, wp) * mesh%dt
       ev%x = mesh%x(i)
       ev%stress = stress
       ev%dt_bound = mesh%dt
@@ -317,8 +317,8 @@ contains
       type(event_t) :: ev
       n = mesh%n
       if (any(st%skip_test(1:st%n_skip) == n)) return
-      if (.not. (st%sec(n) < -eps)) return
-      s_base = st%sec(n)
+      if (.not. (st%section(n) < -eps)) return
+      s_base = st%section(n)
       call fragment_span(mesh, st, n, j, k)
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, j, n)
       if (rules == events_admissible .and. .not. mesh%full_mass) then
@@ -326,7 +326,7 @@ contains
          call fragment_characteristics(mesh, st, j, n, i_top, i_bot, .true., f, gw)
          ! the base lets go where the continuum reading's base stress pulls too (as breaks)
          if (.not. (2.0_wp * mesh%z(n) / mesh%dt * f(n) < -eps)) then
-            st%sec(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
+            st%section(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
             return
          end if
          ! the step redone from t^n for the bottom face: it moves by 2 f_n
@@ -348,7 +348,7 @@ contains
          st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
       end if
       st%base_contact = .false.
-      st%sec(n) = 0.0_wp
+      st%section(n) = 0.0_wp
       st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
       if (rules /= events_admissible .and. .not. (j == 0 .and. mesh%top == end_fixed)) then
          ! stage 2
@@ -356,9 +356,9 @@ contains
          st%e_fracture = st%e_fracture - de
       end if
       ev%kind = ev_separation
-      ev%step = st%n
+      ev%step = st%step
       ev%node = n
-      ev%t = real(st%n, wp) * mesh%dt
+      ev%t = real(st%step, wp) * mesh%dt
       ev%x = mesh%x(n)
       ev%stress = s_base
       ev%dt_bound = mesh%dt
@@ -399,9 +399,9 @@ contains
          call new_fragment_id(st, parent, j)
          call new_fragment_id(st, parent, k)
          ev%kind = ev_fracture
-         ev%step = st%n
+         ev%step = st%step
          ev%node = k - 1
-         ev%t = real(st%n, wp) * mesh%dt
+         ev%t = real(st%step, wp) * mesh%dt
          ev%x = mesh%x(k) - 0.5_wp * mesh%dx(k)
          ev%dt_bound = mesh%dt
          ev%dx_bound = mesh%dx(k)

@@ -15,14 +15,14 @@ module spb_state
    public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths
 
    type :: state_t
-      integer :: n = 0                        !! step index: the state is at t^n = n dt
+      integer :: step = 0                     !! step index n: the state is at t^n = n dt
       real(wp), allocatable :: ua(:), ub(:)   !! displacements of the halves (0:n) [m]
       real(wp), allocatable :: dua(:), dub(:) !! last increments (0:n) [m]
       real(wp), allocatable :: s(:)           !! cell stresses s^n (0:n+1); 0 and n+1 hold the
                                               !! end stresses (load, transmitting end) [Pa]
       real(wp), allocatable :: s_old(:)       !! s^{n-1}, same layout [Pa]
       logical, allocatable :: joined(:)       !! node halves move together (0:n)
-      real(wp), allocatable :: sec(:)         !! section stress S^{n-1/2} at each node (0:n); at
+      real(wp), allocatable :: section(:)     !! section stress S^{n-1/2} at each node (0:n); at
                                               !! nodes 0 and n the support's [Pa]; 0 when split
       real(wp), allocatable :: strength(:)    !! tensile strength R_i of each node's section
                                               !! (0:n) [Pa]; < 0 unbreakable, 0 once broken
@@ -95,7 +95,7 @@ contains
       g = prob%gravity
       dt = mesh%dt
       allocate(st%ua(0:n), st%ub(0:n), st%dua(0:n), st%dub(0:n))
-      allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%sec(0:n), st%strength(0:n))
+      allocate(st%s(0:n+1), st%s_old(0:n+1), st%joined(0:n), st%section(0:n), st%strength(0:n))
       st%joined = .true.
       allocate(st%cracked(0:n))
       allocate(st%skip_test(8), source=0)
@@ -238,16 +238,16 @@ contains
       ! S = 0 exactly). A support that a moving bar presses on at t = 0 is a collision at t^0:
       ! (3.1) starts from the bar half's own velocity with S^{-1/2} = 0; since the support
       ! half's increment is 0, that is the value that makes the step's (3.1) do so.
-      st%sec = 0.0_wp
+      st%section = 0.0_wp
       if (prob%static_start) then
          do i = 1, n - 1
-            st%sec(i) = s(i) + 0.5_wp * mesh%dm(i) * g
+            st%section(i) = s(i) + 0.5_wp * mesh%dm(i) * g
          end do
-         if (mesh%top /= end_free) st%sec(0) = s(1) - 0.5_wp * mesh%dm(1) * g
-         if (mesh%bottom /= end_free) st%sec(n) = s(n) + 0.5_wp * mesh%dm(n) * g
+         if (mesh%top /= end_free) st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
+         if (mesh%bottom /= end_free) st%section(n) = s(n) + 0.5_wp * mesh%dm(n) * g
       else
          do i = 1, n - 1
-            st%sec(i) = s(i)
+            st%section(i) = s(i)
          end do
          ! a bar moving against a fixed end at t = 0 collides with it at t^0
          if (mesh%top == end_fixed) then
@@ -258,12 +258,12 @@ contains
             st%landing_bot = .true.
             st%v_land_bot = prob%velocity(mesh%nseg)
          end if
-         if (mesh%top == end_transmit) st%sec(0) = s(1)
-         if (mesh%bottom == end_transmit) st%sec(n) = s(n)
+         if (mesh%top == end_transmit) st%section(0) = s(1)
+         if (mesh%bottom == end_transmit) st%section(n) = s(n)
       end if
-      if (mesh%bottom == end_base .and. .not. st%base_contact) st%sec(n) = 0.0_wp
+      if (mesh%bottom == end_base .and. .not. st%base_contact) st%section(n) = 0.0_wp
       do i = 1, n - 1
-         if (.not. st%joined(i)) st%sec(i) = 0.0_wp
+         if (.not. st%joined(i)) st%section(i) = 0.0_wp
       end do
    end subroutine init_sections
 

@@ -36,10 +36,10 @@ contains
       type(load_t), intent(in) :: load
       type(state_t), intent(in) :: st
       real(wp), intent(out) :: s_top, s_bot   !! [Pa]
-      integer, intent(in), optional :: step   !! the step index n (default st%n)
+      integer, intent(in), optional :: step   !! the step index n (default st%step)
       real(wp) :: p
       integer :: m
-      m = st%n
+      m = st%step
       if (present(step)) m = step
       p = 0.0_wp
       if (load%kind /= load_none) p = step_load(load, m, mesh%dt)
@@ -122,7 +122,7 @@ contains
       dt = mesh%dt
       dt2 = dt * dt
       call end_stresses(mesh, load, st, r%s_top, r%s_bot)
-      call step_load_integrals(load, st%n, mesh%dt, r%q_top, r%q_bot)
+      call step_load_integrals(load, st%step, mesh%dt, r%q_top, r%q_bot)
       st%s(0) = r%s_top
       st%s(n + 1) = r%s_bot
       r%du_top_old = st%dub(0)
@@ -143,7 +143,7 @@ contains
          split = st%split(1:n_split)
          old_a = st%dua(split(1:n_split))
          old_b = st%dub(split(1:n_split))
-         old_sec = st%sec(split(1:n_split))
+         old_sec = st%section(split(1:n_split))
       end if
       if (st%n_breakable > 0) then
          ! (3.1)-(3.2): the section stress S^{n+1/2} of a joined interior node, needed where
@@ -151,7 +151,7 @@ contains
          do i = 1, n - 1
             d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
                 * mesh%inv_m(i) * dt2
-            st%sec(i) = st%s(i) + mesh%z(i) * (st%dua(i) / dt + (st%s(i) - st%sec(i) + &
+            st%section(i) = st%s(i) + mesh%z(i) * (st%dua(i) / dt + (st%s(i) - st%section(i) + &
                         0.5_wp * mesh%dm(i) * g) / mesh%z(i) - d / dt) + 0.5_wp * mesh%dm(i) * g
          end do
       end if
@@ -161,7 +161,7 @@ contains
          i = split(c)
          st%dua(i) = old_a(c) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
          st%dub(i) = old_b(c) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
-         st%sec(i) = old_sec(c)
+         st%section(i) = old_sec(c)
       end do
       call hold_top(mesh, st, r)
       call hold_bottom(mesh, st, r)
@@ -197,7 +197,7 @@ contains
          st%e_contact = st%e_contact - w_cut - (strain_cut - st%strain_cut)
          st%strain_cut = strain_cut
       end if
-      st%n = st%n + 1
+      st%step = st%step + 1
    end subroutine advance
 
    !> advance_joined may stand in for nsteps calls of the whole step (advance, contact_step,
@@ -231,7 +231,7 @@ contains
       logical :: same_u
 
       n = mesh%n
-      n0 = st%n
+      n0 = st%step
       ! where both halves of every node sit at the same place to the bit (an intact bar), one
       ! displacement array is advanced and copied: the sums are the same
       same_u = .true.
@@ -301,9 +301,9 @@ contains
       if (present(max_sec_bottom)) max_sec_bottom = -huge(1.0_wp)
       do t = 1, nsteps
          call book_ends(mesh, g, st, r(t))
-         if (present(max_sec_bottom)) max_sec_bottom = max(max_sec_bottom, st%sec(n))
+         if (present(max_sec_bottom)) max_sec_bottom = max(max_sec_bottom, st%section(n))
       end do
-      st%n = n0 + nsteps
+      st%step = n0 + nsteps
       st%n_skip = 0
    end subroutine advance_joined
 
@@ -426,32 +426,32 @@ contains
       st%landing_bot = .false.
       select case (mesh%top)
       case (end_fixed)
-         st%sec(0) = section_stress_b(r%s_1, st%sec(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
+         st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
                                        mesh%dm(1), g)
       case (end_transmit)
-         st%sec(0) = section_stress_b(r%s_1, st%sec(0), du_top_old / dt, r%du_top / dt, &
+         st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, r%du_top / dt, &
                                        mesh%z(1), mesh%dm(1), g)
       case default
          ! the other ends take no part here
       end select
       select case (mesh%bottom)
       case (end_fixed)
-         st%sec(n) = section_stress_a(r%s_n, st%sec(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
+         st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
                                        mesh%dm(n), g)
       case (end_transmit)
-         st%sec(n) = section_stress_a(r%s_n, st%sec(n), du_bot_old / dt, r%du_bot / dt, &
+         st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, r%du_bot / dt, &
                                        mesh%z(n), mesh%dm(n), g)
       case (end_base)
          ! resting on the rigid base: the base side does not move; v^n is the bottom half's
          ! velocity before the step (0 while it rests)
          if (st%base_contact .and. mesh%full_mass) then
             ! full-mass model: no section stresses; the base takes the force on the node
-            st%sec(n) = r%s_n + mesh%ma(n) * g
+            st%section(n) = r%s_n + mesh%ma(n) * g
          else if (st%base_contact) then
-            st%sec(n) = section_stress_a(r%s_n, st%sec(n), du_bot_old / dt, 0.0_wp, &
+            st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, 0.0_wp, &
                                           mesh%z(n), mesh%dm(n), g)
          else
-            st%sec(n) = 0.0_wp
+            st%section(n) = 0.0_wp
          end if
       case default
          ! the other ends take no part here

@@ -42,7 +42,7 @@ module spb_wave
 
 contains
 
-   !> Wave energy of the bar at t^{n+1} = st%n dt. i_top, i_bot: integrals of the load on the
+   !> Wave energy of the bar at t^{n+1} = st%step dt. i_top, i_bot: integrals of the load on the
    !> top and bottom faces over the step just taken [Pa s] (0 where no load acts there).
    pure function wave_energy(mesh, st, g, i_top, i_bot) result(w)
       type(mesh_t), intent(in) :: mesh

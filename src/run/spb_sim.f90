@@ -76,7 +76,7 @@ contains
          e_lost_w = e%e_lost
          return
       end if
-      call face_load_integrals(sim%mesh, sim%load, sim%st%n, q_top, q_bot)
+      call face_load_integrals(sim%mesh, sim%load, sim%st%step, q_top, q_bot)
       wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
       w_wave = sim%st%w_wave
       e_lost_w = sim%st%e_lost_wave
@@ -135,7 +135,7 @@ contains
       real(wp) :: i_top, i_bot
       associate (p => sim%prob)
          call advance(sim%mesh, sim%load, p%gravity, sim%st)
-         call face_load_integrals(sim%mesh, sim%load, sim%st%n, i_top, i_bot)
+         call face_load_integrals(sim%mesh, sim%load, sim%st%step, i_top, i_bot)
          call contact_step(sim%mesh, sim%st, p%gravity, p%timing, p%shift, events, i_top, &
                            i_bot, p%events, p%eps_rel)
          call fracture_step(sim%mesh, sim%st, p%gravity, p%eps_rel, events, p%events, i_top, &
@@ -166,14 +166,14 @@ contains
       call start_run(sim, run, summary, prefix, err, resume)
       if (allocated(err)) return
       if (.not. present(resume)) call first_rows(sim, run, summary, err)
-      do while (sim%st%n < sim%mesh%nsteps)
+      do while (sim%st%step < sim%mesh%nsteps)
          call take_steps(sim, run, summary)
          call after_step(sim, run, summary, err, stop_now)
          if (stop_now) exit
       end do
       ! the last row at t_end when it is not a history_every row (written after the
       ! checkpoint: a run extended from there does not have it)
-      if (.not. allocated(err) .and. sim%st%n == sim%mesh%nsteps .and. &
+      if (.not. allocated(err) .and. sim%st%step == sim%mesh%nsteps .and. &
           .not. is_due(run%sched, act_row, sim%mesh%nsteps)) call row(sim, run, summary, err)
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
@@ -184,7 +184,7 @@ contains
             if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
          end block
       end if
-      summary%steps = sim%st%n
+      summary%steps = sim%st%step
       summary%wall = real(c_now - run%c0, wp) / real(max(run%rate, 1_int64), wp)
    end subroutine sim_run
 
@@ -223,7 +223,7 @@ contains
       run%next_profile = 1
       if (present(resume)) then
          do while (run%next_profile <= size(run%sched%at))
-            if (run%sched%at(run%next_profile) > sim%st%n) exit
+            if (run%sched%at(run%next_profile) > sim%st%step) exit
             run%next_profile = run%next_profile + 1
          end do
       end if
@@ -246,7 +246,7 @@ contains
       summary%guard_scale = w0%e_wave
       if (sim%mesh%full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
       summary%ledger_w0 = summary%e_mech0 - w_w + e_l
-      summary%max_reaction_bottom = sim%st%sec(sim%mesh%n)
+      summary%max_reaction_bottom = sim%st%section(sim%mesh%n)
       call row(sim, run, summary, err)
       call profiles(sim, run)
       if (run%sched%every(act_field) > 0 .and. run%to_files) then
@@ -263,7 +263,7 @@ contains
       type(run_summary_t), intent(inout) :: summary
       integer :: k, j
       real(wp) :: sec_max
-      k = next_due(run%sched, sim%st%n, run%next_profile) - sim%st%n
+      k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
       if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
          call advance_joined(sim%mesh, sim%load, sim%prob%gravity, sim%st, k - 1, &
                              max_sec_bottom=sec_max)
@@ -271,7 +271,7 @@ contains
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
-      summary%max_reaction_bottom = max(summary%max_reaction_bottom, sim%st%sec(sim%mesh%n))
+      summary%max_reaction_bottom = max(summary%max_reaction_bottom, sim%st%section(sim%mesh%n))
       if (run%events%n == 0) return
       if (run%to_files) call write_events(run%out, run%events)
       summary%events = summary%events + run%events%n
@@ -297,7 +297,7 @@ contains
       integer :: n, sig
       logical :: wrote_row
       integer(int64) :: c_now
-      n = sim%st%n
+      n = sim%st%step
       stop_now = .true.
       wrote_row = .false.
       if (is_due(run%sched, act_row, n)) then
@@ -324,8 +324,8 @@ contains
          ! SIGTERM/SIGINT: end here with the outputs complete up to this step
          if (.not. wrote_row) call row(sim, run, summary, err)
          call make_error(err, 'run: stopped by signal ' // itoa(sig) // &
-            ' at step ' // itoa(sim%st%n) // ' (t = ' // &
-            rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
+            ' at step ' // itoa(sim%st%step) // ' (t = ' // &
+            rtoa(real(sim%st%step, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
             'written and closed' // trim(merge(' (and the checkpoint)', '                     ', &
             run%ck_on)), code=128 + sig)
          return
@@ -370,7 +370,7 @@ contains
       type(output_marks_t) :: marks
       call mark_outputs(run%out, marks)
       summary%checkpoints = summary%checkpoints + 1
-      summary%steps = sim%st%n
+      summary%steps = sim%st%step
       call write_checkpoint(trim(sim%deck%run%checkpoint), sim%deck, sim%mesh, sim%load, &
                             sim%st, summary, marks, err)
    end subroutine checkpoint
@@ -396,8 +396,8 @@ contains
                        ieee_is_finite(sim%st%dua(i)) .and. ieee_is_finite(sim%st%dub(i)) &
                        .and. ieee_is_finite(sim%st%s(i)))) exit
          end do
-         call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%n) // &
-            ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // ' s), node ' // &
+         call make_error(err, 'run: the state is not finite at step ' // itoa(sim%st%step) // &
+            ' (t = ' // rtoa(real(sim%st%step, wp) * sim%mesh%dt) // ' s), node ' // &
             itoa(min(i, sim%mesh%n)), code=exit_runtime)
          if (run%to_files) call flush_outputs(run%out)
          return
@@ -409,15 +409,15 @@ contains
       if (summary%jordan_scale > 0.0_wp) wv%jordan = wv%jordan_abs / summary%jordan_scale
       summary%e_kin_end = e%e_kin
       summary%w_ext_end = e%w_ext
-      if (run%to_files) call write_history_row(run%out, real(sim%st%n, wp) * sim%mesh%dt, &
-         sim%st%sec(sim%mesh%n), &
-         sim%st%sec(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
-         e%e_lost, e%momentum, sim%st%n, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
+      if (run%to_files) call write_history_row(run%out, real(sim%st%step, wp) * sim%mesh%dt, &
+         sim%st%section(sim%mesh%n), &
+         sim%st%section(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
+         e%e_lost, e%momentum, sim%st%step, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
          e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
-         g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%n, wp) * sim%mesh%dt, &
+         g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
          w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim))
-      if (sim%st%n == 0) summary%ledger0 = e%ledger
+      if (sim%st%step == 0) summary%ledger0 = e%ledger
       call guard(sim, summary, e, wv, w_w, err)
       summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
       summary%wave_drift = max(summary%wave_drift, abs(wv%e_wave + e%e_pot + wv%e_gravity - &
@@ -453,7 +453,7 @@ contains
                'work of the loads by ' // trim(adjustl(b1)) // ' J/m^2 (' // &
                trim(adjustl(b2)) // ' of the energy scale, above ' // &
                '&run energy_guard = ' // rtoa(limit) // ') at step ' // &
-               itoa(sim%st%n) // ' (t = ' // rtoa(real(sim%st%n, wp) * sim%mesh%dt) // &
+               itoa(sim%st%step) // ' (t = ' // rtoa(real(sim%st%step, wp) * sim%mesh%dt) // &
                ' s); outputs up to here are written', code=exit_runtime)
          end if
       end associate
@@ -465,12 +465,12 @@ contains
       type(run_t), intent(inout) :: run
       type(frag_info_t), allocatable :: list(:)
       do while (run%next_profile <= size(run%sched%at))
-         if (run%sched%at(run%next_profile) /= sim%st%n) exit
+         if (run%sched%at(run%next_profile) /= sim%st%step) exit
          if (run%to_files) then
             call write_profile(run%out, sim%mesh, sim%st, &
                                sim%deck%run%profile_times(run%next_profile))
             call fragment_list(sim%mesh, sim%st, list)
-            call write_fragments(run%out, real(sim%st%n, wp) * sim%mesh%dt, sim%mesh%dt, list)
+            call write_fragments(run%out, real(sim%st%step, wp) * sim%mesh%dt, sim%mesh%dt, list)
          end if
          run%next_profile = run%next_profile + 1
       end do
