@@ -17,7 +17,8 @@ module spb_contact
    use spb_state, only: state_t, close_node
    use spb_section, only: section_stress_a
    use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
-   use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id
+   use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id, &
+      anchored
    use spb_arrays, only: append
    use spb_wave, only: region_wave
    use spb_problem, only: events_admissible, timing_accelerate, timing_delay, timing_min, &
@@ -56,17 +57,6 @@ contains
       end select
       corr = merge(d_acc, d_del, at_n)
    end subroutine choose_time
-
-   !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
-   !> support that cannot move.
-   pure logical function anchored(mesh, st, top, bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      integer, intent(in) :: top, bot
-      anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
-                 (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-                  (mesh%bottom == end_base .and. st%base_contact)))
-   end function anchored
 
    !> Test every open section (and the base) after the trial step; join what collides.
    pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)

@@ -17,7 +17,7 @@ module spb_fracture
    implicit none
    private
    public :: fracture_step, events_admissible, events_paper, node_energy, fragment_span
-   public :: shift_span, span_mass, new_fragment_id, first_overlap
+   public :: shift_span, span_mass, new_fragment_id, first_overlap, anchored
 
 
 contains
@@ -36,6 +36,17 @@ contains
       if (i >= 1) e = e + 0.5_wp * st%s_old(i) * st%s(i) / mesh%stiff(i)
       if (i <= mesh%n - 1) e = e + 0.5_wp * st%s_old(i + 1) * st%s(i + 1) / mesh%stiff(i + 1)
    end function node_energy
+
+   !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
+   !> support that cannot move: a fixed end, or the base the bar rests on.
+   pure logical function anchored(mesh, st, top, bot)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
+                 (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+                  (mesh%bottom == end_base .and. st%base_contact)))
+   end function anchored
 
    !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
    pure subroutine fragment_span(mesh, st, i, j, k)
@@ -158,9 +169,8 @@ contains
       do m = 1, nb
          i = brk(m)
          call fragment_span(mesh, st, i, j, k)
-         anchored_up = j == 0 .and. mesh%top == end_fixed
-         anchored_dn = k == mesh%n .and. (mesh%bottom == end_fixed .or. &
-                       (mesh%bottom == end_base .and. st%base_contact))
+         anchored_up = anchored(mesh, st, j, i)
+         anchored_dn = anchored(mesh, st, i, k)
          shift_up = 0.5_wp * d_a(m)
          shift_dn = -0.5_wp * d_b(m)
          if (anchored_up .and. .not. anchored_dn) then
@@ -350,7 +360,7 @@ contains
       st%base_contact = .false.
       st%section(n) = 0.0_wp
       st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
-      if (rules /= events_admissible .and. .not. (j == 0 .and. mesh%top == end_fixed)) then
+      if (rules /= events_admissible .and. .not. anchored(mesh, st, j, n)) then
          ! stage 2
          call shift_span(mesh, st, g, j, n, 0.5_wp * d_a, de)
          st%e_fracture = st%e_fracture - de

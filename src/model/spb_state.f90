@@ -100,11 +100,12 @@ contains
       allocate(st%cracked(0:n))
       allocate(st%skip_test(8), source=0)
       st%cracked = .false.
-      call init_strength(prob, mesh, st)
+      ! the cells' strengths (a Weibull field is drawn once), then the nodes'
       allocate(st%cell_strength(n), st%is_cut(n))
+      st%cell_strength = cell_strengths(prob, mesh)
+      call init_strength(mesh, st)
       allocate(st%cut(16), source=0)
       st%is_cut = .false.
-      st%cell_strength = cell_strengths(prob, mesh)
       if (mesh%full_mass) then
          ! breaking happens in springs: no node ever splits
          st%n_breakable = count(st%cell_strength >= 0.0_wp)
@@ -270,17 +271,15 @@ contains
    !> Node strengths: the weaker of the two cells' strengths at each interior node (a
    !> segment's strength inside it, the weaker one at a bonded interface, seed section 2);
    !> one cell breakable: its strength; ends never break.
-   subroutine init_strength(prob, mesh, st)
-      type(problem_t), intent(in) :: prob
+   subroutine init_strength(mesh, st)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(inout) :: st
       integer :: i
-      real(wp) :: ra, rb, cs(mesh%n)
-      cs = cell_strengths(prob, mesh)
+      real(wp) :: ra, rb
       st%strength = -1.0_wp
       do i = 1, mesh%n - 1
-         ra = cs(i)
-         rb = cs(i + 1)
+         ra = st%cell_strength(i)
+         rb = st%cell_strength(i + 1)
          if (ra >= 0.0_wp .and. rb >= 0.0_wp) then
             st%strength(i) = min(ra, rb)
          else if (ra >= 0.0_wp) then
