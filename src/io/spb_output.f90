@@ -21,16 +21,54 @@ module spb_output
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
-   public :: write_field, flush_outputs, history_units_of, h5_deck_header
+   public :: write_field, flush_outputs, h5_deck_header, n_history, history_table, column_t
    public :: output_marks_t, mark_outputs, text_extensions, tail_len
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
       block_name, split
 
-   character(len=*), parameter :: history_columns = 't reaction_bottom reaction_top fragments ' &
-      // 'e_kin e_strain e_pot w_ext e_lost momentum step s_end_top s_end_bottom w_load ' &
-      // 'w_transmit ledger e_fracture e_join e_shift e_contact i_gravity i_ends i_support p_shift ' &
-      // 'e_wave e_wave_g jordan w_wave e_lost_w ledger_w overlap'
+   !> A column of a table: its name, its unit, and whether it holds whole numbers (text: an
+   !> integer field; HDF5: int64). Rows carry every value as float64 (exact below 2^53).
+   type :: column_t
+      character(len=16) :: name = ''
+      character(len=8) :: unit = ''
+      logical :: whole = .false.
+   end type column_t
+
+   !> PREFIX.his and /history: the one list of the history columns, in order.
+   integer, parameter :: n_history = 31
+   type(column_t), parameter :: history_table(n_history) = [ &
+      column_t('t', 's', .false.), &
+      column_t('reaction_bottom', 'Pa', .false.), &
+      column_t('reaction_top', 'Pa', .false.), &
+      column_t('fragments', '-', .true.), &
+      column_t('e_kin', 'J/m^2', .false.), &
+      column_t('e_strain', 'J/m^2', .false.), &
+      column_t('e_pot', 'J/m^2', .false.), &
+      column_t('w_ext', 'J/m^2', .false.), &
+      column_t('e_lost', 'J/m^2', .false.), &
+      column_t('momentum', 'kg/(m s)', .false.), &
+      column_t('step', '-', .true.), &
+      column_t('s_end_top', 'Pa', .false.), &
+      column_t('s_end_bottom', 'Pa', .false.), &
+      column_t('w_load', 'J/m^2', .false.), &
+      column_t('w_transmit', 'J/m^2', .false.), &
+      column_t('ledger', 'J/m^2', .false.), &
+      column_t('e_fracture', 'J/m^2', .false.), &
+      column_t('e_join', 'J/m^2', .false.), &
+      column_t('e_shift', 'J/m^2', .false.), &
+      column_t('e_contact', 'J/m^2', .false.), &
+      column_t('i_gravity', 'kg/(m s)', .false.), &
+      column_t('i_ends', 'kg/(m s)', .false.), &
+      column_t('i_support', 'kg/(m s)', .false.), &
+      column_t('p_shift', 'kg/(m s)', .false.), &
+      column_t('e_wave', 'J/m^2', .false.), &
+      column_t('e_wave_g', 'J/m^2', .false.), &
+      column_t('jordan', '-', .false.), &
+      column_t('w_wave', 'J/m^2', .false.), &
+      column_t('e_lost_w', 'J/m^2', .false.), &
+      column_t('ledger_w', 'J/m^2', .false.), &
+      column_t('overlap', '-', .false.) ]
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
@@ -39,8 +77,6 @@ module spb_output
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
-   character(len=*), parameter :: fmt_his = '(3(1x,' // fmt_real // '),1x,i20,6(1x,' // &
-      fmt_real // '),1x,i20,20(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
       '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
    character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
@@ -103,7 +139,7 @@ contains
       write(out%his, '(a)') '# momentum balance: momentum - momentum(t=0) = i_gravity + i_ends ' &
          // '+ i_support + p_shift (gravity, end stresses, supports/base, collision shifts)'
       write(out%his, '(a)') '# units: ' // history_units
-      write(out%his, '(a)') '# ' // history_columns
+      write(out%his, '(a)') '# ' // history_columns()
       call header(out%prf, 'stress profiles: one block per profile time')
       write(out%prf, '(a)') '# rows per half node, top to bottom: node 0 lower half only, ' &
          // 'node n upper half only, others upper then lower half at the same x'
@@ -285,7 +321,7 @@ contains
       character(len=:), allocatable :: line
       select case (k)
       case (1)
-         line = '# ' // history_columns
+         line = '# ' // history_columns()
       case (2)
          line = '# x u v stress'
       case (3)
@@ -367,6 +403,7 @@ contains
       character(len=*), intent(in) :: report(:)
       type(outputs_t), intent(inout) :: out
       type(spb_error_t), allocatable, intent(inout) :: err
+      logical :: whole(n_history)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5')
@@ -392,14 +429,11 @@ contains
       call h5_write(out%h5, '/mesh/segment', mesh%seg, '-')
       call h5_write(out%h5, '/mesh/x_half', half_x(mesh), 'm')
       ! tables
-      call split(history_columns, names)
-      allocate(units(size(names)))
-      do k = 1, size(names)
-         units(k) = history_units_of(names(k))
-      end do
-      call h5_table(out%h5, '/history', names, units, &
-                    names == 'fragments' .or. names == 'step', out%h_his)
-      call h5_attr(out%h5, '/history', 'columns', history_columns)
+      names = history_table%name
+      units = history_table%unit
+      whole = history_table%whole
+      call h5_table(out%h5, '/history', names, units, whole, out%h_his)
+      call h5_attr(out%h5, '/history', 'columns', history_columns())
       call split(event_columns, names)
       units = [character(len=32) :: 's', '-', '-', '-', 'm', 'Pa', 's', 'm', 'm', '-', '-', &
                'Pa', 'm']
@@ -474,23 +508,15 @@ contains
       call h5_append_xt(out%h5, real(st%step, wp) * mesh%dt, u, v, s)
    end subroutine write_field
 
-   !> Unit of a history column.
-   pure function history_units_of(name) result(u)
-      character(len=*), intent(in) :: name
-      character(len=:), allocatable :: u
-      select case (trim(name))
-      case ('t')
-         u = 's'
-      case ('reaction_bottom', 'reaction_top', 's_end_top', 's_end_bottom')
-         u = 'Pa'
-      case ('fragments', 'step', 'jordan', 'overlap')
-         u = '-'
-      case ('momentum', 'i_gravity', 'i_ends', 'i_support', 'p_shift')
-         u = 'kg/(m s)'
-      case default
-         u = 'J/m^2'
-      end select
-   end function history_units_of
+   !> The history's column names, blank-separated (the column line of PREFIX.his).
+   pure function history_columns() result(line)
+      character(len=:), allocatable :: line
+      integer :: k
+      line = trim(history_table(1)%name)
+      do k = 2, n_history
+         line = line // ' ' // trim(history_table(k)%name)
+      end do
+   end function history_columns
 
    !> The blank-separated words of s.
    pure subroutine split(s, words)
@@ -515,49 +541,23 @@ contains
       end do
    end subroutine split
 
-   !> One history row; values in the order of history_columns.
-   subroutine write_history_row(out, t, reaction_bottom, reaction_top, fragments, e_kin, &
-                                e_strain, e_pot, w_ext, e_lost, momentum, step, s_end_top, &
-                                s_end_bottom, w_load, w_transmit, ledger, e_fracture, e_join, &
-                                e_shift, e_contact, i_gravity, i_ends, i_support, p_shift, &
-                                e_wave, e_wave_g, jordan, w_wave, e_lost_w, ledger_w, overlap)
+   !> One history row: the values in the order of history_table (whole numbers as float64).
+   subroutine write_history_row(out, v)
       type(outputs_t), intent(inout) :: out
-      real(wp), intent(in) :: t, reaction_bottom, reaction_top, e_kin, e_strain, e_pot, w_ext
-      real(wp), intent(in) :: e_lost, momentum, s_end_top, s_end_bottom, w_load, w_transmit, ledger
-      real(wp), intent(in) :: e_fracture, e_join, e_shift, e_contact
-      real(wp), intent(in) :: i_gravity, i_ends, i_support, p_shift
-      real(wp), intent(in) :: e_wave     !! continuum energy of the lattice state (spb_wave) [J/m^2]
-      real(wp), intent(in) :: e_wave_g   !! its gravity term -(g dt/2) sum J' [J/m^2]
-      real(wp), intent(in) :: jordan     !! largest relative Jordan amplitude of a fragment [-]
-      real(wp), intent(in) :: w_wave     !! work of loads and transmitting ends on it [J/m^2]
-      real(wp), intent(in) :: e_lost_w   !! what events removed from it [J/m^2]
-      real(wp), intent(in) :: ledger_w   !! e_wave + e_pot + e_wave_g - w_wave + e_lost_w [J/m^2]
-      real(wp), intent(in) :: overlap    !! largest overlap of two faces, or of the bottom face
-                                         !! and the base, in cells (<= 0: none) [-]
-      integer, intent(in) :: fragments, step
-      ! fmt_his, written by the fast formatters into one line (the same characters as the
-      ! edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
-      character(len=31 * 21) :: line
+      real(wp), intent(in) :: v(n_history)
+      ! written by the fast formatters into one line (the same characters as es20.12e3 and
+      ! i20 edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
+      character(len=n_history * 21) :: line
       integer :: k
-      real(wp) :: v(31)
-      v = [t, reaction_bottom, reaction_top, 0.0_wp, e_kin, e_strain, e_pot, w_ext, e_lost, &
-           momentum, 0.0_wp, s_end_top, s_end_bottom, w_load, w_transmit, ledger, e_fracture, &
-           e_join, e_shift, e_contact, i_gravity, i_ends, i_support, p_shift, e_wave, e_wave_g, &
-           jordan, w_wave, e_lost_w, ledger_w, overlap]
       line = ' '
-      do k = 1, 31
-         select case (k)
-         case (4)
-            line(21 * k - 19:21 * k) = int_right(fragments, 20)
-         case (11)
-            line(21 * k - 19:21 * k) = int_right(step, 20)
-         case default
+      do k = 1, n_history
+         if (history_table(k)%whole) then
+            line(21 * k - 19:21 * k) = int_right(nint(v(k)), 20)
+         else
             line(21 * k - 19:21 * k) = es20_12(v(k))
-         end select
+         end if
       end do
       write(out%his, '(a)') line
-      v(4) = real(fragments, wp)
-      v(11) = real(step, wp)
       if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
 

@@ -160,7 +160,7 @@ contains
       type(h5file_t) :: old     !! the previous PREFIX.h5, read while it is replayed
       integer :: k
       call h5_open_read(old, prefix // '.h5' // aside)
-      call replay_table(prefix, old, '/history', history_columns, out, out%h_his, &
+      call replay_table(prefix, old, '/history', history_columns(), out, out%h_his, &
                         marks%rows_his, err)
       call replay_table(prefix, old, '/events', event_columns, out, out%h_evt, marks%rows_evt, &
                         err)

@@ -409,14 +409,15 @@ contains
       if (summary%jordan_scale > 0.0_wp) wv%jordan = wv%jordan_abs / summary%jordan_scale
       summary%e_kin_end = e%e_kin
       summary%w_ext_end = e%w_ext
-      if (run%to_files) call write_history_row(run%out, real(sim%st%step, wp) * sim%mesh%dt, &
-         sim%st%section(sim%mesh%n), &
-         sim%st%section(0), fragment_count(sim%st), e%e_kin, e%e_strain, e%e_pot, e%w_ext, &
-         e%e_lost, e%momentum, sim%st%step, s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
+      ! the values in the order of history_table (spb_output)
+      if (run%to_files) call write_history_row(run%out, [real(sim%st%step, wp) * sim%mesh%dt, &
+         sim%st%section(sim%mesh%n), sim%st%section(0), real(fragment_count(sim%st), wp), &
+         e%e_kin, e%e_strain, e%e_pot, e%w_ext, e%e_lost, e%momentum, &
+         real(sim%st%step, wp), s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
          e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
          g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
-         w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim))
+         w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim)])
       if (sim%st%step == 0) summary%ledger0 = e%ledger
       call guard(sim, summary, e, wv, w_w, err)
       summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
