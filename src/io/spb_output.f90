@@ -30,7 +30,7 @@ module spb_output
    !> A column of a table: its name, its unit, and whether it holds whole numbers (text: an
    !> integer field; HDF5: int64). Rows carry every value as float64 (exact below 2^53).
    type :: column_t
-      character(len=16) :: name = ''
+      character(len=24) :: name = ''
       character(len=8) :: unit = ''
       logical :: whole = .false.
    end type column_t

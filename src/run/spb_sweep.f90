@@ -22,18 +22,15 @@ module spb_sweep
    use spb_diag, only: frag_info_t, fragment_list
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
-   use spb_output, only: h5_deck_header
+   use spb_output, only: h5_deck_header, column_t
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_any, par_kind
    implicit none
    private
    public :: run_sweep, sweep_case_count, case_deck, run_case, sweep_columns, n_columns, &
+      sweep_table, &
       col_status, col_fragments, col_first_fracture, col_seed, col_mean_length, &
       status_not_run, sweep_summary_t
 
-   character(len=*), parameter :: sweep_columns = 'id fragments mean_fragment_length ' // &
-      'max_reaction_bottom first_fracture_t value realization seed status fractures ' // &
-      'collisions separations base_collisions e_kin_end w_ext_end max_excess ledger_drift steps ' // &
-      'e_vib_end mean_fracture_stress e_fracture'
    character(len=*), parameter :: sweep_units = 'id, fragments, realization, seed, status, ' // &
       'fractures .. base_collisions, steps [-]; mean_fragment_length [m] (reference length); ' // &
       'max_reaction_bottom [Pa] (compression > 0); first_fracture_t [s] (-1: none); value: ' // &
@@ -42,9 +39,29 @@ module spb_sweep
       'e_fracture (the fracture corrections'' energy) [J/m^2]; mean_fracture_stress [Pa] ' // &
       '(mean |section stress| at the fractures, 0: none)'
    integer, parameter :: n_columns = 21
-   logical, parameter :: col_is_int(n_columns) = [.true., .true., .false., .false., .false., &
-      .false., .true., .true., .true., .true., .true., .true., .true., .false., .false., &
-      .false., .false., .true., .false., .false., .false.]
+   !> PREFIX.sweep and /cases: the one list of the sweep table's columns, in order.
+   type(column_t), parameter :: sweep_table(n_columns) = [ &
+      column_t('id', '-', .true.), &
+      column_t('fragments', '-', .true.), &
+      column_t('mean_fragment_length', 'm', .false.), &
+      column_t('max_reaction_bottom', 'Pa', .false.), &
+      column_t('first_fracture_t', 's', .false.), &
+      column_t('value', '-', .false.), &
+      column_t('realization', '-', .true.), &
+      column_t('seed', '-', .true.), &
+      column_t('status', '-', .true.), &
+      column_t('fractures', '-', .true.), &
+      column_t('collisions', '-', .true.), &
+      column_t('separations', '-', .true.), &
+      column_t('base_collisions', '-', .true.), &
+      column_t('e_kin_end', 'J/m^2', .false.), &
+      column_t('w_ext_end', 'J/m^2', .false.), &
+      column_t('max_excess', '-', .false.), &
+      column_t('ledger_drift', 'J/m^2', .false.), &
+      column_t('steps', '-', .true.), &
+      column_t('e_vib_end', 'J/m^2', .false.), &
+      column_t('mean_fracture_stress', 'Pa', .false.), &
+      column_t('e_fracture', 'J/m^2', .false.) ]
    integer, parameter :: col_id = 1, col_fragments = 2, col_mean_length = 3, col_max_reaction = 4, &
       col_first_fracture = 5, col_value = 6, col_realization = 7, col_seed = 8, col_status = 9, &
       col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, &
@@ -333,6 +350,16 @@ contains
       end do
    end subroutine check_cases
 
+   !> The sweep table's column names, blank-separated (the column line of PREFIX.sweep).
+   pure function sweep_columns() result(line)
+      character(len=:), allocatable :: line
+      integer :: k
+      line = trim(sweep_table(1)%name)
+      do k = 2, n_columns
+         line = line // ' ' // trim(sweep_table(k)%name)
+      end do
+   end function sweep_columns
+
    !> PREFIX.sweep: header (deck echo with &sweep, columns, units), one row per case, in
    !> case order; written to PREFIX.sweep.part and renamed when complete.
    subroutine write_table(deck, prefix, rows, err)
@@ -364,11 +391,11 @@ contains
       write(u, '(a)') '# fragments at t_end; mean_fragment_length = mean reference length ' // &
          'of those fragments; max_reaction_bottom over every step'
       write(u, '(a)') '# units: ' // sweep_units
-      write(u, '(a)') '# ' // sweep_columns
+      write(u, '(a)') '# ' // sweep_columns()
       do c = 1, size(rows, 2)
          line = ''
          do k = 1, n_columns
-            if (col_is_int(k)) then
+            if (sweep_table(k)%whole) then
                write(cell, '(1x,i12)') nint(rows(k, c))
             else
                write(cell, '(1x,es20.12e3)') rows(k, c)
@@ -396,13 +423,9 @@ contains
       real(wp), intent(in) :: l_hist
       type(spb_error_t), allocatable, intent(inout) :: err
       type(h5file_t) :: h5
-      character(len=32) :: names(n_columns)
-      character(len=len(sweep_columns)) :: columns
       real(wp) :: col(size(rows, 2))
       integer :: k, nb
       logical :: ok
-      columns = sweep_columns
-      read(columns, *) names
       call h5_create(h5, prefix // '_sweep.h5.part')
       call h5_deck_header(h5, deck)
       call h5_group(h5, '/cases')
@@ -410,11 +433,13 @@ contains
       call h5_attr(h5, '/cases', 'vary', trim(deck%sweep%vary))
       call h5_attr(h5, '/cases', 'units', sweep_units)
       do k = 1, n_columns
-         if (col_is_int(k)) then
-            call h5_write(h5, '/cases/' // trim(names(k)), nint(rows(k, :)), '-')
+         if (sweep_table(k)%whole) then
+            call h5_write(h5, '/cases/' // trim(sweep_table(k)%name), nint(rows(k, :)), &
+                          trim(sweep_table(k)%unit))
          else
             col = rows(k, :)    ! contiguous
-            call h5_write(h5, '/cases/' // trim(names(k)), col, unit_of(names(k)))
+            call h5_write(h5, '/cases/' // trim(sweep_table(k)%name), col, &
+                          trim(sweep_table(k)%unit))
          end if
       end do
       nb = size(hists, 1)
@@ -431,22 +456,5 @@ contains
       call sys_rename(prefix // '_sweep.h5.part', prefix // '_sweep.h5', ok)
       if (.not. ok) call make_error(err, '--output: cannot write ''' // prefix // '_sweep.h5''', &
                                     code=exit_runtime)
-   contains
-      pure function unit_of(name) result(unit)
-         character(len=*), intent(in) :: name
-         character(len=:), allocatable :: unit
-         select case (trim(name))
-         case ('mean_fragment_length')
-            unit = 'm'
-         case ('max_reaction_bottom', 'mean_fracture_stress')
-            unit = 'Pa'
-         case ('first_fracture_t')
-            unit = 's'
-         case ('e_kin_end', 'w_ext_end', 'ledger_drift', 'e_vib_end', 'e_fracture')
-            unit = 'J/m^2'
-         case default
-            unit = '-'
-         end select
-      end function unit_of
    end subroutine write_h5
 end module spb_sweep
