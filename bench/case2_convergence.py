@@ -38,6 +38,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "scripts"))
 sys.path.insert(0, os.path.join(HERE, "..", "tests"))
 from make_case2_decks import BODY          # the decks of input/example3_case2/  # noqa: E402
 from cli_event_layer import his            # the history reader by column names  # noqa: E402
+from cli_case2 import distance, means_to as window_means   # window means, L1 distance  # noqa: E402
 
 
 def deck_text(cells, timing, shift, events, eps=0.0):
@@ -51,22 +52,6 @@ def deck_text(cells, timing, shift, events, eps=0.0):
     extra = "  history_every = 1\n" + ("" if events == "none" else f"  events = '{events}'\n")
     return "\n".join(l for l in text.splitlines() if not l.strip().startswith("profile_times")) \
         .replace("&run\n", "&run\n" + extra, 1) + "\n"
-
-
-def window_means(t, r, width, t_end):
-    """Means of r over consecutive windows [k width, (k+1) width) that end by t_end."""
-    sums, counts = {}, {}
-    for tk, rk in zip(t, r):
-        k = int(tk / width)
-        if (k + 1) * width <= t_end + 1e-12:
-            sums[k] = sums.get(k, 0.0) + rk
-            counts[k] = counts.get(k, 0) + 1
-    return [sums[k] / counts[k] for k in sorted(sums)]
-
-
-def distance(a, b):
-    n = min(len(a), len(b))
-    return sum(abs(a[k] - b[k]) for k in range(n)) / sum(abs(b[k]) for k in range(n))
 
 
 def run_one(exe, work, cells, timing, shift, events, eps=0.0, reuse=False):

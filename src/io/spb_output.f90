@@ -21,7 +21,8 @@ module spb_output
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
-   public :: write_field, flush_outputs, h5_deck_header, n_history, history_table, column_t
+   public :: write_field, flush_outputs, h5_deck_header, n_history, history_table, column_t, &
+      column_names
    public :: output_marks_t, mark_outputs, text_extensions, tail_len
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
@@ -511,12 +512,19 @@ contains
    !> The history's column names, blank-separated (the column line of PREFIX.his).
    pure function history_columns() result(line)
       character(len=:), allocatable :: line
-      integer :: k
-      line = trim(history_table(1)%name)
-      do k = 2, n_history
-         line = line // ' ' // trim(history_table(k)%name)
-      end do
+      line = column_names(history_table)
    end function history_columns
+
+   !> The names of a table's columns, blank-separated.
+   pure function column_names(table) result(line)
+      type(column_t), intent(in) :: table(:)
+      character(len=:), allocatable :: line
+      integer :: k
+      line = trim(table(1)%name)
+      do k = 2, size(table)
+         line = line // ' ' // trim(table(k)%name)
+      end do
+   end function column_names
 
    !> The blank-separated words of s.
    pure subroutine split(s, words)

@@ -150,15 +150,7 @@ contains
          sgn_k = -sgn_k
          if (k < bot) hd = r - st%s(k + 1) * dt - hd
       end do
-      ! the same face terms as fragment_h
-      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
-      if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
-          mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-          (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
-         jprime = jprime - 2.0_wp * load_top
-      end if
+      call face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
       if (bot == top) return
@@ -242,23 +234,7 @@ contains
          end if
          sgn = -sgn
       end do
-      ! the face loads' terms, and the alternating sum counted from the held end: from the
-      ! bottom where only the bottom is held (the top otherwise). Found by computing the
-      ! conserved functional of the affine one-step map and checked exact (round-off) for
-      ! free, top-held, bottom-held and both-held fragments of odd and even cell counts, with
-      ! loads on either face; not for a transmitting end (doc/method.md)
-      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
-      ! held at both ends (a fixed top, and a fixed bottom or the base) with an odd cell count:
-      ! the conserved gravity term is -2 g sum w_i m_i (u_i^n + u_i^{n+1})/2 with weights
-      ! w_i = (-1)^(i-top-1) (1/2 - C_i/C), C_i the compliance (sum of dt/Z) of the cells
-      ! above node i (found from the affine one-step map; exact, layered included)
-      if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
-          mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-          (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
-         jprime = jprime - 2.0_wp * load_top
-      end if
+      call face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
       jordan = scale
       jordan_abs = 0.0_wp
       if (bot == top) return
@@ -314,6 +290,33 @@ contains
          end do
       end if
    end subroutine fragment_h
+
+   !> The face loads' terms of J', and the alternating sum counted from the held end: from
+   !> the bottom where only the bottom is held (the top otherwise).
+   pure subroutine face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
+      type(mesh_t), intent(in) :: mesh
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: top, bot
+      logical, intent(in) :: eq_top, eq_bot          !! the faces give equations
+      real(wp), intent(in) :: load_top, load_bot     !! their load terms [kg/(m s)]
+      real(wp), intent(inout) :: jprime              !! J' from the nodes [kg/(m s)]
+      ! Found by computing the
+      ! conserved functional of the affine one-step map and checked exact (round-off) for
+      ! free, top-held, bottom-held and both-held fragments of odd and even cell counts, with
+      ! loads on either face; not for a transmitting end (doc/method.md)
+      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
+      ! held at both ends (a fixed top, and a fixed bottom or the base) with an odd cell count:
+      ! the conserved gravity term is -2 g sum w_i m_i (u_i^n + u_i^{n+1})/2 with weights
+      ! w_i = (-1)^(i-top-1) (1/2 - C_i/C), C_i the compliance (sum of dt/Z) of the cells
+      ! above node i (found from the affine one-step map; exact, layered included)
+      if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
+          mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+          (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
+      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
+         jprime = jprime - 2.0_wp * load_top
+      end if
+   end subroutine face_terms
 
    !> (4/dt) sum_i w_i m_i (u_i - du_i/2) over the nodes of a fragment held at both ends,
    !> w_i = (-1)^(i-top-1) (1/2 - C_i/C) with C_i the compliance of the cells above node i:

@@ -22,7 +22,7 @@ module spb_sweep
    use spb_diag, only: frag_info_t, fragment_list
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
-   use spb_output, only: h5_deck_header, column_t
+   use spb_output, only: h5_deck_header, column_t, column_names
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_any, par_kind
    implicit none
    private
@@ -353,11 +353,7 @@ contains
    !> The sweep table's column names, blank-separated (the column line of PREFIX.sweep).
    pure function sweep_columns() result(line)
       character(len=:), allocatable :: line
-      integer :: k
-      line = trim(sweep_table(1)%name)
-      do k = 2, n_columns
-         line = line // ' ' // trim(sweep_table(k)%name)
-      end do
+      line = column_names(sweep_table)
    end function sweep_columns
 
    !> PREFIX.sweep: header (deck echo with &sweep, columns, units), one row per case, in
