@@ -36,7 +36,7 @@ program spallbar
    if (len(restart_path) > 0) then
       block
          type(checkpoint_t) :: ck
-         call read_checkpoint(restart_path, deck, sim%mesh, sim%load, ck, err)
+         call read_checkpoint(restart_path, sim%record, sim%mesh, sim%load, ck, err)
          if (allocated(err)) call fail(err)
          if (.not. quiet) then
             write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)

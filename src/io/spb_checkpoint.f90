@@ -14,7 +14,7 @@ module spb_checkpoint
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_input, exit_runtime
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t, deck_items, echo_item_t
+   use spb_deck, only: deck_record_t
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
@@ -64,9 +64,9 @@ contains
    end subroutine check_checkpoint_path
 
    !> Write the checkpoint of a run at its state's step.
-   subroutine write_checkpoint(path, deck, mesh, load, st, summary, marks, err)
+   subroutine write_checkpoint(path, rec, mesh, load, st, summary, marks, err)
       character(len=*), intent(in) :: path
-      type(deck_t), intent(in) :: deck
+      type(deck_record_t), intent(in) :: rec
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
       type(state_t), intent(inout) :: st       !! only read (state_fields also reads back)
@@ -78,19 +78,19 @@ contains
       logical :: ok
       integer :: k
       call h5_create(h5, path // '.part')
-      call h5_deck_header(h5, deck)
+      call h5_deck_header(h5, rec)
       call h5_attr(h5, '/', 'format', format_name)
       call h5_attr(h5, '/', 'step', st%step)
       call h5_attr(h5, '/', 't', real(st%step, wp) * mesh%dt)
       ! what identifies the run
       call h5_group(h5, '/identity')
       call h5_attr(h5, '/identity', 'program', 'spallbar ' // version)
-      call h5_attr(h5, '/identity', 'deck', deck_identity(deck))
+      call h5_attr(h5, '/identity', 'deck', deck_identity(rec))
       call h5_attr(h5, '/identity', 'dt', mesh%dt)
       call h5_attr(h5, '/identity', 'cells', mesh%n)
-      call h5_attr(h5, '/identity', 'n_profiles', deck%run%n_profiles)
-      if (deck%run%n_profiles > 0) call h5_write(h5, '/identity/profile_times', &
-         deck%run%profile_times(1:deck%run%n_profiles), 's')
+      call h5_attr(h5, '/identity', 'n_profiles', size(rec%profile_times))
+      if (size(rec%profile_times) > 0) call h5_write(h5, '/identity/profile_times', &
+         rec%profile_times, 's')
       if (load%kind == load_table) then
          call h5_write(h5, '/identity/load_t', load%t, 's')
          call h5_write(h5, '/identity/load_p', load%p, 'Pa')
@@ -322,9 +322,9 @@ contains
 
    !> Read a checkpoint for the run set up from deck (mesh, load) and check that the
    !> restart can be identical to an uninterrupted run; every refusal is exit status 2.
-   subroutine read_checkpoint(path, deck, mesh, load, ck, err)
+   subroutine read_checkpoint(path, rec, mesh, load, ck, err)
       character(len=*), intent(in) :: path
-      type(deck_t), intent(in) :: deck
+      type(deck_record_t), intent(in) :: rec
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
       type(checkpoint_t), intent(out) :: ck
@@ -357,7 +357,7 @@ contains
                      ' (a restart is bit-identical only with the program that wrote it)')
          return
       end if
-      why = identity_problem(h5, deck, mesh, load)
+      why = identity_problem(h5, rec, mesh, load)
       if (len(why) > 0) then
          call refuse(why)
          return
@@ -379,7 +379,7 @@ contains
       if (ck%st%step > mesh%nsteps) then
          call refuse('is at step ' // itoa(ck%st%step) // ' (t = ' // &
                      rtoa(real(ck%st%step, wp) * mesh%dt) // ' s), after this deck''s t_end = ' // &
-                     rtoa(deck%run%t_end) // ' s (' // itoa(mesh%nsteps) // ' steps)')
+                     rtoa(rec%t_end) // ' s (' // itoa(mesh%nsteps) // ' steps)')
          return
       end if
       ! profile times up to the checkpoint are in the outputs already: they must not change
@@ -391,8 +391,7 @@ contains
          allocate(times(0))
       end if
       if (.not. same(pack(times, nint(times / mesh%dt) <= ck%st%step), &
-                     pack(deck%run%profile_times(1:deck%run%n_profiles), &
-                          nint(deck%run%profile_times(1:deck%run%n_profiles) / mesh%dt) <= &
+                     pack(rec%profile_times, nint(rec%profile_times / mesh%dt) <= &
                           ck%st%step))) then
          call refuse('has other profile_times up to its t = ' // &
                      rtoa(real(ck%st%step, wp) * mesh%dt) // ' s than &run profile_times here')
@@ -420,9 +419,9 @@ contains
 
    !> Why the checkpoint's identity does not fit this run ('' when it does): the deck, the
    !> mesh, a load table.
-   function identity_problem(h5, deck, mesh, load) result(why)
+   function identity_problem(h5, rec, mesh, load) result(why)
       type(h5file_t), intent(inout) :: h5
-      type(deck_t), intent(in) :: deck
+      type(deck_record_t), intent(in) :: rec
       type(mesh_t), intent(in) :: mesh
       type(load_t), intent(in) :: load
       character(len=:), allocatable :: why
@@ -433,7 +432,7 @@ contains
       why = ''
       ! the deck
       call h5_get_attr(h5, '/identity', 'deck', text)
-      here = deck_identity(deck)
+      here = deck_identity(rec)
       if (text /= here) then
          why = ('was written for another deck: ' // first_difference(text, here) // &
                      ' (only title, t_end, checkpoint, checkpoint_every and later ' // &
@@ -452,14 +451,14 @@ contains
          if (.not. allocated(tab)) allocate(tab(0))
          if (.not. same(tab, load%t)) then
             why = ('was written with another &load table (its times differ from ''' // &
-                        trim(deck%load%table) // ''')')
+                        rec%table // ''')')
             return
          end if
          call h5_get(h5, '/identity/load_p', tab)
          if (.not. allocated(tab)) allocate(tab(0))
          if (.not. same(tab, load%p)) then
             why = ('was written with another &load table (its pressures differ from ''' &
-                        // trim(deck%load%table) // ''')')
+                        // rec%table // ''')')
             return
          end if
       end if
@@ -497,13 +496,12 @@ contains
 
    !> The deck values a restart must not change: 'group name = value' lines of the echo,
    !> without title, t_end, checkpoint, checkpoint_every and profile_times (checked apart).
-   function deck_identity(deck) result(text)
-      type(deck_t), intent(in) :: deck
+   function deck_identity(rec) result(text)
+      type(deck_record_t), intent(in) :: rec
       character(len=:), allocatable :: text
-      type(echo_item_t), allocatable :: items(:)
       integer :: k
-      call deck_items(deck, items)
       text = ''
+      associate (items => rec%items)
       do k = 1, size(items)
          if (items(k)%group == 'run') then
             select case (items(k)%name)
@@ -516,6 +514,7 @@ contains
          text = text // '&' // items(k)%group // ' ' // items(k)%name // ' = ' // &
                 items(k)%value // nl
       end do
+      end associate
    end function deck_identity
 
    !> The first line of a that differs from b, for a message.

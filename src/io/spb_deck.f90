@@ -19,7 +19,7 @@ module spb_deck
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
    public :: read_deck, validate_deck, write_echo, deck_items, echo_item_t, unset, is_set, &
-      known_groups, sweep_cfg, set_deck_value, problem_from_deck
+      known_groups, sweep_cfg, set_deck_value, problem_from_deck, deck_record_t, deck_record
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
@@ -115,6 +115,19 @@ module spb_deck
       character(len=name_len) :: distribution = 'static'  !! 'static' | 'dynamic' over ranks
       integer :: bins = 50                             !! fragment-length histogram bins
    end type sweep_cfg
+
+   !> What the outputs and the checkpoints say of a deck (and need of it): where it came
+   !> from, its title, every value as echoed, and the settings that shape the files.
+   type :: deck_record_t
+      character(len=:), allocatable :: path           !! the deck file
+      character(len=:), allocatable :: title          !! &run title
+      character(len=:), allocatable :: table          !! &load table ('' : none)
+      type(echo_item_t), allocatable :: items(:)      !! every value, given or default
+      logical :: hdf5 = .false.                       !! &run hdf5
+      integer :: field_every = 0                      !! &run field_every [steps]
+      real(wp) :: t_end = 0.0_wp                      !! &run t_end [s]
+      real(wp), allocatable :: profile_times(:)       !! &run profile_times given [s]
+   end type deck_record_t
 
    type :: deck_t
       character(len=path_len) :: path = '(built in memory)'   !! where the deck came from
@@ -1339,18 +1352,32 @@ contains
       end subroutine item
    end subroutine deck_items
 
-   !> Write every deck value, defaults included, as namelist text behind prefix.
-   subroutine write_echo(u, deck, prefix)
-      integer, intent(in) :: u                    !! open formatted unit
+   !> The record of a validated deck for the outputs and checkpoints.
+   function deck_record(deck) result(rec)
       type(deck_t), intent(in) :: deck
+      type(deck_record_t) :: rec
+      rec%path = trim(deck%path)
+      rec%title = trim(deck%run%title)
+      rec%table = trim(deck%load%table)
+      call deck_items(deck, rec%items)
+      rec%hdf5 = deck%run%hdf5
+      rec%field_every = deck%run%field_every
+      rec%t_end = deck%run%t_end
+      allocate(rec%profile_times(deck%run%n_profiles))
+      rec%profile_times(:) = deck%run%profile_times(1:deck%run%n_profiles)
+   end function deck_record
+
+   !> Write every deck value, defaults included, as namelist text behind prefix.
+   subroutine write_echo(u, rec, prefix)
+      integer, intent(in) :: u                    !! open formatted unit
+      type(deck_record_t), intent(in) :: rec
       character(len=*), intent(in) :: prefix      !! e.g. '# '
-      type(echo_item_t), allocatable :: items(:)
       character(len=40) :: lhs
       character(len=:), allocatable :: note
       integer :: k
-      write(u, '(a)') prefix // 'deck: ' // trim(deck%path) // &
+      write(u, '(a)') prefix // 'deck: ' // rec%path // &
          '   (every value; "input" = given in the deck, "default" = not given)'
-      call deck_items(deck, items)
+      associate (items => rec%items)
       do k = 1, size(items)
          if (k == 1) then
             write(u, '(a)') prefix // '&' // items(k)%group
@@ -1365,6 +1392,7 @@ contains
          write(u, '(a)') prefix // lhs(1:18) // '= ' // pad(items(k)%value, 30) // ' ! ' // note
       end do
       if (size(items) > 0) write(u, '(a)') prefix // '/'
+      end associate
    end subroutine write_echo
 
    pure function pad(s, n) result(r)

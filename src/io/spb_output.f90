@@ -8,7 +8,7 @@ module spb_output
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa, es20_12, int_right
-   use spb_deck, only: deck_t, write_echo, deck_items, echo_item_t
+   use spb_deck, only: deck_record_t, write_echo
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
       h5_table_rows, h5_xt_rows, h5_read_size
@@ -116,9 +116,9 @@ module spb_output
 contains
 
    !> Open PREFIX.his, .prf, .evt and write their headers.
-   subroutine open_outputs(prefix, deck, mesh, report, out, err)
+   subroutine open_outputs(prefix, rec, mesh, report, out, err)
       character(len=*), intent(in) :: prefix
-      type(deck_t), intent(in) :: deck
+      type(deck_record_t), intent(in) :: rec
       type(mesh_t), intent(in) :: mesh
       character(len=*), intent(in) :: report(:)     !! mesh fit report lines
       type(outputs_t), intent(out) :: out
@@ -168,7 +168,7 @@ contains
          // 'e_vib [J/m^2]; ids and nodes [-]'
       write(out%frg, '(a)') '# ' // fragment_columns
       call text_sizes(out, out%head)
-      if (deck%run%hdf5) call open_h5(prefix, deck, mesh, report, out, err)
+      if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err)
    contains
       subroutine open_one(ext, u)
          character(len=*), intent(in) :: ext
@@ -186,8 +186,8 @@ contains
          integer, intent(in) :: u
          character(len=*), intent(in) :: what
          write(u, '(a)') '# spallbar ' // version // ' -- ' // what
-         write(u, '(a)') '# title: ' // trim(deck%run%title)
-         call write_echo(u, deck, '# ')
+         write(u, '(a)') '# title: ' // rec%title
+         call write_echo(u, rec, '# ')
          call write_mesh_summary(u, mesh, report, '# ')
       end subroutine header
    end subroutine open_outputs
@@ -367,20 +367,19 @@ contains
    !> Root attributes (program, title, deck path, layout, conventions) and /deck: one group
    !> per namelist group, one string attribute per variable (the echoed value), with
    !> name:units and name:from ('input' or 'default'). PREFIX.h5 and PREFIX_sweep.h5 share it.
-   subroutine h5_deck_header(h5, deck)
+   subroutine h5_deck_header(h5, rec)
       type(h5file_t), intent(inout) :: h5
-      type(deck_t), intent(in) :: deck
-      type(echo_item_t), allocatable :: items(:)
+      type(deck_record_t), intent(in) :: rec
       integer :: k
       call h5_attr(h5, '/', 'program', 'spallbar ' // version)
-      call h5_attr(h5, '/', 'title', trim(deck%run%title))
-      call h5_attr(h5, '/', 'deck_path', trim(deck%path))
+      call h5_attr(h5, '/', 'title', rec%title)
+      call h5_attr(h5, '/', 'deck_path', rec%path)
       call h5_attr(h5, '/', 'layout', 'doc/outputs.md; h5py shows a Fortran a(nx, nt) ' // &
                    'as (nt, nx)')
       call h5_attr(h5, '/', 'conventions', 'SI units; x down from the top end; ' // &
                    'stress > 0 in compression')
       call h5_group(h5, '/deck')
-      call deck_items(deck, items)
+      associate (items => rec%items)
       do k = 1, size(items)
          if (k == 1) then
             call h5_group(h5, '/deck/' // items(k)%group)
@@ -393,13 +392,14 @@ contains
             call h5_attr(h5, g, nm // ':from', trim(merge('input  ', 'default', items(k)%given)))
          end associate
       end do
+      end associate
    end subroutine h5_deck_header
 
    !> PREFIX.h5: root attributes, /deck, /mesh, the /history and /events tables, /fields
    !> (profiles, and x-t rows when field_every > 0), /fragments.
-   subroutine open_h5(prefix, deck, mesh, report, out, err)
+   subroutine open_h5(prefix, rec, mesh, report, out, err)
       character(len=*), intent(in) :: prefix
-      type(deck_t), intent(in) :: deck
+      type(deck_record_t), intent(in) :: rec
       type(mesh_t), intent(in) :: mesh
       character(len=*), intent(in) :: report(:)
       type(outputs_t), intent(inout) :: out
@@ -409,7 +409,7 @@ contains
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5')
       out%hdf5 = .true.
-      call h5_deck_header(out%h5, deck)
+      call h5_deck_header(out%h5, rec)
       ! the mesh
       n = mesh%n
       call h5_group(out%h5, '/mesh')
@@ -448,9 +448,9 @@ contains
       call h5_attr(out%h5, '/fields', 'rows', 'half nodes top to bottom, as PREFIX.prf: ' // &
                    'node 0 lower half, then upper and lower half of each interior node, ' // &
                    'node n upper half; x at /mesh/x_half')
-      if (deck%run%field_every > 0) then
+      if (rec%field_every > 0) then
          call h5_xt(out%h5, '/fields/xt', 2 * n)
-         call h5_attr(out%h5, '/fields/xt', 'every', deck%run%field_every)
+         call h5_attr(out%h5, '/fields/xt', 'every', rec%field_every)
       end if
       call h5_group(out%h5, '/fragments')
       call h5_flush(out%h5)

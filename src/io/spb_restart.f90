@@ -5,7 +5,7 @@ module spb_restart
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa
-   use spb_deck, only: deck_t
+   use spb_deck, only: deck_record_t
    use spb_hdf5, only: h5file_t, h5_close, h5_flush, h5_open_read, h5_get, h5_get_columns, &
       h5_copy, h5_append, h5_append_xt, h5_read_size
    use spb_sys, only: sys_rename
@@ -27,9 +27,9 @@ contains
    !> run's files up to the marks (rows written after them are dropped), open for appending.
    !> The previous files are set aside as PREFIX.ext.restart while this is done and removed
    !> after; nothing is touched when they do not hold what the marks count.
-   subroutine resume_outputs(prefix, deck, mesh, report, marks, out, err)
+   subroutine resume_outputs(prefix, rec, mesh, report, marks, out, err)
       character(len=*), intent(in) :: prefix
-      type(deck_t), intent(in) :: deck
+      type(deck_record_t), intent(in) :: rec
       type(mesh_t), intent(in) :: mesh
       character(len=*), intent(in) :: report(:)
       type(output_marks_t), intent(in) :: marks
@@ -75,7 +75,7 @@ contains
          end associate
          if (allocated(err)) return
       end do
-      if (deck%run%hdf5) then
+      if (rec%hdf5) then
          call h5_read_size(prefix // '.h5', '/history/t', nrows)
          if (nrows < marks%rows_his) then
             call make_error(err, '--restart: ''' // prefix // '.h5'' holds ' // &
@@ -85,7 +85,7 @@ contains
          end if
       end if
       do k = 1, 5
-         if (k == 5 .and. .not. deck%run%hdf5) exit
+         if (k == 5 .and. .not. rec%hdf5) exit
          associate (f => prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)))
             call sys_rename(f, f // aside, ok)
             if (.not. ok) call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' &
@@ -93,18 +93,18 @@ contains
          end associate
          if (allocated(err)) return
       end do
-      call open_outputs(prefix, deck, mesh, report, out, err)
+      call open_outputs(prefix, rec, mesh, report, out, err)
       if (allocated(err)) return
       do k = 1, 4
          call copy_body(prefix, k, head(k), marks%body(k), out, err)
          if (allocated(err)) return
       end do
-      if (deck%run%hdf5) then
+      if (rec%hdf5) then
          call replay_h5(prefix, mesh, marks, out, err)
          if (allocated(err)) return
       end if
       do k = 1, 5
-         if (k == 5 .and. .not. deck%run%hdf5) exit
+         if (k == 5 .and. .not. rec%hdf5) exit
          call remove_file(prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)) // aside)
       end do
    end subroutine resume_outputs

@@ -9,7 +9,7 @@ module spb_sim
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_sys, only: stop_signal
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t, problem_from_deck
+   use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
    use spb_mesh, only: mesh_t, build_mesh, end_base
@@ -29,7 +29,8 @@ module spb_sim
       act_check, act_field, act_checkpoint, act_progress
    implicit none
    private
-   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model
+   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model, &
+      run_options_t
 
    !> The between-step actions run every check_every steps (finiteness, energy guard) and
    !> every progress_every steps (progress line, flush), besides the deck's own periods.
@@ -49,9 +50,21 @@ module spb_sim
                                                      !! last progress line; ticks per second
    end type run_t
 
+   !> What the run loop does besides stepping (the deck's &run settings).
+   type :: run_options_t
+      integer :: history_every = 1                   !! steps between history rows
+      integer :: field_every = 0                     !! steps between x-t field rows (0: none)
+      real(wp), allocatable :: profile_times(:)      !! profile times [s]
+      character(len=:), allocatable :: checkpoint    !! checkpoint file ('': none)
+      integer :: checkpoint_every = 0                !! steps between checkpoints (0: at the end)
+      real(wp) :: energy_guard = 0.5_wp              !! the energy guard's share (0: off) [-]
+   end type run_options_t
+
    type :: sim_t
-      type(deck_t) :: deck                           !! for the outputs' echo and checkpoints
       type(problem_t) :: prob                        !! what the model solves
+      type(run_options_t) :: opt                     !! what the run loop does besides
+      type(deck_record_t) :: record                  !! what the outputs and checkpoints say
+                                                     !! of the deck
       type(mesh_t) :: mesh
       type(load_t) :: load
       type(state_t) :: st
@@ -102,7 +115,13 @@ contains
       type(deck_t), intent(in) :: deck
       type(sim_t), intent(out) :: sim
       type(spb_error_t), allocatable, intent(out) :: err
-      sim%deck = deck
+      sim%record = deck_record(deck)
+      sim%opt%history_every = deck%run%history_every
+      sim%opt%field_every = deck%run%field_every
+      sim%opt%profile_times = deck%run%profile_times(1:deck%run%n_profiles)
+      sim%opt%checkpoint = trim(deck%run%checkpoint)
+      sim%opt%checkpoint_every = deck%run%checkpoint_every
+      sim%opt%energy_guard = deck%run%energy_guard
       call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err)
       if (allocated(err)) return
       call init_state(sim%prob, sim%mesh, sim%st)
@@ -196,18 +215,18 @@ contains
       character(len=*), intent(in) :: prefix
       type(spb_error_t), allocatable, intent(out) :: err
       type(checkpoint_t), intent(in), optional :: resume
-      integer :: nprof
-      associate (opt => sim%deck%run)
-         run%ck_on = run%to_files .and. len_trim(opt%checkpoint) > 0
-         if (run%ck_on) call check_checkpoint_path(trim(opt%checkpoint), err)
+      associate (opt => sim%opt)
+         run%ck_on = run%to_files .and. len(opt%checkpoint) > 0
+         if (run%ck_on) call check_checkpoint_path(opt%checkpoint, err)
          if (allocated(err)) return
          if (present(resume)) then
-            call resume_outputs(prefix, sim%deck, sim%mesh, sim%report, resume%marks, run%out, err)
+            call resume_outputs(prefix, sim%record, sim%mesh, sim%report, resume%marks, run%out, &
+                                err)
             if (allocated(err)) return
             sim%st = resume%st
             summary = resume%summary
          else if (run%to_files) then
-            call open_outputs(prefix, sim%deck, sim%mesh, sim%report, run%out, err)
+            call open_outputs(prefix, sim%record, sim%mesh, sim%report, run%out, err)
             if (allocated(err)) return
          end if
          run%sched%n_end = sim%mesh%nsteps
@@ -216,8 +235,7 @@ contains
          call schedule_every(run%sched, act_field, opt%field_every)
          if (run%ck_on) call schedule_every(run%sched, act_checkpoint, opt%checkpoint_every)
          call schedule_every(run%sched, act_progress, progress_every)
-         nprof = opt%n_profiles
-         call schedule_at(run%sched, nint(opt%profile_times(1:nprof) / sim%mesh%dt))
+         call schedule_at(run%sched, nint(opt%profile_times / sim%mesh%dt))
       end associate
       ! the first profile still to write
       run%next_profile = 1
@@ -371,7 +389,7 @@ contains
       call mark_outputs(run%out, marks)
       summary%checkpoints = summary%checkpoints + 1
       summary%steps = sim%st%step
-      call write_checkpoint(trim(sim%deck%run%checkpoint), sim%deck, sim%mesh, sim%load, &
+      call write_checkpoint(sim%opt%checkpoint, sim%record, sim%mesh, sim%load, &
                             sim%st, summary, marks, err)
    end subroutine checkpoint
 
@@ -445,7 +463,7 @@ contains
       excess = (wv%e_wave + e%e_pot + wv%e_gravity - summary%e_mech0) - w_w
       if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
          excess / summary%guard_scale)
-      associate (limit => sim%deck%run%energy_guard)
+      associate (limit => sim%opt%energy_guard)
          if (limit > 0.0_wp .and. excess > limit * summary%guard_scale .and. &
              summary%guard_scale > 0.0_wp) then
             write(b1, '(es10.3)') excess
@@ -469,7 +487,7 @@ contains
          if (run%sched%at(run%next_profile) /= sim%st%step) exit
          if (run%to_files) then
             call write_profile(run%out, sim%mesh, sim%st, &
-                               sim%deck%run%profile_times(run%next_profile))
+                               sim%opt%profile_times(run%next_profile))
             call fragment_list(sim%mesh, sim%st, list)
             call write_fragments(run%out, real(sim%st%step, wp) * sim%mesh%dt, sim%mesh%dt, list)
          end if

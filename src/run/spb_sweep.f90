@@ -13,7 +13,7 @@ module spb_sweep
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
    use spb_sys, only: stop_signal, sys_rename
-   use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo
+   use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo, deck_record
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t
    use spb_problem, only: problem_t
@@ -377,7 +377,7 @@ contains
       end if
       write(u, '(a)') '# spallbar ' // version // ' -- sweep: one row per case, in case order'
       write(u, '(a)') '# title: ' // trim(deck%run%title)
-      call write_echo(u, deck, '# ')
+      call write_echo(u, deck_record(deck), '# ')
       write(u, '(a)') '# cases: ' // itoa(size(rows, 2)) // ' = ' // &
          itoa(max(1, deck%sweep%n_values)) // ' value(s) x ' // &
          itoa(max(1, deck%sweep%realizations)) // ' realization(s); case c is value ' // &
@@ -423,7 +423,7 @@ contains
       integer :: k, nb
       logical :: ok
       call h5_create(h5, prefix // '_sweep.h5.part')
-      call h5_deck_header(h5, deck)
+      call h5_deck_header(h5, deck_record(deck))
       call h5_group(h5, '/cases')
       call h5_attr(h5, '/cases', 'count', size(rows, 2))
       call h5_attr(h5, '/cases', 'vary', trim(deck%sweep%vary))
