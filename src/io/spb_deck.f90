@@ -17,9 +17,9 @@ module spb_deck
       timing_delay, timing_min, shift_above, shift_fragment, events_admissible, events_paper
    implicit none
    private
-   public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg
-   public :: read_deck, validate_deck, write_echo, deck_items, echo_item_t, unset, is_set, &
-      known_groups, sweep_cfg, set_deck_value, problem_from_deck, deck_record_t, deck_record
+   public :: deck_t
+   public :: read_deck, validate_deck, write_echo, known_groups, set_deck_value, &
+      problem_from_deck, deck_record_t, deck_record
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 

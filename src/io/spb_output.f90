@@ -21,8 +21,7 @@ module spb_output
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
-   public :: write_field, flush_outputs, h5_deck_header, n_history, history_table, column_t, &
-      column_names
+   public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
    public :: output_marks_t, mark_outputs, text_extensions, tail_len
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &

@@ -9,7 +9,7 @@ module spb_prescan
    use spb_kinds, only: path_len
    implicit none
    private
-   public :: deck_scan_t, scan_deck, scan_text, has_group, has_var, assignment_text
+   public :: deck_scan_t, scan_deck, has_group, has_var, assignment_text
 
    integer, parameter :: key_len = 64
 

@@ -26,7 +26,7 @@ module spb_contact
    implicit none
    private
    public :: contact_step, timing_accelerate, timing_delay, timing_min, shift_above, &
-      shift_fragment, collision_stress
+      shift_fragment
 
 
 contains
@@ -462,7 +462,7 @@ contains
          call shift_part(mesh, st, g, i, min(bot, k), y, .false.)
          if (bot > k) call shift_part(mesh, st, g, k, bot, y, .true.)
          if (bot == mesh%n) call book_shift_work(st, -i_bot / mesh%dt * y)
-         if (abs(x) == 0.0_wp) moved = y
+         if (.not. abs(x) > 0.0_wp) moved = y
       end if
    end subroutine shift_both_sides
 
@@ -669,7 +669,7 @@ contains
          end if
          ! a bar side that cannot move (held by a fixed top) lands at t^n: the face keeps the
          ! small gap it had then, never an overlap
-         if (abs(shift_amount) == 0.0_wp .and. .not. at_n) then
+         if (.not. abs(shift_amount) > 0.0_wp .and. .not. at_n) then
             at_n = .true.
             corr = d_acc
          end if

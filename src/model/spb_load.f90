@@ -8,7 +8,7 @@ module spb_load
    implicit none
    private
    public :: load_t, load_none, load_power, load_table, load_exponential, face_top, face_bottom
-   public :: build_load, load_integral, step_load, log1p_acc, expm1_acc
+   public :: build_load, load_integral, step_load
 
 
    type :: load_t

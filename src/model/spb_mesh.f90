@@ -7,7 +7,6 @@ module spb_mesh
    implicit none
    private
    public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base
-   public :: max_cells, max_steps, fit_tolerance
 
    integer, parameter :: max_cells = 50000000   !! refuse meshes larger than this
    integer, parameter :: max_steps = 2000000000 !! refuse runs longer than this

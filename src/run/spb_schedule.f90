@@ -9,7 +9,7 @@ module spb_schedule
    implicit none
    private
    public :: schedule_t, schedule_every, schedule_at, is_due, next_due
-   public :: act_row, act_check, act_profile, act_field, act_checkpoint, act_progress, n_actions
+   public :: act_row, act_check, act_field, act_checkpoint, act_progress
 
    !> The actions: a history row; the finiteness and energy-guard check between rows; a
    !> profile; an x-t field row; a checkpoint; the progress line and the flush of the outputs.

@@ -26,10 +26,7 @@ module spb_sweep
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_any, par_kind
    implicit none
    private
-   public :: run_sweep, sweep_case_count, case_deck, run_case, sweep_columns, n_columns, &
-      sweep_table, &
-      col_status, col_fragments, col_first_fracture, col_seed, col_mean_length, &
-      status_not_run, sweep_summary_t
+   public :: run_sweep, sweep_case_count, case_deck, run_case, sweep_summary_t
 
    character(len=*), parameter :: sweep_units = 'id, fragments, realization, seed, status, ' // &
       'fractures .. base_collisions, steps [-]; mean_fragment_length [m] (reference length); ' // &
