@@ -12,6 +12,8 @@ module spb_deck
    use spb_strings, only: itoa, rtoa, lower, ltoa
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text
    use spb_sys, only: fp_traps_off, fp_traps_restore
+   use spb_mesh, only: mesh_fault_t, max_cells, max_steps, fault_cells, fault_segment_cells, &
+      fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, load_none, &
       load_power, load_table, load_exponential, face_top, face_bottom, timing_accelerate, &
       timing_delay, timing_min, shift_above, shift_fragment, events_admissible, events_paper
@@ -19,7 +21,7 @@ module spb_deck
    private
    public :: deck_t
    public :: read_deck, validate_deck, write_echo, known_groups, set_deck_value, &
-      problem_from_deck, deck_record_t, deck_record
+      problem_from_deck, deck_record_t, deck_record, mesh_fault_message
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
@@ -1351,6 +1353,43 @@ contains
          items = [items, echo_item_t(g, name, value, unit, has_var(deck%scan, g, name))]
       end subroutine item
    end subroutine deck_items
+
+   !> A mesh fault (spb_mesh) in the deck's terms: the one-line message of the bad input.
+   function mesh_fault_message(fault, prob) result(msg)
+      type(mesh_fault_t), intent(in) :: fault
+      type(problem_t), intent(in) :: prob
+      character(len=:), allocatable :: msg
+      character(len=:), allocatable :: sj
+      sj = itoa(fault%segment)
+      select case (fault%kind)
+      case (fault_cells)
+         msg = '&mesh: cells = ' // itoa(prob%cells) // '; the limit is ' // itoa(max_cells)
+      case (fault_segment_cells)
+         msg = '&segments: length(' // sj // ') would need ' // rtoa(fault%cells) // &
+               ' cells; the limit is ' // itoa(max_cells)
+      case (fault_not_whole)
+         msg = '&segments: length(' // sj // ') = ' // rtoa(prob%length(fault%segment)) // &
+               ' m is ' // rtoa(fault%cells) // ' cells of dx = a dt = ' // rtoa(fault%dx) // &
+               ' m, not a whole number (&mesh fit = ''strict''; use fit = ''stretch'' or ' // &
+               'change the length)'
+      case (fault_short_segment)
+         msg = '&segments: length(' // sj // ') = ' // rtoa(prob%length(fault%segment)) // &
+               ' m is less than half a cell of dx = a dt = ' // rtoa(fault%dx) // &
+               ' m (&mesh fit = ''stretch'' would make it a whole cell; use a smaller dt or ' // &
+               'more cells)'
+      case (fault_mesh_cells)
+         msg = '&mesh: cells: the mesh would have ' // rtoa(fault%cells) // &
+               ' cells; the limit is ' // itoa(max_cells)
+      case (fault_short_run)
+         msg = '&run: t_end = ' // rtoa(prob%t_end) // ' s is shorter than half a step of ' // &
+               'dt = ' // rtoa(fault%dt) // ' s'
+      case (fault_long_run)
+         msg = '&run: t_end = ' // rtoa(prob%t_end) // ' s needs ' // rtoa(fault%steps) // &
+               ' steps of dt = ' // rtoa(fault%dt) // ' s; the limit is ' // itoa(max_steps)
+      case default
+         msg = ''
+      end select
+   end function mesh_fault_message
 
    !> The record of a validated deck for the outputs and checkpoints.
    function deck_record(deck) result(rec)

@@ -1,12 +1,13 @@
 !> The lumped-mass mesh (METHOD.md §2): one dt, dx_j = a_j dt, half-node masses.
 module spb_mesh
    use spb_kinds, only: wp
-   use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base
    implicit none
    private
    public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base
+   public :: mesh_fault_t, max_cells, max_steps, fault_none, fault_cells, fault_segment_cells, &
+      fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
 
    integer, parameter :: max_cells = 50000000   !! refuse meshes larger than this
    integer, parameter :: max_steps = 2000000000 !! refuse runs longer than this
@@ -14,6 +15,19 @@ module spb_mesh
    !> whole number: the representable-length noise of a user's decimal inputs, far below
    !> any physical length change.
    real(wp), parameter :: fit_tolerance = 1.0e-9_wp
+
+   !> Why no mesh serves a problem (fault_none: it was built), with the numbers that say it.
+   integer, parameter :: fault_none = 0, fault_cells = 1, fault_segment_cells = 2, &
+      fault_not_whole = 3, fault_short_segment = 4, fault_mesh_cells = 5, fault_short_run = 6, &
+      fault_long_run = 7
+   type :: mesh_fault_t
+      integer :: kind = fault_none         !! fault_*
+      integer :: segment = 0               !! the segment concerned (0: none)
+      real(wp) :: cells = 0.0_wp           !! its cells (continuous), or the mesh's [-]
+      real(wp) :: dx = 0.0_wp              !! its a dt [m]
+      real(wp) :: dt = 0.0_wp              !! the time step [s]
+      real(wp) :: steps = 0.0_wp           !! t_end / dt [-]
+   end type mesh_fault_t
 
    type :: mesh_t
       integer :: nseg = 0                    !! segments
@@ -45,12 +59,14 @@ module spb_mesh
 
 contains
 
-   !> Build the mesh of the problem; report holds one line per stretched segment.
-   subroutine build_mesh(prob, mesh, report, err)
+   !> Build the mesh of the problem; report holds one line per stretched segment. A problem
+   !> that no mesh can serve comes back as a fault (what and the numbers; the deck module
+   !> words it in the deck's terms) and no mesh.
+   subroutine build_mesh(prob, mesh, report, fault)
       type(problem_t), intent(in) :: prob
       type(mesh_t), intent(out) :: mesh
       character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(mesh_fault_t), intent(out) :: fault
       integer :: j, nseg, k, r
       integer, allocatable :: cells(:)
       real(wp), allocatable :: a(:), zz(:), ncont(:)
@@ -63,8 +79,7 @@ contains
       zz = prob%density * a
       r = prob%ref_segment
       if (.not. (prob%dt > 0.0_wp) .and. prob%cells > max_cells) then
-         call make_error(err, '&mesh: cells = ' // itoa(prob%cells) // '; the limit is ' // &
-                         itoa(max_cells))
+         fault%kind = fault_cells
          return
       end if
       if (prob%dt > 0.0_wp) then
@@ -72,46 +87,43 @@ contains
       else
          dt = prob%length(r) / (a(r) * real(prob%cells, wp))
       end if
+      fault%dt = dt
       ncont = prob%length / (a * dt)
       allocate(cells(nseg))
       do j = 1, nseg
+         fault%segment = j
+         fault%cells = ncont(j)
+         fault%dx = a(j) * dt
          if (ncont(j) > real(max_cells, wp)) then
-            call make_error(err, '&segments: length(' // itoa(j) // ') would need ' // &
-               rtoa(ncont(j)) // ' cells; the limit is ' // itoa(max_cells))
+            fault%kind = fault_segment_cells
             return
          end if
          cells(j) = nint(ncont(j))
          if (.not. prob%stretch) then
             if (cells(j) < 1 .or. abs(ncont(j) - real(cells(j), wp)) > &
                 fit_tolerance * max(1.0_wp, ncont(j))) then
-               call make_error(err, '&segments: length(' // itoa(j) // ') = ' // &
-                  rtoa(prob%length(j)) // ' m is ' // rtoa(ncont(j)) // &
-                  ' cells of dx = a dt = ' // rtoa(a(j) * dt) // ' m, not a whole number ' // &
-                  '(&mesh fit = ''strict''; use fit = ''stretch'' or change the length)')
+               fault%kind = fault_not_whole
                return
             end if
          else if (cells(j) < 1) then
-            call make_error(err, '&segments: length(' // itoa(j) // ') = ' // &
-               rtoa(prob%length(j)) // ' m is less than half a cell of dx = a dt = ' // &
-               rtoa(a(j) * dt) // ' m (&mesh fit = ''stretch'' would make it a whole cell; ' // &
-               'use a smaller dt or more cells)')
+            fault%kind = fault_short_segment
             return
          end if
       end do
+      fault%segment = 0
       if (sum(int(cells, kind=8)) > max_cells) then
-         call make_error(err, '&mesh: cells: the mesh would have ' // rtoa(sum(real(cells, wp))) &
-                         // ' cells; the limit is ' // itoa(max_cells))
+         fault%kind = fault_mesh_cells
+         fault%cells = sum(real(cells, wp))
          return
       end if
       steps_real = prob%t_end / dt
+      fault%steps = steps_real
       if (steps_real < 0.5_wp) then
-         call make_error(err, '&run: t_end = ' // rtoa(prob%t_end) // ' s is shorter than ' // &
-                         'half a step of dt = ' // rtoa(dt) // ' s')
+         fault%kind = fault_short_run
          return
       end if
       if (steps_real > real(max_steps, wp)) then
-         call make_error(err, '&run: t_end = ' // rtoa(prob%t_end) // ' s needs ' // &
-            rtoa(steps_real) // ' steps of dt = ' // rtoa(dt) // ' s; the limit is ' // itoa(max_steps))
+         fault%kind = fault_long_run
          return
       end if
       mesh%dt = dt

@@ -9,10 +9,10 @@ module spb_sim
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_sys, only: stop_signal
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record
+   use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record, mesh_fault_message
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
-   use spb_mesh, only: mesh_t, build_mesh, end_base
+   use spb_mesh, only: mesh_t, build_mesh, end_base, mesh_fault_t, fault_none
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
@@ -136,9 +136,13 @@ contains
       type(load_t), intent(out) :: load
       character(len=200), allocatable, intent(out) :: report(:)   !! mesh fit report
       type(spb_error_t), allocatable, intent(out) :: err
+      type(mesh_fault_t) :: fault
       prob = problem_from_deck(deck)
-      call build_mesh(prob, mesh, report, err)
-      if (allocated(err)) return
+      call build_mesh(prob, mesh, report, fault)
+      if (fault%kind /= fault_none) then
+         call make_error(err, mesh_fault_message(fault, prob))
+         return
+      end if
       if (prob%load_kind == load_table) then
          call read_table(deck%load%table, prob%table_t, prob%table_p, err)
          if (allocated(err)) return
