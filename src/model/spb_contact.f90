@@ -120,15 +120,15 @@ contains
             end if
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
             call collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot, tol)
-            st%e_lost_wave = st%e_lost_wave + e_wave0 - &
+            st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
       end do
       end do
-      if (mesh%bottom == end_base .and. .not. st%base_contact) then
+      if (mesh%bottom == end_base .and. .not. st%ends%base_contact) then
          tol = 0.0_wp
          if (rules == events_admissible) tol = eps_rel * mesh%dx(mesh%n)
-         if (st%ua(mesh%n) - st%u_base > tol) then
+         if (st%ua(mesh%n) - st%ends%u_base > tol) then
             if (rules == events_admissible) then
                call fragment_span(mesh, st, mesh%n, r_top, r_bot)
                r_bot = mesh%n
@@ -138,7 +138,7 @@ contains
             end if
             e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
             call land(mesh, st, g, timing, policy, events, rules, i_top, tol)
-            st%e_lost_wave = st%e_lost_wave + e_wave0 - &
+            st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
          end if
       end if
@@ -153,7 +153,7 @@ contains
       integer, intent(in) :: i
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       if (i == mesh%n) then
-         d_acc = (st%ua(i) - st%dua(i)) - st%u_base
+         d_acc = (st%ua(i) - st%dua(i)) - st%ends%u_base
       else
          d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
       end if
@@ -204,8 +204,8 @@ contains
       end if
       call fragment_span(mesh, st, i, j, k)
       if (i == mesh%n) then
-         d_acc = (st%ua(i) - st%dua(i)) - st%u_base
-         d_del = st%ua(i) - st%u_base
+         d_acc = (st%ua(i) - st%dua(i)) - st%ends%u_base
+         d_del = st%ua(i) - st%ends%u_base
          call land_side(mesh, st, policy, d_acc, top, amount)
          call land_side(mesh, st, policy, d_del, bot, amount)
          r_top = min(j, top, bot)
@@ -282,7 +282,7 @@ contains
       if (abs(shift_amount) > 0.0_wp .and. rules /= events_admissible) then
          if (at_n) then
             call shift_span(mesh, st, g, top, bot, shift_amount, de)
-            st%e_shift = st%e_shift - de
+            st%ledger%e_shift = st%ledger%e_shift - de
          else
             call shift_late(mesh, st, g, top, bot, shift_amount, w)
          end if
@@ -334,15 +334,15 @@ contains
       end if
       ! the halves now share one position (a shift closed the gap; if both sides were
       ! anchored a length defect of |corr| stays in the displacements, not the stresses)
-      st%e_join = st%e_join + (e0 - node_energy(mesh, st, g, i))
+      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, i))
       st%n_breakable = st%n_breakable + 1
       ! genealogy: the merged fragment is new, its parent the upper one
       call fragment_span(mesh, st, i, j, k)
-      parent_up = st%frag_id(j)
-      parent_dn = st%frag_id(i)
-      st%frag_id(i) = 0
+      parent_up = st%gen%frag_id(j)
+      parent_dn = st%gen%frag_id(i)
+      st%gen%frag_id(i) = 0
       call new_fragment_id(st, parent_up, j)
-      call finish_event(mesh, st, ev, i, at_n, corr, shift_amount, st%frag_id(j), parent_dn, events)
+      call finish_event(mesh, st, ev, i, at_n, corr, shift_amount, st%gen%frag_id(j), parent_dn, events)
    end subroutine collide
 
    !> Momentum of the region from B_top to A_bot over the last step [kg/(m s)].
@@ -419,11 +419,11 @@ contains
          if (i < bot .or. bot == mesh%n) st%dub(i) = st%dub(i) + w * mesh%dt
       end do
       work = f_end * (shift - 0.5_wp * w * mesh%dt)
-      st%w_load = st%w_load + work
+      st%ledger%w_load = st%ledger%w_load + work
       ! kinetic + potential change minus that work: zero but for the root's rounding
-      st%e_shift = st%e_shift - (mom * w + mass * (0.5_wp * w**2 + 0.5_wp * g * mesh%dt * w) &
+      st%ledger%e_shift = st%ledger%e_shift - (mom * w + mass * (0.5_wp * w**2 + 0.5_wp * g * mesh%dt * w) &
                                  + de - work)
-      st%p_shift = st%p_shift + mass * w
+      st%ledger%p_shift = st%ledger%p_shift + mass * w
    end subroutine shift_late
 
    !> The admissible correction of a collision at split node i: both sides move rigidly so
@@ -477,8 +477,8 @@ contains
       logical, intent(in) :: far
       real(wp) :: de
       call shift_span(mesh, st, g, a, b, delta, de)
-      st%e_shift = st%e_shift - de
-      if (far) st%e_lost_wave = st%e_lost_wave - de
+      st%ledger%e_shift = st%ledger%e_shift - de
+      if (far) st%ledger%e_lost_wave = st%ledger%e_lost_wave - de
    end subroutine shift_part
 
    !> What shift_both_sides moves: the upper side top..i by -x, the lower side i..bot by +y,
@@ -554,7 +554,7 @@ contains
          ! a lower side that reaches the base and would be pushed into it stays, as if held
          if (.not. anch_l .and. bot == mesh%n .and. mesh%bottom == end_base .and. &
              y > 0.0_wp) then
-            if (st%ua(mesh%n) + y - st%u_base > 0.0_wp) then
+            if (st%ua(mesh%n) + y - st%ends%u_base > 0.0_wp) then
                blocked = .true.
                cycle
             end if
@@ -649,7 +649,7 @@ contains
       n = mesh%n
       dua0 = du_before_a(mesh, st, g, n)
       d_acc = gap_at_n(mesh, st, n, tol)
-      d_del = st%ua(n) - st%u_base
+      d_del = st%ua(n) - st%ends%u_base
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call land_side(mesh, st, policy, corr, j, shift_amount)
       if (rules == events_admissible) then
@@ -693,7 +693,7 @@ contains
       if (abs(shift_amount) > 0.0_wp .and. rules /= events_admissible) then
          if (at_n) then
             call shift_span(mesh, st, g, j, n, shift_amount, de)
-            st%e_shift = st%e_shift - de
+            st%ledger%e_shift = st%ledger%e_shift - de
          else
             call shift_late(mesh, st, g, j, n, shift_amount, w)
          end if
@@ -707,8 +707,8 @@ contains
       ev%stress_bound = abs(2.0_wp * st%s(n))                      ! (6.3), alpha -> infinity
       e0 = node_energy(mesh, st, g, n)
       du_trial = st%dua(n)
-      st%base_contact = .true.
-      st%i_support = st%i_support - mesh%ma(n) * du_trial / mesh%dt
+      st%ends%base_contact = .true.
+      st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * du_trial / mesh%dt
       st%dua(n) = 0.0_wp
       st%dub(n) = 0.0_wp
       if (at_n) then
@@ -724,12 +724,12 @@ contains
          ! collision stress (5.6), alpha -> infinity
          st%s_old(n) = st%s_old(n) - mesh%stiff(n) * du_trial
          st%section(n) = 0.0_wp
-         st%landing_bot = .true.
-         st%v_land_bot = du_trial / mesh%dt
+         st%ends%landing_bot = .true.
+         st%ends%v_land_bot = du_trial / mesh%dt
          call skip_next(st, n)
       end if
-      st%e_join = st%e_join + (e0 - node_energy(mesh, st, g, n))
-      call finish_event(mesh, st, ev, n, at_n, corr, shift_amount, st%frag_id(j), 0, events)
+      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, n))
+      call finish_event(mesh, st, ev, n, at_n, corr, shift_amount, st%gen%frag_id(j), 0, events)
    end subroutine land
 
    !> A shifted fragment must not be pushed into its neighbour: while the shift would make
@@ -797,8 +797,8 @@ contains
    pure subroutine book_shift_work(st, work)
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: work
-      st%w_wave = st%w_wave + work
-      st%e_lost_wave = st%e_lost_wave + work
+      st%ledger%w_wave = st%ledger%w_wave + work
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + work
    end subroutine book_shift_work
 
    pure subroutine skip_next(st, i)

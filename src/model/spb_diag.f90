@@ -78,8 +78,8 @@ contains
       e%e_kin = 0.5_wp * sum(mesh%ma * st%dua**2 + mesh%mb * st%dub**2) / dt**2
       e%e_strain = 0.5_wp * sum(st%s_old(1:n) * st%s(1:n) / mesh%stiff)
       e%e_pot = 0.0_wp - g * sum(mesh%ma * (st%ua - 0.5_wp * st%dua) + mesh%mb * (st%ub - 0.5_wp * st%dub))
-      e%w_ext = st%w_load + st%w_transmit
-      e%e_lost = st%e_fracture + st%e_join + st%e_shift + st%e_contact
+      e%w_ext = st%ledger%w_load + st%ledger%w_transmit
+      e%e_lost = st%ledger%e_fracture + st%ledger%e_join + st%ledger%e_shift + st%ledger%e_contact
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost
       e%momentum = sum(mesh%ma * st%dua + mesh%mb * st%dub) / dt
    end function energies
@@ -94,7 +94,7 @@ contains
       logical :: whole_top, whole_bot
       real(wp) :: mom, ekin, estr, dt
       dt = mesh%dt
-      nf = 1 + st%n_cut
+      nf = 1 + st%fm%n_cut
       if (mesh%n >= 2) nf = nf + count(.not. st%joined(1:mesh%n-1))
       allocate(list(nf))
       top = 0
@@ -103,15 +103,15 @@ contains
          bot = top
          do
             if (bot == mesh%n) exit
-            if (st%is_cut(bot + 1)) exit
+            if (st%fm%is_cut(bot + 1)) exit
             bot = bot + 1
             if (bot == mesh%n) exit
             if (.not. st%joined(bot)) exit
          end do
          whole_bot = bot == mesh%n .or. st%joined(bot)
-         list(f)%id = st%frag_id(top)
-         list(f)%parent = st%frag_parent(top)
-         list(f)%birth_step = st%frag_birth(top)
+         list(f)%id = st%gen%frag_id(top)
+         list(f)%parent = st%gen%frag_parent(top)
+         list(f)%birth_step = st%gen%frag_birth(top)
          list(f)%top = top
          list(f)%bot = bot
          list(f)%x_top = mesh%x(top) + st%ub(top)

@@ -45,7 +45,7 @@ contains
       integer, intent(in) :: top, bot
       anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
                  (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-                  (mesh%bottom == end_base .and. st%base_contact)))
+                  (mesh%bottom == end_base .and. st%ends%base_contact)))
    end function anchored
 
    !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
@@ -99,10 +99,10 @@ contains
       type(state_t), intent(inout) :: st
       integer, intent(in) :: parent
       integer, intent(in) :: node
-      st%n_frag_ids = st%n_frag_ids + 1
-      st%frag_id(node) = st%n_frag_ids
-      st%frag_parent(node) = parent
-      st%frag_birth(node) = st%step
+      st%gen%n_frag_ids = st%gen%n_frag_ids + 1
+      st%gen%frag_id(node) = st%gen%n_frag_ids
+      st%gen%frag_parent(node) = parent
+      st%gen%frag_birth(node) = st%step
    end subroutine new_fragment_id
 
    !> Test every joined interior node at t^{n+1} = st%step dt and break those in tension
@@ -122,10 +122,10 @@ contains
       integer :: i, m, nb, j, k, r_top, r_bot
       logical :: anchored_up, anchored_dn
 
-      if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%base_contact)) return
+      if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%ends%base_contact)) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
       eps = eps_rel * st%s_scale
-      if (mesh%bottom == end_base .and. st%base_contact) call lift_off(mesh, st, g, eps, events, &
+      if (mesh%bottom == end_base .and. st%ends%base_contact) call lift_off(mesh, st, g, eps, events, &
                                                                        rules, i_top, i_bot)
       if (st%n_breakable == 0) return
       if (mesh%full_mass) then
@@ -151,7 +151,7 @@ contains
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
       if (rules == events_admissible) then
          call break_admissible(mesh, st, g, brk, i_top, i_bot, eps, events)
-         st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
+         st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
                                                                   r_top, r_bot)
          return
       end if
@@ -184,12 +184,12 @@ contains
             shift_dn = 0.0_wp
          end if
          call shift_span(mesh, st, g, j, i, shift_up, de)
-         st%e_fracture = st%e_fracture - de
+         st%ledger%e_fracture = st%ledger%e_fracture - de
          call shift_span(mesh, st, g, i, k, shift_dn, de)
-         st%e_fracture = st%e_fracture - de
+         st%ledger%e_fracture = st%ledger%e_fracture - de
          call record_break(mesh, st, i, j, s_brk(m), events)
       end do
-      st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
                                                                r_top, r_bot)
    end subroutine fracture_step
 
@@ -277,7 +277,7 @@ contains
       st%strength(i) = 0.0_wp
       st%section(i) = 0.0_wp
       st%n_breakable = st%n_breakable - 1
-      st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, i))
+      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, i))
    end subroutine open_section
 
    !> The genealogy and the event of a break at node i, now split, of the fragment whose top
@@ -291,7 +291,7 @@ contains
       type(event_list_t), intent(inout) :: events
       type(event_t) :: ev
       integer :: parent
-      parent = st%frag_id(j)
+      parent = st%gen%frag_id(j)
       call new_fragment_id(st, parent, j)
       call new_fragment_id(st, parent, i)
       ev%kind = ev_fracture
@@ -305,8 +305,8 @@ contains
       ev%dt_bound = mesh%dt
       ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
       ev%opening = st%ub(i) - st%ua(i)
-      ev%frag_above = st%frag_id(j)
-      ev%frag_below = st%frag_id(i)
+      ev%frag_above = st%gen%frag_id(j)
+      ev%frag_below = st%gen%frag_id(i)
       call push_event(events, ev)
    end subroutine record_break
 
@@ -349,7 +349,7 @@ contains
       e0 = node_energy(mesh, st, g, n)
       st%ua(n) = st%ua(n) - d_a
       st%dua(n) = st%dua(n) - d_a
-      st%i_support = st%i_support - mesh%ma(n) * d_a / mesh%dt
+      st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * d_a / mesh%dt
       st%ub(n) = st%ua(n)
       st%dub(n) = st%dua(n)
       if (rules == events_admissible) then
@@ -357,13 +357,13 @@ contains
       else if (.not. mesh%full_mass) then
          st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
       end if
-      st%base_contact = .false.
+      st%ends%base_contact = .false.
       st%section(n) = 0.0_wp
-      st%e_fracture = st%e_fracture + (e0 - node_energy(mesh, st, g, n))
+      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, n))
       if (rules /= events_admissible .and. .not. anchored(mesh, st, j, n)) then
          ! stage 2
          call shift_span(mesh, st, g, j, n, 0.5_wp * d_a, de)
-         st%e_fracture = st%e_fracture - de
+         st%ledger%e_fracture = st%ledger%e_fracture - de
       end if
       ev%kind = ev_separation
       ev%step = st%step
@@ -373,10 +373,10 @@ contains
       ev%stress = s_base
       ev%dt_bound = mesh%dt
       ev%dx_bound = 0.0_wp
-      ev%opening = st%u_base - st%ua(n)
-      ev%frag_above = st%frag_id(j)
+      ev%opening = st%ends%u_base - st%ua(n)
+      ev%frag_above = st%gen%frag_id(j)
       call push_event(events, ev)
-      st%e_lost_wave = st%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
    end subroutine lift_off
 
    !> The naive full-mass model (the paper's Fig. 12 comparison): a spring whose own stress
@@ -390,22 +390,22 @@ contains
       integer :: k, j, parent
       type(event_t) :: ev
       do k = 1, mesh%n
-         if (st%is_cut(k) .or. st%cell_strength(k) < 0.0_wp) cycle
+         if (st%fm%is_cut(k) .or. st%cell_strength(k) < 0.0_wp) cycle
          if (.not. (st%s(k) < -st%cell_strength(k) - eps)) cycle
          ev%stress = st%s(k)
-         st%e_fracture = st%e_fracture + 0.5_wp * st%s_old(k) * st%s(k) / mesh%stiff(k)
+         st%ledger%e_fracture = st%ledger%e_fracture + 0.5_wp * st%s_old(k) * st%s(k) / mesh%stiff(k)
          st%s(k) = 0.0_wp
-         st%is_cut(k) = .true.
+         st%fm%is_cut(k) = .true.
          st%cell_strength(k) = 0.0_wp
          st%n_breakable = st%n_breakable - 1
-         call append(st%cut, st%n_cut, k)
+         call append(st%fm%cut, st%fm%n_cut, k)
          ! the fragment that held cell k starts at node j (0 or just below a cut cell)
          j = k - 1
          do while (j > 0)
-            if (st%is_cut(j)) exit
+            if (st%fm%is_cut(j)) exit
             j = j - 1
          end do
-         parent = st%frag_id(j)
+         parent = st%gen%frag_id(j)
          call new_fragment_id(st, parent, j)
          call new_fragment_id(st, parent, k)
          ev%kind = ev_fracture
@@ -416,8 +416,8 @@ contains
          ev%dt_bound = mesh%dt
          ev%dx_bound = mesh%dx(k)
          ev%opening = 0.0_wp
-         ev%frag_above = st%frag_id(j)
-         ev%frag_below = st%frag_id(k)
+         ev%frag_above = st%gen%frag_id(j)
+         ev%frag_below = st%gen%frag_id(k)
          call push_event(events, ev)
       end do
    end subroutine cut_springs

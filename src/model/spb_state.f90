@@ -14,6 +14,65 @@ module spb_state
    private
    public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths
 
+   !> The running balances: work done on the bar, energy that events removed or changed,
+   !> and the impulses of the momentum balance (the history's ledger columns).
+   type :: ledger_t
+      real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
+      real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
+      real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
+      real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
+      real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
+      real(wp) :: e_contact = 0.0_wp          !! energy the cut springs' non-linear force
+                                              !! removed from the scheme's invariant [J/m^2]
+      real(wp) :: w_wave = 0.0_wp             !! work of the loads and transmitting ends on the
+                                              !! continuum state (spb_wave) [J/m^2]
+      real(wp) :: e_lost_wave = 0.0_wp        !! wave energy (with its gravity term) that events
+                                              !! removed [J/m^2]
+      real(wp) :: p_shift = 0.0_wp            !! momentum collision shifts gave the shifted
+                                              !! masses, moving them along their path [kg/(m s)]
+      real(wp) :: i_ends = 0.0_wp             !! impulse of the end stresses (loads and
+                                              !! transmitting ends) on the end nodes [kg/(m s)]
+      real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed ends, the
+                                              !! base): the momentum they took [kg/(m s)]
+   end type ledger_t
+
+   !> The ends: what lies beyond a transmitting end, the rigid base, supports being hit.
+   type :: ends_t
+      real(wp) :: s_static_top = 0.0_wp       !! static stress a transmitting top carries [Pa]
+      real(wp) :: s_static_bot = 0.0_wp       !! static stress a transmitting bottom carries [Pa]
+      real(wp) :: v_far_top = 0.0_wp          !! velocity of the bar's continuation beyond a
+                                              !! transmitting top: the end's at t = 0 [m/s]
+      real(wp) :: v_far_bot = 0.0_wp          !! the same beyond a transmitting bottom [m/s]
+      real(wp) :: w_in_top = 0.0_wp           !! interval of the wave that came in through a
+                                              !! transmitting top over the last step [m]
+      real(wp) :: w_in_bot = 0.0_wp           !! the same through a transmitting bottom [m]
+      logical :: base_contact = .false.       !! the bottom face rests on the base
+      real(wp) :: u_base = 0.0_wp             !! displacement of node n at which it touches [m]
+      logical :: landing_top = .false.        !! the next support section stress starts from
+      logical :: landing_bot = .false.        !! a moving bar half (collision with a support):
+      real(wp) :: v_land_top = 0.0_wp         !! (3.1) then uses this velocity for v^n and
+      real(wp) :: v_land_bot = 0.0_wp         !! S^{n-1/2} = 0 [m/s]
+   end type ends_t
+
+   !> The fragments' genealogy, kept per node (memory does not grow with the events).
+   type :: genealogy_t
+      integer, allocatable :: frag_id(:)      !! (0:n) id of the fragment whose top node is i,
+                                              !! 0 at joined interior nodes
+      integer, allocatable :: frag_parent(:)  !! (0:n) parent id of the fragment whose top node
+                                              !! is i (0: none)
+      integer, allocatable :: frag_birth(:)   !! (0:n) step at which that fragment was born
+      integer :: n_frag_ids = 0               !! fragment ids issued
+   end type genealogy_t
+
+   !> The full-mass (naive) model: springs break instead of nodes; a cut spring carries
+   !> compression only.
+   type :: full_mass_t
+      integer, allocatable :: cut(:)          !! indices of cut cells, first n_cut used
+      logical, allocatable :: is_cut(:)       !! (1:n)
+      integer :: n_cut = 0                    !! cut cells
+      real(wp) :: strain_cut = 0.0_wp         !! strain energy measure of cut cells [J/m^2]
+   end type full_mass_t
+
    type :: state_t
       integer :: step = 0                     !! step index n: the state is at t^n = n dt
       real(wp), allocatable :: ua(:), ub(:)   !! displacements of the halves (0:n) [m]
@@ -26,59 +85,20 @@ module spb_state
                                               !! nodes 0 and n the support's [Pa]; 0 when split
       real(wp), allocatable :: strength(:)    !! tensile strength R_i of each node's section
                                               !! (0:n) [Pa]; < 0 unbreakable, 0 once broken
+      real(wp), allocatable :: cell_strength(:) !! (1:n) [Pa]; < 0 unbreakable, 0 once cut
       integer :: n_breakable = 0              !! joined interior nodes with strength >= 0
       integer :: n_split = 0                  !! split interior nodes (not joined)
       integer, allocatable :: split(:)        !! those nodes in ascending order, first n_split
                                               !! used; kept by open_node and close_node
       real(wp) :: s_scale = 0.0_wp            !! largest stress magnitude so far [Pa]
-      integer, allocatable :: frag_id(:)      !! (0:n) id of the fragment whose top node is i,
-                                              !! 0 at joined interior nodes
-      integer, allocatable :: frag_parent(:)  !! (0:n) parent id of the fragment whose top node
-                                              !! is i (0: none)
-      integer, allocatable :: frag_birth(:)   !! (0:n) step at which that fragment was born
-      integer :: n_frag_ids = 0               !! fragment ids issued
-      ! full-mass (naive) model: springs break instead of nodes; a cut spring carries
-      ! compression only
-      real(wp), allocatable :: cell_strength(:) !! (1:n) [Pa]; < 0 unbreakable, 0 once cut
-      integer, allocatable :: cut(:)          !! indices of cut cells, first n_cut used
-      logical, allocatable :: is_cut(:)       !! (1:n)
-      integer :: n_cut = 0
-      real(wp) :: strain_cut = 0.0_wp         !! strain energy measure of cut cells [J/m^2]
-      real(wp) :: e_contact = 0.0_wp          !! energy the cut springs' non-linear force
-                                              !! removed from the scheme's invariant [J/m^2]
-      real(wp) :: s_static_top = 0.0_wp       !! static stress a transmitting top carries [Pa]
-      real(wp) :: s_static_bot = 0.0_wp       !! static stress a transmitting bottom carries [Pa]
-      real(wp) :: v_far_top = 0.0_wp          !! velocity of the bar's continuation beyond a
-                                              !! transmitting top: the end's at t = 0 [m/s]
-      real(wp) :: v_far_bot = 0.0_wp          !! the same beyond a transmitting bottom [m/s]
-      real(wp) :: w_in_top = 0.0_wp           !! interval of the wave that came in through a
-                                              !! transmitting top over the last step [m]
-      real(wp) :: w_in_bot = 0.0_wp           !! the same through a transmitting bottom [m]
-      real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
-      real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
-      real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
-      real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
-      real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
-      real(wp) :: w_wave = 0.0_wp             !! work of the loads and transmitting ends on the
-                                              !! continuum state (spb_wave) [J/m^2]
-      real(wp) :: e_lost_wave = 0.0_wp        !! wave energy (with its gravity term) that events
-                                              !! removed [J/m^2]
-      real(wp) :: p_shift = 0.0_wp            !! momentum collision shifts gave the shifted
-                                              !! masses, moving them along their path [kg/(m s)]
-      real(wp) :: i_ends = 0.0_wp             !! impulse of the end stresses (loads and
-                                              !! transmitting ends) on the end nodes [kg/(m s)]
-      real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed ends, the
-                                              !! base): the momentum they took [kg/(m s)]
       logical, allocatable :: cracked(:)      !! (0:n) the section has been open once (a crack
                                               !! or a dry contact): re-openings are separations
-      logical :: base_contact = .false.       !! the bottom face rests on the base
-      real(wp) :: u_base = 0.0_wp             !! displacement of node n at which it touches [m]
-      logical :: landing_top = .false.        !! the next support section stress starts from
-      logical :: landing_bot = .false.        !! a moving bar half (collision with a support):
-      real(wp) :: v_land_top = 0.0_wp         !! (3.1) then uses this velocity for v^n and
-      real(wp) :: v_land_bot = 0.0_wp         !! S^{n-1/2} = 0 [m/s]
       integer, allocatable :: skip_test(:)    !! nodes joined at t^{n+1} this step (delay rule):
       integer :: n_skip = 0                   !! their section stress starts next step
+      type(ledger_t) :: ledger                !! work, event energies, impulses
+      type(ends_t) :: ends                    !! transmitting ends, base, supports being hit
+      type(genealogy_t) :: gen                !! the fragments' ids and parents
+      type(full_mass_t) :: fm                 !! the full-mass model's cut springs
    end type state_t
 
 contains
@@ -101,24 +121,24 @@ contains
       allocate(st%skip_test(8), source=0)
       st%cracked = .false.
       ! the cells' strengths (a Weibull field is drawn once), then the nodes'
-      allocate(st%cell_strength(n), st%is_cut(n))
+      allocate(st%cell_strength(n), st%fm%is_cut(n))
       st%cell_strength = cell_strengths(prob, mesh)
       call init_strength(mesh, st)
-      allocate(st%cut(16), source=0)
-      st%is_cut = .false.
+      allocate(st%fm%cut(16), source=0)
+      st%fm%is_cut = .false.
       if (mesh%full_mass) then
          ! breaking happens in springs: no node ever splits
          st%n_breakable = count(st%cell_strength >= 0.0_wp)
          st%strength = -1.0_wp
       end if
-      allocate(st%frag_id(0:n), st%frag_parent(0:n), st%frag_birth(0:n))
-      st%frag_parent = 0
-      st%frag_birth = 0
-      st%frag_id = 0
-      st%frag_id(0) = 1
-      st%n_frag_ids = 1
+      allocate(st%gen%frag_id(0:n), st%gen%frag_parent(0:n), st%gen%frag_birth(0:n))
+      st%gen%frag_parent = 0
+      st%gen%frag_birth = 0
+      st%gen%frag_id = 0
+      st%gen%frag_id(0) = 1
+      st%gen%n_frag_ids = 1
       if (prob%static_start) then
-         call static_state(mesh, g, u, s, st%s_static_top, st%s_static_bot)
+         call static_state(mesh, g, u, s, st%ends%s_static_top, st%ends%s_static_bot)
       else
          u = 0.0_wp
          s = 0.0_wp
@@ -127,11 +147,11 @@ contains
       ! a transmitting end continues the bar without end: beyond it the bar keeps the motion
       ! its end had at t = 0 (as it keeps the static stress), so a bar in uniform motion stays
       ! in it and no end depends on the frame of reference
-      if (mesh%top == end_transmit) st%v_far_top = v(0)
-      if (mesh%bottom == end_transmit) st%v_far_bot = v(n)
+      if (mesh%top == end_transmit) st%ends%v_far_top = v(0)
+      if (mesh%bottom == end_transmit) st%ends%v_far_bot = v(n)
       ! what comes in through them before any load: the continuation's static stress and motion
-      st%w_in_top = 0.5_wp * (st%s_static_top / mesh%z(1) + st%v_far_top) * dt
-      st%w_in_bot = 0.5_wp * (-st%s_static_bot / mesh%z(n) + st%v_far_bot) * dt
+      st%ends%w_in_top = 0.5_wp * (st%ends%s_static_top / mesh%z(1) + st%ends%v_far_top) * dt
+      st%ends%w_in_bot = 0.5_wp * (-st%ends%s_static_bot / mesh%z(n) + st%ends%v_far_bot) * dt
       st%ua = u
       st%ub = u
       st%dua = v * dt
@@ -171,9 +191,9 @@ contains
       if (mesh%bottom == end_base) then
          ! touching and at rest: in contact; moving onto it: the first step lands by the
          ! timing rule (and logs the event); moving away from it: not in contact
-         st%u_base = st%ua(n) + prob%base_gap
-         st%base_contact = prob%base_gap <= 0.0_wp .and. .not. (abs(st%dua(n)) > 0.0_wp)
-         if (st%base_contact) st%dua(n) = 0.0_wp
+         st%ends%u_base = st%ua(n) + prob%base_gap
+         st%ends%base_contact = prob%base_gap <= 0.0_wp .and. .not. (abs(st%dua(n)) > 0.0_wp)
+         if (st%ends%base_contact) st%dua(n) = 0.0_wp
       end if
       st%s = 0.0_wp
       st%s(1:n) = s
@@ -252,17 +272,17 @@ contains
          end do
          ! a bar moving against a fixed end at t = 0 collides with it at t^0
          if (mesh%top == end_fixed) then
-            st%landing_top = .true.
-            st%v_land_top = prob%velocity(1)
+            st%ends%landing_top = .true.
+            st%ends%v_land_top = prob%velocity(1)
          end if
          if (mesh%bottom == end_fixed) then
-            st%landing_bot = .true.
-            st%v_land_bot = prob%velocity(mesh%nseg)
+            st%ends%landing_bot = .true.
+            st%ends%v_land_bot = prob%velocity(mesh%nseg)
          end if
          if (mesh%top == end_transmit) st%section(0) = s(1)
          if (mesh%bottom == end_transmit) st%section(n) = s(n)
       end if
-      if (mesh%bottom == end_base .and. .not. st%base_contact) st%section(n) = 0.0_wp
+      if (mesh%bottom == end_base .and. .not. st%ends%base_contact) st%section(n) = 0.0_wp
       do i = 1, n - 1
          if (.not. st%joined(i)) st%section(i) = 0.0_wp
       end do
@@ -314,7 +334,7 @@ contains
    !> Number of fragments: pieces between split interior nodes.
    pure integer function fragment_count(st) result(nf)
       type(state_t), intent(in) :: st
-      nf = 1 + st%n_cut + st%n_split
+      nf = 1 + st%fm%n_cut + st%n_split
    end function fragment_count
 
    !> Split interior node i (it must be joined): its halves move apart from now on. O(n_split).

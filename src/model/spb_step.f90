@@ -51,7 +51,7 @@ contains
       case (end_transmit)
          ! u = F(t - x/a) + G(t + x/a) at Courant 1: the virtual cell above node 0 has
          ! s_0 = -(E/dx) du_0^n (outgoing G) + (E/dx) [F(n+1) - F(n-1)] = 2 P^n (incident F)
-         s_top = st%s_static_top - mesh%stiff(1) * (st%dub(0) - st%v_far_top * mesh%dt)
+         s_top = st%ends%s_static_top - mesh%stiff(1) * (st%dub(0) - st%ends%v_far_top * mesh%dt)
          if (load%face == face_top) s_top = s_top + 2.0_wp * p
       case default
          ! the other ends take no part here
@@ -60,7 +60,7 @@ contains
       case (end_free)
          if (load%face /= face_top) s_bot = p
       case (end_transmit)
-         s_bot = st%s_static_bot + mesh%stiff(mesh%n) * (st%dua(mesh%n) - st%v_far_bot * mesh%dt)
+         s_bot = st%ends%s_static_bot + mesh%stiff(mesh%n) * (st%dua(mesh%n) - st%ends%v_far_bot * mesh%dt)
          if (load%face /= face_top) s_bot = s_bot + 2.0_wp * p
       case default
          ! the other ends take no part here
@@ -127,10 +127,10 @@ contains
       st%s(n + 1) = r%s_bot
       r%du_top_old = st%dub(0)
       r%du_bot_old = st%dua(n)
-      if (st%n_cut > 0) then
-         allocate(du_cut_old(st%n_cut))
-         do c = 1, st%n_cut
-            k = st%cut(c)
+      if (st%fm%n_cut > 0) then
+         allocate(du_cut_old(st%fm%n_cut))
+         do c = 1, st%fm%n_cut
+            k = st%fm%cut(c)
             du_cut_old(c) = st%dua(k) - st%dub(k - 1)
          end do
       end if
@@ -185,17 +185,17 @@ contains
       ! full-mass model: a cut spring pushes only in compression, s = max(0, E/dx (u_{k-1} -
       ! u_k)); its force is not part of the linear invariant, so its work W (the F^n (u^{n+1}
       ! - u^{n-1})/2 product) and its strain measure go to e_contact, keeping the ledger exact
-      if (st%n_cut > 0) then
+      if (st%fm%n_cut > 0) then
          w_cut = 0.0_wp
          strain_cut = 0.0_wp
-         do c = 1, st%n_cut
-            k = st%cut(c)
+         do c = 1, st%fm%n_cut
+            k = st%fm%cut(c)
             w_cut = w_cut + st%s_old(k) * 0.5_wp * ((st%dua(k) - st%dub(k - 1)) + du_cut_old(c))
             st%s(k) = max(0.0_wp, mesh%stiff(k) * (st%ub(k - 1) - st%ua(k)))
             strain_cut = strain_cut + 0.5_wp * st%s_old(k) * st%s(k) / mesh%stiff(k)
          end do
-         st%e_contact = st%e_contact - w_cut - (strain_cut - st%strain_cut)
-         st%strain_cut = strain_cut
+         st%ledger%e_contact = st%ledger%e_contact - w_cut - (strain_cut - st%fm%strain_cut)
+         st%fm%strain_cut = strain_cut
       end if
       st%step = st%step + 1
    end subroutine advance
@@ -206,8 +206,8 @@ contains
    pure logical function joined_only(mesh, st)
       type(mesh_t), intent(in) :: mesh
       type(state_t), intent(in) :: st
-      joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%n_cut == 0 .and. &
-                    mesh%bottom /= end_base .and. .not. (st%landing_top .or. st%landing_bot)
+      joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%fm%n_cut == 0 .and. &
+                    mesh%bottom /= end_base .and. .not. (st%ends%landing_top .or. st%ends%landing_bot)
    end function joined_only
 
    !> nsteps steps of a bar that is joined_only, bit-identical to as many calls of advance,
@@ -351,7 +351,7 @@ contains
       type(end_step_t), intent(inout) :: r
       integer :: n
       n = mesh%n
-      r%held_bot = mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%base_contact)
+      r%held_bot = mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%ends%base_contact)
       if (r%held_bot) then
          r%p_bot = mesh%ma(n) * st%dua(n) + mesh%mb(n) * st%dub(n)
          st%dua(n) = 0.0_wp
@@ -373,22 +373,22 @@ contains
       dt = mesh%dt
       ! momentum balance: the end stresses act on the end nodes, supports take what reaches
       ! them
-      st%i_ends = st%i_ends + (r%s_top - r%s_bot) * dt
-      if (r%held_top) st%i_support = st%i_support - r%p_top / dt
-      if (r%held_bot) st%i_support = st%i_support - r%p_bot / dt
+      st%ledger%i_ends = st%ledger%i_ends + (r%s_top - r%s_bot) * dt
+      if (r%held_top) st%ledger%i_support = st%ledger%i_support - r%p_top / dt
+      if (r%held_bot) st%ledger%i_support = st%ledger%i_support - r%p_bot / dt
       ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
       ! the discrete energy ledger exact
       associate (w_top => r%s_top * 0.5_wp * (r%du_top + r%du_top_old), &
                  w_bot => -r%s_bot * 0.5_wp * (r%du_bot + r%du_bot_old))
          if (mesh%top == end_transmit) then
-            st%w_transmit = st%w_transmit + w_top
+            st%ledger%w_transmit = st%ledger%w_transmit + w_top
          else
-            st%w_load = st%w_load + w_top
+            st%ledger%w_load = st%ledger%w_load + w_top
          end if
          if (mesh%bottom == end_transmit) then
-            st%w_transmit = st%w_transmit + w_bot
+            st%ledger%w_transmit = st%ledger%w_transmit + w_bot
          else
-            st%w_load = st%w_load + w_bot
+            st%ledger%w_load = st%ledger%w_load + w_bot
          end if
       end associate
 
@@ -397,21 +397,21 @@ contains
       ! incident load) brings minus what the outgoing one takes, Z du (2 w_in - du) / dt
       select case (mesh%top)
       case (end_free)
-         st%w_wave = st%w_wave + r%q_top * r%du_top / dt
+         st%ledger%w_wave = st%ledger%w_wave + r%q_top * r%du_top / dt
       case (end_transmit)
-         st%w_in_top = (0.5_wp * st%s_static_top * dt + r%q_top) / mesh%z(1) + &
-                       0.5_wp * st%v_far_top * dt
-         st%w_wave = st%w_wave + mesh%z(1) * r%du_top * (2.0_wp * st%w_in_top - r%du_top) / dt
+         st%ends%w_in_top = (0.5_wp * st%ends%s_static_top * dt + r%q_top) / mesh%z(1) + &
+                       0.5_wp * st%ends%v_far_top * dt
+         st%ledger%w_wave = st%ledger%w_wave + mesh%z(1) * r%du_top * (2.0_wp * st%ends%w_in_top - r%du_top) / dt
       case default
          ! the other ends take no part here
       end select
       select case (mesh%bottom)
       case (end_free)
-         st%w_wave = st%w_wave - r%q_bot * r%du_bot / dt
+         st%ledger%w_wave = st%ledger%w_wave - r%q_bot * r%du_bot / dt
       case (end_transmit)
-         st%w_in_bot = -(0.5_wp * st%s_static_bot * dt + r%q_bot) / mesh%z(n) + &
-                       0.5_wp * st%v_far_bot * dt
-         st%w_wave = st%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * st%w_in_bot - r%du_bot) / dt
+         st%ends%w_in_bot = -(0.5_wp * st%ends%s_static_bot * dt + r%q_bot) / mesh%z(n) + &
+                       0.5_wp * st%ends%v_far_bot * dt
+         st%ledger%w_wave = st%ledger%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * st%ends%w_in_bot - r%du_bot) / dt
       case default
          ! the other ends take no part here
       end select
@@ -420,10 +420,10 @@ contains
       ! a support just hit by a moving half starts from that half's velocity
       du_top_old = r%du_top_old
       du_bot_old = r%du_bot_old
-      if (st%landing_top) du_top_old = st%v_land_top * dt
-      if (st%landing_bot) du_bot_old = st%v_land_bot * dt
-      st%landing_top = .false.
-      st%landing_bot = .false.
+      if (st%ends%landing_top) du_top_old = st%ends%v_land_top * dt
+      if (st%ends%landing_bot) du_bot_old = st%ends%v_land_bot * dt
+      st%ends%landing_top = .false.
+      st%ends%landing_bot = .false.
       select case (mesh%top)
       case (end_fixed)
          st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
@@ -444,10 +444,10 @@ contains
       case (end_base)
          ! resting on the rigid base: the base side does not move; v^n is the bottom half's
          ! velocity before the step (0 while it rests)
-         if (st%base_contact .and. mesh%full_mass) then
+         if (st%ends%base_contact .and. mesh%full_mass) then
             ! full-mass model: no section stresses; the base takes the force on the node
             st%section(n) = r%s_n + mesh%ma(n) * g
-         else if (st%base_contact) then
+         else if (st%ends%base_contact) then
             st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, 0.0_wp, &
                                           mesh%z(n), mesh%dm(n), g)
          else

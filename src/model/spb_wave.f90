@@ -131,7 +131,7 @@ contains
       jordan = abs(r)
       hd = 0.0_wp
       if (eq_top .and. bot > top) hd = r + load_top - st%s(top + 1) * dt
-      if (tr_top .and. bot > top) hd = mesh%z(1) * st%w_in_top - st%s(top + 1) * dt
+      if (tr_top .and. bot > top) hd = mesh%z(1) * st%ends%w_in_top - st%s(top + 1) * dt
       a = 0.0_wp
       b = 0.0_wp
       c = 0.0_wp
@@ -156,7 +156,7 @@ contains
       if (bot == top) return
       ! hd now holds hd_bot; d = h_bot from the bottom face's equation minus hd_bot
       d = r - load_bot - hd
-      if (tr_bot) d = mesh%z(bot) * st%w_in_bot - hd
+      if (tr_bot) d = mesh%z(bot) * st%ends%w_in_bot - hd
       if (eq_top .and. eq_bot) then
          jordan_abs = abs(d)
          beta = 0.5_wp * d
@@ -242,16 +242,16 @@ contains
       h_dn(top + 1) = 0.0_wp
       if (eq_top .and. at_n) h_dn(top + 1) = r(top) - load_top
       if (eq_top .and. .not. at_n) h_dn(top + 1) = r(top) + load_top - sdt(top + 1)
-      if (tr_top .and. at_n) h_dn(top + 1) = r(top) - mesh%z(1) * st%w_in_top
-      if (tr_top .and. .not. at_n) h_dn(top + 1) = mesh%z(1) * st%w_in_top - sdt(top + 1)
+      if (tr_top .and. at_n) h_dn(top + 1) = r(top) - mesh%z(1) * st%ends%w_in_top
+      if (tr_top .and. .not. at_n) h_dn(top + 1) = mesh%z(1) * st%ends%w_in_top - sdt(top + 1)
       do k = top + 1, bot - 1
          h_dn(k + 1) = r(k) - sdt(k + o) - h_dn(k)
       end do
       if (eq_bot) then
          if (tr_bot .and. at_n) then
-            h_up(bot) = r(bot) - mesh%z(bot) * st%w_in_bot - sdt(bot)
+            h_up(bot) = r(bot) - mesh%z(bot) * st%ends%w_in_bot - sdt(bot)
          else if (tr_bot) then
-            h_up(bot) = mesh%z(bot) * st%w_in_bot
+            h_up(bot) = mesh%z(bot) * st%ends%w_in_bot
          else if (at_n) then
             h_up(bot) = r(bot) - sdt(bot) + load_bot
          else
@@ -312,7 +312,7 @@ contains
       ! above node i (found from the affine one-step map; exact, layered included)
       if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
           mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-          (mesh%bottom == end_base .and. st%base_contact))) jprime = held_weights(mesh, st, top, bot)
+          (mesh%bottom == end_base .and. st%ends%base_contact))) jprime = held_weights(mesh, st, top, bot)
       if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
          jprime = jprime - 2.0_wp * load_top
       end if
@@ -381,7 +381,7 @@ contains
       if (bot < mesh%n) then
          eq_bot = .true.
       else
-         eq_bot = mesh%bottom == end_free .or. (mesh%bottom == end_base .and. .not. st%base_contact)
+         eq_bot = mesh%bottom == end_free .or. (mesh%bottom == end_base .and. .not. st%ends%base_contact)
          if (mesh%bottom == end_free) load_bot = 0.5_wp * i_bot
       end if
       tr_top = top == 0 .and. mesh%top == end_transmit .and. .not. eq_bot

@@ -91,8 +91,8 @@ contains
       end if
       call face_load_integrals(sim%mesh, sim%load, sim%st%step, q_top, q_bot)
       wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
-      w_wave = sim%st%w_wave
-      e_lost_w = sim%st%e_lost_wave
+      w_wave = sim%st%ledger%w_wave
+      e_lost_w = sim%st%ledger%e_lost_wave
    end subroutine measure
 
    !> The largest overlap of two faces at a split node, or of the bottom face and the base,
@@ -105,7 +105,7 @@ contains
          i = sim%st%split(c)
          ov = max(ov, (sim%st%ua(i) - sim%st%ub(i)) / min(sim%mesh%dx(i), sim%mesh%dx(i + 1)))
       end do
-      if (sim%mesh%bottom == end_base) ov = max(ov, (sim%st%ua(sim%mesh%n) - sim%st%u_base) / &
+      if (sim%mesh%bottom == end_base) ov = max(ov, (sim%st%ua(sim%mesh%n) - sim%st%ends%u_base) / &
                                                 sim%mesh%dx(sim%mesh%n))
       ov = max(ov, -1.0_wp)
    end function largest_overlap
@@ -435,10 +435,10 @@ contains
       if (run%to_files) call write_history_row(run%out, [real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%section(sim%mesh%n), sim%st%section(0), real(fragment_count(sim%st), wp), &
          e%e_kin, e%e_strain, e%e_pot, e%w_ext, e%e_lost, e%momentum, &
-         real(sim%st%step, wp), s_top, s_bot, sim%st%w_load, sim%st%w_transmit, &
-         e%ledger, sim%st%e_fracture, sim%st%e_join, sim%st%e_shift, sim%st%e_contact, &
+         real(sim%st%step, wp), s_top, s_bot, sim%st%ledger%w_load, sim%st%ledger%w_transmit, &
+         e%ledger, sim%st%ledger%e_fracture, sim%st%ledger%e_join, sim%st%ledger%e_shift, sim%st%ledger%e_contact, &
          g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%step, wp) * sim%mesh%dt, &
-         sim%st%i_ends, sim%st%i_support, sim%st%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
+         sim%st%ledger%i_ends, sim%st%ledger%i_support, sim%st%ledger%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
          w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim)])
       if (sim%st%step == 0) summary%ledger0 = e%ledger
       call guard(sim, summary, e, wv, w_w, err)

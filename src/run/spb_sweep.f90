@@ -159,7 +159,7 @@ contains
       row(col_steps) = real(summary%steps, wp)
       if (summary%n_kind(ev_fracture) > 0) row(col_fracture_stress) = &
          summary%fracture_stress_sum / real(summary%n_kind(ev_fracture), wp)
-      row(col_e_fracture) = sim%st%e_fracture
+      row(col_e_fracture) = sim%st%ledger%e_fracture
    end subroutine run_case
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
