@@ -1,13 +1,14 @@
-!> The compact update (2.3) of the half-node model (METHOD.md §3) for one step.
+!> The compact update (2.3) of the half-node model (METHOD.md §3) for one step, and the
+!> section stresses (3.1)-(3.2) (METHOD.md §4) it evaluates at every breakable node.
 module spb_step
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base
    use spb_load, only: load_t, load_none, face_top, step_load, load_integral
    use spb_state, only: state_t
-   use spb_section, only: section_stress_a, section_stress_b
    implicit none
    private
-   public :: advance, advance_joined, joined_only, end_stresses, face_load_integrals
+   public :: section_stress_a, section_stress_b, advance, advance_joined, joined_only, &
+      end_stresses, face_load_integrals
 
    !> What one step did at the two end nodes: what the end stresses' impulse and work, the
    !> supports' impulse and the support section stresses of that step are booked from.
@@ -147,12 +148,13 @@ contains
       end if
       if (st%n_breakable > 0) then
          ! (3.1)-(3.2): the section stress S^{n+1/2} of a joined interior node, needed where
-         ! a node can break (an unbreakable node's is never read)
+         ! a node can break (an unbreakable node's is never read); d is the node's increment
+         ! of this step as joined_increments takes it
          do i = 1, n - 1
             d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
                 * mesh%inv_m(i) * dt2
-            st%section(i) = st%s(i) + mesh%z(i) * (st%dua(i) / dt + (st%s(i) - st%section(i) + &
-                        0.5_wp * mesh%dm(i) * g) / mesh%z(i) - d / dt) + 0.5_wp * mesh%dm(i) * g
+            st%section(i) = section_stress_a(st%s(i), st%section(i), st%dua(i) / dt, d / dt, &
+                                             mesh%z(i), mesh%dm(i), g)
          end do
       end if
       call joined_increments(mesh, g, st%s, st%dua, 0, n)
@@ -457,4 +459,34 @@ contains
          ! the other ends take no part here
       end select
    end subroutine book_ends
+
+   !> (3.1)1 and (3.2)1: from the cell above (stress s_above, impedance z_above, mass dm_above).
+   pure elemental real(wp) function section_stress_a(s_above, s_prev, v_n, v_np1, z_above, &
+                                                     dm_above, g) result(s_new)
+      real(wp), intent(in) :: s_above    !! stress of the cell above at t^n [Pa]
+      real(wp), intent(in) :: s_prev     !! section stress S^{n-1/2} [Pa]
+      real(wp), intent(in) :: v_n        !! node velocity v^n (mean over the step ending at t^n) [m/s]
+      real(wp), intent(in) :: v_np1      !! node velocity v^{n+1} [m/s]
+      real(wp), intent(in) :: z_above    !! impedance of the cell above [kg/(m^2 s)]
+      real(wp), intent(in) :: dm_above   !! mass of the cell above [kg/m^2]
+      real(wp), intent(in) :: g          !! gravity along +x [m/s^2]
+      real(wp) :: v_a
+      v_a = v_n + (s_above - s_prev + 0.5_wp * dm_above * g) / z_above        ! (3.1)1
+      s_new = s_above + z_above * (v_a - v_np1) + 0.5_wp * dm_above * g       ! (3.2)1
+   end function section_stress_a
+
+   !> (3.1)2 and (3.2)2: from the cell below.
+   pure elemental real(wp) function section_stress_b(s_below, s_prev, v_n, v_np1, z_below, &
+                                                     dm_below, g) result(s_new)
+      real(wp), intent(in) :: s_below    !! stress of the cell below at t^n [Pa]
+      real(wp), intent(in) :: s_prev     !! section stress S^{n-1/2} [Pa]
+      real(wp), intent(in) :: v_n        !! node velocity v^n [m/s]
+      real(wp), intent(in) :: v_np1      !! node velocity v^{n+1} [m/s]
+      real(wp), intent(in) :: z_below    !! impedance of the cell below [kg/(m^2 s)]
+      real(wp), intent(in) :: dm_below   !! mass of the cell below [kg/m^2]
+      real(wp), intent(in) :: g          !! gravity along +x [m/s^2]
+      real(wp) :: v_b
+      v_b = v_n + (s_prev - s_below + 0.5_wp * dm_below * g) / z_below        ! (3.1)2
+      s_new = s_below - z_below * (v_b - v_np1) - 0.5_wp * dm_below * g       ! (3.2)2
+   end function section_stress_b
 end module spb_step
