@@ -54,6 +54,8 @@ def build_rev(rev, work):
                     "-DSPALLBAR_BUILD_TESTING=OFF"], check=True, capture_output=True)
     subprocess.run(["cmake", "--build", build, "-j", str(os.cpu_count() or 2)], check=True,
                    capture_output=True)
+    # the program is built: the worktree goes (the repository keeps no trace of it)
+    subprocess.run(["git", "-C", ROOT, "worktree", "remove", "--force", src], capture_output=True)
     return os.path.join(build, "bin", "spallbar")
 
 
