@@ -50,7 +50,7 @@ contains
    !> Refuse (exit 2) a checkpoint path that cannot be written, before the run starts.
    subroutine check_checkpoint_path(path, err)
       character(len=*), intent(in) :: path
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer :: u, ios
       character(len=256) :: msg
       open(newunit=u, file=path // '.part', status='replace', action='write', iostat=ios, &
@@ -66,13 +66,13 @@ contains
    !> Write the checkpoint of a run at its state's step.
    subroutine write_checkpoint(path, rec, mesh, load, st, summary, marks, err)
       character(len=*), intent(in) :: path
-      type(deck_record_t), intent(in) :: rec
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
       type(state_t), intent(inout) :: st       !! only read (state_fields also reads back)
-      type(run_summary_t), intent(in) :: summary
-      type(output_marks_t), intent(in) :: marks
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(run_summary_t), intent(in) :: summary   !! the run's summary
+      type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       type(run_summary_t) :: run_copy
       logical :: ok
@@ -128,9 +128,9 @@ contains
    !> arrays as datasets under /state with their lower bound and size as attributes of
    !> /state, scalars as attributes, logicals as 0/1 (float64 bit for bit).
    subroutine state_fields(h5, st, writing)
-      type(h5file_t), intent(inout) :: h5
-      type(state_t), intent(inout) :: st
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      type(state_t), intent(inout) :: st   !! the state
+      logical, intent(in) :: writing       !! write (else read back)
       call field(h5, writing, '/state', 'n', st%step)   ! names as in 0.1 checkpoints
       call field(h5, writing, '/state', 'n_breakable', st%n_breakable)
       call field(h5, writing, '/state', 'n_split', st%n_split)
@@ -184,9 +184,9 @@ contains
 
    !> The one list of what the checkpoint keeps of the run summary (attributes of /run).
    subroutine summary_fields(h5, summary, writing)
-      type(h5file_t), intent(inout) :: h5
-      type(run_summary_t), intent(inout) :: summary
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      logical, intent(in) :: writing       !! write (else read back)
       integer :: k
       call field(h5, writing, '/run', 'steps', summary%steps)
       call field(h5, writing, '/run', 'events', summary%events)
@@ -213,8 +213,8 @@ contains
 
    !> A scalar field: an attribute of group, written or read back.
    subroutine field_int(h5, writing, group, name, v)
-      type(h5file_t), intent(inout) :: h5
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: group, name
       integer, intent(inout) :: v
       if (writing) then
@@ -225,8 +225,8 @@ contains
    end subroutine field_int
 
    subroutine field_real(h5, writing, group, name, v)
-      type(h5file_t), intent(inout) :: h5
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: group, name
       real(wp), intent(inout) :: v
       if (writing) then
@@ -238,8 +238,8 @@ contains
 
    !> A logical as the integer 0 or 1.
    subroutine field_logical(h5, writing, group, name, v)
-      type(h5file_t), intent(inout) :: h5
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: group, name
       logical, intent(inout) :: v
       integer :: flag
@@ -253,8 +253,8 @@ contains
    !> inconsistent one is an error in h5%error). Integers come back through float64 (HDF5
    !> converts; exact below 2^53), logicals as 0/1.
    subroutine array_reals(h5, writing, name, a)
-      type(h5file_t), intent(inout) :: h5
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: name
       real(wp), allocatable, intent(inout) :: a(:)
       real(wp), allocatable :: v(:)
@@ -283,8 +283,8 @@ contains
    end subroutine array_reals
 
    subroutine array_ints(h5, writing, name, a)
-      type(h5file_t), intent(inout) :: h5
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: name
       integer, allocatable, intent(inout) :: a(:)
       integer :: lb, n
@@ -304,8 +304,8 @@ contains
    end subroutine array_ints
 
    subroutine array_logicals(h5, writing, name, a)
-      type(h5file_t), intent(inout) :: h5
-      logical, intent(in) :: writing
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: name
       logical, allocatable, intent(inout) :: a(:)
       integer, allocatable :: v(:)
@@ -324,11 +324,11 @@ contains
    !> restart can be identical to an uninterrupted run; every refusal is exit status 2.
    subroutine read_checkpoint(path, rec, mesh, load, ck, err)
       character(len=*), intent(in) :: path
-      type(deck_record_t), intent(in) :: rec
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
-      type(checkpoint_t), intent(out) :: ck
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      type(checkpoint_t), intent(out) :: ck   !! the checkpoint read
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       character(len=:), allocatable :: text, why
       real(wp), allocatable :: times(:)
@@ -420,10 +420,10 @@ contains
    !> Why the checkpoint's identity does not fit this run ('' when it does): the deck, the
    !> mesh, a load table.
    function identity_problem(h5, rec, mesh, load) result(why)
-      type(h5file_t), intent(inout) :: h5
-      type(deck_record_t), intent(in) :: rec
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
       character(len=:), allocatable :: why
       character(len=:), allocatable :: text, here
       real(wp) :: x
@@ -466,8 +466,8 @@ contains
 
    !> The marks of the outputs; why they cannot be used ('' when they can).
    function read_marks(h5, marks) result(why)
-      type(h5file_t), intent(inout) :: h5
-      type(output_marks_t), intent(inout) :: marks
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
       character(len=:), allocatable :: why
       character(len=:), allocatable :: text
       real(wp) :: x
@@ -497,7 +497,7 @@ contains
    !> The deck values a restart must not change: 'group name = value' lines of the echo,
    !> without title, t_end, checkpoint, checkpoint_every and profile_times (checked apart).
    function deck_identity(rec) result(text)
-      type(deck_record_t), intent(in) :: rec
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
       character(len=:), allocatable :: text
       integer :: k
       text = ''

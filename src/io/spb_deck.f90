@@ -150,7 +150,7 @@ contains
    !> The problem a validated deck describes: the keywords become codes, the "not given"
    !> markers defaults or logicals (a load table's rows are read by spb_load_table).
    function problem_from_deck(deck) result(prob)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       type(problem_t) :: prob
       integer :: n, j
       n = deck%seg%n
@@ -237,8 +237,8 @@ contains
    !> Read and validate a deck file.
    subroutine read_deck(path, deck, err, sweep)
       character(len=*), intent(in) :: path       !! deck file
-      type(deck_t), intent(out) :: deck
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(deck_t), intent(out) :: deck    !! the deck
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       logical, intent(in), optional :: sweep     !! a sweep deck (--sweep): &sweep required
       integer :: u, ios
       character(len=256) :: msg
@@ -287,7 +287,7 @@ contains
    !> A keyword value longer than any keyword is an error here (the deck keeps name_len
    !> characters, and a cut value could look like a valid one).
    subroutine check_word(err, group, var, value)
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group, var, value
       if (allocated(err)) return
       if (len_trim(value) > name_len) call make_error(err, '&' // group // ': ' // var // &
@@ -297,7 +297,7 @@ contains
 
    !> The error for the one assignment (record, '&group var = value /') that does not read.
    subroutine blame(err, group, var, record, msg)
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group, var, record, msg
       character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
       character(len=:), allocatable :: value, name
@@ -332,10 +332,10 @@ contains
 
    !> Turn a namelist read status into an error naming the group (and the variable).
    subroutine read_status(deck, group, ios, msg, err)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: group, msg
       integer, intent(in) :: ios
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
       character(len=:), allocatable :: name
       integer :: k
@@ -368,8 +368,8 @@ contains
 
    subroutine read_run(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: title
       real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
       character(len=path_len) :: timing, shift, model, events
@@ -448,8 +448,8 @@ contains
 
    subroutine read_mesh(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: cells, ref_segment, ios
       real(wp) :: dt
       character(len=path_len) :: fit
@@ -487,8 +487,8 @@ contains
 
    subroutine read_segments(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: n, ios, j
       real(wp), dimension(max_segments) :: length, young, density, strength, velocity, gap
       character(len=path_len) :: interface(max_segments)
@@ -538,8 +538,8 @@ contains
 
    subroutine read_ends(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: top, bottom
       real(wp) :: base_gap
       integer :: ios
@@ -576,8 +576,8 @@ contains
 
    subroutine read_load(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: kind, face
       real(wp) :: p0, t_k, exponent, t_cut
       character(len=path_len) :: table
@@ -628,8 +628,8 @@ contains
 
    subroutine read_initial(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: state
       integer :: ios
       character(len=256) :: msg
@@ -663,8 +663,8 @@ contains
 
    subroutine read_strength_field(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: kind
       real(wp) :: modulus, scale
       integer :: seed, ios
@@ -702,8 +702,8 @@ contains
 
    subroutine read_sweep(u, deck, err)
       integer, intent(in) :: u
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: vary, distribution
       real(wp) :: values(max_sweep_values)
       integer :: realizations, seed, bins, ios, k, ios2
@@ -749,8 +749,8 @@ contains
 
    !> &sweep: what to vary and how often; every case's deck must itself be valid.
    subroutine validate_sweep(deck, err)
-      type(deck_t), intent(in) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(deck_t) :: trial
       integer :: k
       associate (sw => deck%sweep)
@@ -821,10 +821,10 @@ contains
 
    !> Set the deck variable a sweep varies: name as in the deck, 'p0' or 'velocity(2)'.
    subroutine set_deck_value(deck, name, value, err)
-      type(deck_t), intent(inout) :: deck
+      type(deck_t), intent(inout) :: deck   !! the deck
       character(len=*), intent(in) :: name
       real(wp), intent(in) :: value
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: base
       integer :: j, p, ios
       base = trim(name)
@@ -904,8 +904,8 @@ contains
 
    !> Check every value; the first violation becomes the error. Fills derived counts.
    subroutine validate_deck(deck, err)
-      type(deck_t), intent(inout) :: deck
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       call validate_run(deck%run, err)
       if (.not. allocated(err)) call validate_segments(deck%seg, err)
       if (.not. allocated(err)) call validate_mesh(deck%mesh, deck%seg%n, err)
@@ -917,7 +917,7 @@ contains
 
    !> Error unless x is a finite number; name is the variable as the user writes it.
    subroutine need_finite(err, group, name, x)
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group, name
       real(wp), intent(in) :: x
       if (allocated(err)) return
@@ -927,7 +927,7 @@ contains
 
    !> Error unless x was given, is finite and > 0 (or >= 0 when zero_ok).
    subroutine need_positive(err, group, name, x, zero_ok)
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group, name
       real(wp), intent(in) :: x
       logical, intent(in), optional :: zero_ok
@@ -952,7 +952,7 @@ contains
 
    !> Error unless value is one of choices.
    subroutine need_choice(err, group, name, value, choices)
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group, name, value
       character(len=*), intent(in) :: choices(:)
       character(len=:), allocatable :: list
@@ -970,8 +970,8 @@ contains
 
 
    subroutine validate_run(run, err)
-      type(run_cfg), intent(inout) :: run
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(run_cfg), intent(inout) :: run   !! the run's context (outputs, schedule, clock)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: k
       call need_positive(err, 'run', 't_end', run%t_end)
       call need_finite(err, 'run', 'gravity', run%gravity)
@@ -1047,9 +1047,9 @@ contains
    end subroutine validate_run
 
    subroutine validate_mesh(mesh, nseg, err)
-      type(mesh_cfg), intent(in) :: mesh
+      type(mesh_cfg), intent(in) :: mesh   !! the mesh
       integer, intent(in) :: nseg
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       if (allocated(err)) return
       call need_finite(err, 'mesh', 'dt', mesh%dt)
       if (allocated(err)) return
@@ -1070,7 +1070,7 @@ contains
 
    subroutine validate_segments(seg, err)
       type(segments_cfg), intent(inout) :: seg
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: j
       character(len=:), allocatable :: sj
       if (allocated(err)) return
@@ -1140,7 +1140,7 @@ contains
 
    subroutine validate_ends(ends, err)
       type(ends_cfg), intent(in) :: ends
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       call need_choice(err, 'ends', 'top', ends%top, [character(len=8) :: 'free', 'fixed', 'transmit'])
       call need_choice(err, 'ends', 'bottom', ends%bottom, [character(len=8) :: 'free', 'fixed', &
                        'base', 'transmit'])
@@ -1154,9 +1154,9 @@ contains
    end subroutine validate_ends
 
    subroutine validate_load(load, ends, err)
-      type(load_cfg), intent(in) :: load
+      type(load_cfg), intent(in) :: load   !! the end load
       type(ends_cfg), intent(in) :: ends
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=name_len) :: face_end
       call need_choice(err, 'load', 'kind', load%kind, [character(len=11) :: 'none', 'power', &
                        'exponential', 'table'])
@@ -1217,8 +1217,8 @@ contains
    !> &strength_field: a Weibull field needs its modulus and scale and a breakable segment
    !> (it replaces the strength of the segments whose strength is >= 0).
    subroutine validate_field(deck, err)
-      type(deck_t), intent(in) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       call need_choice(err, 'strength_field', 'kind', deck%field%kind, [character(len=8) :: &
                        'uniform', 'weibull'])
       if (allocated(err) .or. deck%field%kind /= 'weibull') return
@@ -1231,8 +1231,8 @@ contains
    end subroutine validate_field
 
    subroutine validate_initial(deck, err)
-      type(deck_t), intent(in) :: deck
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       if (deck%run%model == 'full-mass' .and. any(deck%seg%interface(1:deck%seg%n - 1) == 'dry')) then
          call make_error(err, '&segments: interface = ''dry'' needs &run model = ''half-mass'' ' &
                          // '(the full-mass model breaks springs, not nodes)')
@@ -1271,8 +1271,8 @@ contains
    !> Every deck value, defaults included, in echo order: group, name, value as namelist
    !> text, unit, and whether the deck gave it.
    subroutine deck_items(deck, items)
-      type(deck_t), intent(in) :: deck
-      type(echo_item_t), allocatable, intent(out) :: items(:)
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(echo_item_t), allocatable, intent(out) :: items(:)   !! the deck values as echoed
       integer :: j, n
       character(len=:), allocatable :: v
       allocate(items(0))
@@ -1349,15 +1349,18 @@ contains
       end if
    contains
       subroutine item(g, name, value, unit)
-         character(len=*), intent(in) :: g, name, value, unit
+         character(len=*), intent(in) :: g   !! gravity along +x [m/s^2]
+         character(len=*), intent(in) :: name
+         character(len=*), intent(in) :: value
+         character(len=*), intent(in) :: unit
          items = [items, echo_item_t(g, name, value, unit, has_var(deck%scan, g, name))]
       end subroutine item
    end subroutine deck_items
 
    !> A mesh fault (spb_mesh) in the deck's terms: the one-line message of the bad input.
    function mesh_fault_message(fault, prob) result(msg)
-      type(mesh_fault_t), intent(in) :: fault
-      type(problem_t), intent(in) :: prob
+      type(mesh_fault_t), intent(in) :: fault   !! why no mesh (fault_none: built)
+      type(problem_t), intent(in) :: prob   !! the problem
       character(len=:), allocatable :: msg
       character(len=:), allocatable :: sj
       sj = itoa(fault%segment)
@@ -1393,7 +1396,7 @@ contains
 
    !> The record of a validated deck for the outputs and checkpoints.
    function deck_record(deck) result(rec)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       type(deck_record_t) :: rec
       rec%path = trim(deck%path)
       rec%title = trim(deck%run%title)
@@ -1409,7 +1412,7 @@ contains
    !> Write every deck value, defaults included, as namelist text behind prefix.
    subroutine write_echo(u, rec, prefix)
       integer, intent(in) :: u                    !! open formatted unit
-      type(deck_record_t), intent(in) :: rec
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
       character(len=*), intent(in) :: prefix      !! e.g. '# '
       character(len=40) :: lhs
       character(len=:), allocatable :: note

@@ -94,7 +94,7 @@ contains
 
    !> Record the first failure of an HDF5 call.
    subroutine check(h5, hdferr, what)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer, intent(in) :: hdferr
       character(len=*), intent(in) :: what      !! operation and object
       if (hdferr < 0 .and. .not. allocated(h5%error)) then
@@ -104,7 +104,7 @@ contains
 
    !> Create (truncate) the file.
    subroutine h5_create(h5, path)
-      type(h5file_t), intent(out) :: h5
+      type(h5file_t), intent(out) :: h5    !! the HDF5 file
       character(len=*), intent(in) :: path
       integer :: hdferr
       integer(hid_t) :: fcpl
@@ -130,7 +130,7 @@ contains
 
    !> Create the group path (its parent must exist).
    subroutine h5_group(h5, path)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer(hid_t) :: g
       integer :: hdferr
@@ -142,7 +142,7 @@ contains
 
    !> Open a group or dataset path for attributes.
    subroutine open_obj(h5, path, obj, is_dset)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer(hid_t), intent(out) :: obj
       logical, intent(out) :: is_dset
@@ -159,7 +159,7 @@ contains
    end subroutine close_obj
 
    subroutine attr_string(h5, path, name, value)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name, value
       integer(hid_t) :: obj, space, atype, attr
       integer(hsize_t) :: dims(1)
@@ -187,7 +187,7 @@ contains
    end subroutine attr_string
 
    subroutine attr_real(h5, path, name, value)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name
       real(wp), intent(in) :: value
       integer(hid_t) :: obj, space, attr
@@ -211,7 +211,7 @@ contains
    end subroutine attr_real
 
    subroutine attr_int(h5, path, name, value)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name
       integer, intent(in) :: value
       integer(hid_t) :: obj, space, attr
@@ -236,7 +236,7 @@ contains
 
    !> A fixed 1-D dataset with a units attribute.
    subroutine write_real_1d(h5, path, values, units)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, units
       real(wp), intent(in) :: values(:)
       integer(hid_t) :: space, dset
@@ -257,7 +257,7 @@ contains
    end subroutine write_real_1d
 
    subroutine write_int_1d(h5, path, values, units)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, units
       integer, intent(in) :: values(:)
       call write_int_shaped(h5, path, values, [size(values, kind=hsize_t)], units)
@@ -265,7 +265,7 @@ contains
 
    !> A fixed 2-D integer dataset values(nx, ny) (h5py: shape (ny, nx)) with units.
    subroutine write_int_2d(h5, path, values, units)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, units
       integer, intent(in) :: values(:, :)
       call write_int_shaped(h5, path, reshape(values, [size(values)]), &
@@ -274,7 +274,7 @@ contains
 
    !> An integer dataset of the given dims from its values in Fortran (column-major) order.
    subroutine write_int_shaped(h5, path, values, dims, units)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, units
       integer, intent(in) :: values(:)
       integer(hsize_t), intent(in) :: dims(:)
@@ -295,7 +295,7 @@ contains
 
    !> An extendible, chunked, deflated dataset of rank 1 (nrow = 0) or 2 (nrow rows).
    subroutine create_extendible(h5, path, dtype, nrow, dset)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer(hid_t), intent(in) :: dtype
       integer, intent(in) :: nrow
@@ -327,7 +327,7 @@ contains
 
    !> A table: group path with one extendible column per name; returns its handle.
    subroutine h5_table(h5, path, names, units, is_int, handle)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       character(len=*), intent(in) :: names(:), units(:)
       logical, intent(in) :: is_int(:)
@@ -355,7 +355,7 @@ contains
 
    !> Append one row to a table (buffered).
    subroutine h5_append(h5, handle, row)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer, intent(in) :: handle
       real(wp), intent(in) :: row(:)
       if (h5%file < 0 .or. handle < 1) return
@@ -367,7 +367,7 @@ contains
    end subroutine h5_append
 
    subroutine write_table(h5, handle)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer, intent(in) :: handle
       integer(hid_t) :: fspace, mspace
       integer(hsize_t) :: off(1), cnt(1), newsize(1)
@@ -405,7 +405,7 @@ contains
 
    !> The x-t fields under path: t(nt) and u, v, stress(nrow, nt), with units.
    subroutine h5_xt(h5, path, nrow)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer, intent(in) :: nrow
       character(len=6), parameter :: names(3) = [character(len=6) :: 'u', 'v', 'stress']
@@ -426,7 +426,7 @@ contains
    end subroutine h5_xt
 
    subroutine h5_append_xt(h5, t, u, v, s)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       real(wp), intent(in) :: t                !! [s]
       real(wp), intent(in) :: u(:), v(:), s(:) !! per half-node row [m], [m/s], [Pa]
       if (h5%file < 0 .or. .not. h5%has_xt) return
@@ -439,7 +439,7 @@ contains
    end subroutine h5_append_xt
 
    subroutine write_xt(h5)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer(hid_t) :: fspace, mspace
       integer(hsize_t) :: off2(2), cnt2(2), size2(2), off1(1), cnt1(1)
       integer :: k, hdferr, nb
@@ -480,7 +480,7 @@ contains
 
    !> Write every buffer and flush the file: it then reads up to here if the run dies.
    subroutine h5_flush(h5)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer :: k, hdferr
       if (h5%file < 0 .or. h5%read_only) return
       do k = 1, size(h5%tables)
@@ -492,7 +492,7 @@ contains
    end subroutine h5_flush
 
    subroutine h5_close(h5)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer :: k, j, hdferr
       if (h5%file < 0) return
       call h5_flush(h5)
@@ -513,7 +513,7 @@ contains
 
    !> Open an existing file read-only (the h5_get* readers, h5_copy's source; h5_close).
    subroutine h5_open_read(h5, path)
-      type(h5file_t), intent(out) :: h5
+      type(h5file_t), intent(out) :: h5    !! the HDF5 file
       character(len=*), intent(in) :: path
       integer :: hdferr
       h5%path = path
@@ -530,7 +530,7 @@ contains
    !> True when the object path (absolute) exists; parents are checked first, as
    !> h5lexists_f needs them.
    logical function h5_exists(h5, path)
-      type(h5file_t), intent(in) :: h5
+      type(h5file_t), intent(in) :: h5     !! the HDF5 file
       character(len=*), intent(in) :: path
       integer :: j, k, hdferr
       logical :: ok
@@ -550,7 +550,7 @@ contains
 
    !> Dimensions of a dataset (Fortran order; rank <= 2); rank = -1 when it is absent.
    subroutine h5_dims(h5, path, dims, rank)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer(hsize_t), intent(out) :: dims(2)
       integer, intent(out) :: rank
@@ -571,7 +571,7 @@ contains
 
    !> Open a 1-D dataset for reading: its handle and length (false if absent).
    logical function open_1d(h5, path, dset, n)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer(hid_t), intent(out) :: dset
       integer(hsize_t), intent(out) :: n
@@ -591,7 +591,7 @@ contains
    !> A whole 1-D dataset as float64 (HDF5 converts integer ones), allocated to its length
    !> (unallocated if absent).
    subroutine get_real_1d(h5, path, values)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       real(wp), allocatable, intent(out) :: values(:)
       integer(hid_t) :: dset
@@ -606,7 +606,7 @@ contains
 
    !> Columns c0+1 .. c0+size(values, 2) of a 2-D float64 dataset (rows = size(values, 1)).
    subroutine h5_get_columns(h5, path, c0, values)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path
       integer, intent(in) :: c0
       real(wp), intent(out) :: values(:, :)
@@ -634,7 +634,7 @@ contains
 
    !> Open the attribute name of the object path (attr < 0 and an error if absent).
    subroutine open_attr(h5, path, name, obj, attr)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name
       integer(hid_t), intent(out) :: obj, attr
       integer :: hdferr
@@ -667,7 +667,7 @@ contains
    end subroutine close_attr
 
    subroutine get_attr_real(h5, path, name, value)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name
       real(wp), intent(out) :: value
       integer(hid_t) :: obj, attr
@@ -682,7 +682,7 @@ contains
    end subroutine get_attr_real
 
    subroutine get_attr_int(h5, path, name, value)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name
       integer, intent(out) :: value
       integer(hid_t) :: obj, attr
@@ -698,7 +698,7 @@ contains
 
    !> A fixed-length string attribute as written by h5_attr (trailing blanks dropped).
    subroutine get_attr_string(h5, path, name, value)
-      type(h5file_t), intent(inout) :: h5
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path, name
       character(len=:), allocatable, intent(out) :: value
       integer(hid_t) :: obj, attr, atype
@@ -732,7 +732,7 @@ contains
 
    !> Rows a table holds, buffered ones included.
    integer function h5_table_rows(h5, handle) result(rows)
-      type(h5file_t), intent(in) :: h5
+      type(h5file_t), intent(in) :: h5     !! the HDF5 file
       integer, intent(in) :: handle
       rows = 0
       if (handle < 1 .or. handle > size(h5%tables)) return
@@ -741,7 +741,7 @@ contains
 
    !> Rows (times) of the x-t fields, buffered ones included.
    integer function h5_xt_rows(h5) result(rows)
-      type(h5file_t), intent(in) :: h5
+      type(h5file_t), intent(in) :: h5     !! the HDF5 file
       rows = 0
       if (h5%has_xt) rows = int(h5%xt%rows) + h5%xt%nbuf
    end function h5_xt_rows

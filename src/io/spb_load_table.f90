@@ -17,7 +17,7 @@ contains
    subroutine read_table(path, t, p, err)
       character(len=*), intent(in) :: path
       real(wp), allocatable, intent(out) :: t(:), p(:)
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer :: u, ios, nrow, line, k
       character(len=1024) :: buf
       character(len=256) :: msg

@@ -116,12 +116,12 @@ contains
 
    !> Open PREFIX.his, .prf, .evt and write their headers.
    subroutine open_outputs(prefix, rec, mesh, report, out, err)
-      character(len=*), intent(in) :: prefix
-      type(deck_record_t), intent(in) :: rec
-      type(mesh_t), intent(in) :: mesh
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)     !! mesh fit report lines
-      type(outputs_t), intent(out) :: out
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(outputs_t), intent(out) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       out%prefix = prefix
       call open_one('.his', out%his)
       if (.not. allocated(err)) call open_one('.prf', out%prf)
@@ -194,9 +194,9 @@ contains
    !> The mesh as built: dt, cells, steps, and each segment's cells and lengths.
    subroutine write_mesh_summary(u, mesh, report, prefix)
       integer, intent(in) :: u
-      type(mesh_t), intent(in) :: mesh
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)
-      character(len=*), intent(in) :: prefix
+      character(len=*), intent(in) :: prefix   !! output path prefix
       integer :: j
       write(u, '(a)') prefix // 'mesh: dt = ' // rtoa(mesh%dt) // ' s, ' // itoa(mesh%n) // &
          ' cells, ' // itoa(mesh%nsteps) // ' steps to t = ' // &
@@ -215,7 +215,7 @@ contains
 
    !> Close every file; a failure of the HDF5 file (its first error) comes back in err.
    subroutine close_outputs(out, err)
-      type(outputs_t), intent(inout) :: out
+      type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out), optional :: err
       if (out%his /= no_unit) close(out%his)
       if (out%prf /= no_unit) close(out%prf)
@@ -235,7 +235,7 @@ contains
 
    !> Push what is written so far to disk (text and HDF5): a killed run reads up to here.
    subroutine flush_outputs(out)
-      type(outputs_t), intent(inout) :: out
+      type(outputs_t), intent(inout) :: out   !! the outputs
       if (out%his /= no_unit) flush(out%his)
       if (out%evt /= no_unit) flush(out%evt)
       if (out%hdf5) call h5_flush(out%h5)
@@ -243,7 +243,7 @@ contains
 
    !> Bytes in each text file now (written through to the file first).
    subroutine text_sizes(out, bytes)
-      type(outputs_t), intent(in) :: out
+      type(outputs_t), intent(in) :: out   !! the outputs
       integer(int64), intent(out) :: bytes(4)
       integer :: k, u(4)
       u = [out%his, out%prf, out%evt, out%frg]
@@ -258,8 +258,8 @@ contains
    !> Where the outputs stand now (everything written through to the files): the body
    !> length of each text file and its last bytes, the rows of each PREFIX.h5 table.
    subroutine mark_outputs(out, marks)
-      type(outputs_t), intent(inout) :: out
-      type(output_marks_t), intent(out) :: marks
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(output_marks_t), intent(out) :: marks   !! how far the outputs reach
       integer(int64) :: bytes(4)
       integer :: k, u, r, ios
       call flush_outputs(out)
@@ -293,7 +293,7 @@ contains
 
    !> The unit of text file k (text_extensions order).
    pure integer function text_unit(out, k) result(u)
-      type(outputs_t), intent(in) :: out
+      type(outputs_t), intent(in) :: out   !! the outputs
       integer, intent(in) :: k
       integer :: units(4)
       units = [out%his, out%prf, out%evt, out%frg]
@@ -301,7 +301,7 @@ contains
    end function text_unit
 
    subroutine set_text_unit(out, k, u)
-      type(outputs_t), intent(inout) :: out
+      type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k, u
       select case (k)
       case (1)
@@ -367,8 +367,8 @@ contains
    !> per namelist group, one string attribute per variable (the echoed value), with
    !> name:units and name:from ('input' or 'default'). PREFIX.h5 and PREFIX_sweep.h5 share it.
    subroutine h5_deck_header(h5, rec)
-      type(h5file_t), intent(inout) :: h5
-      type(deck_record_t), intent(in) :: rec
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
       integer :: k
       call h5_attr(h5, '/', 'program', 'spallbar ' // version)
       call h5_attr(h5, '/', 'title', rec%title)
@@ -397,12 +397,12 @@ contains
    !> PREFIX.h5: root attributes, /deck, /mesh, the /history and /events tables, /fields
    !> (profiles, and x-t rows when field_every > 0), /fragments.
    subroutine open_h5(prefix, rec, mesh, report, out, err)
-      character(len=*), intent(in) :: prefix
-      type(deck_record_t), intent(in) :: rec
-      type(mesh_t), intent(in) :: mesh
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)
-      type(outputs_t), intent(inout) :: out
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       logical :: whole(n_history)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
@@ -458,7 +458,7 @@ contains
 
    !> Reference position of every half-node row (the .prf layout).
    pure function half_x(mesh) result(x)
-      type(mesh_t), intent(in) :: mesh
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp) :: x(2 * mesh%n)
       integer :: i, r
       r = 0
@@ -476,8 +476,8 @@ contains
 
    !> u, v and stress of every half-node row at the state's time.
    pure subroutine half_rows(mesh, st, u, v, s)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(out) :: u(:), v(:), s(:)
       integer :: i, r
       r = 0
@@ -499,9 +499,9 @@ contains
 
    !> One row of the x-t fields (PREFIX.h5 only).
    subroutine write_field(out, mesh, st)
-      type(outputs_t), intent(inout) :: out
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp) :: u(2 * mesh%n), v(2 * mesh%n), s(2 * mesh%n)
       if (.not. out%hdf5) return
       call half_rows(mesh, st, u, v, s)
@@ -550,7 +550,7 @@ contains
 
    !> One history row: the values in the order of history_table (whole numbers as float64).
    subroutine write_history_row(out, v)
-      type(outputs_t), intent(inout) :: out
+      type(outputs_t), intent(inout) :: out   !! the outputs
       real(wp), intent(in) :: v(n_history)
       ! written by the fast formatters into one line (the same characters as es20.12e3 and
       ! i20 edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
@@ -570,8 +570,8 @@ contains
 
    !> Rows for the events of the list.
    subroutine write_events(out, events)
-      type(outputs_t), intent(inout) :: out
-      type(event_list_t), intent(in) :: events
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(event_list_t), intent(in) :: events   !! events of the step (appended)
       character(len=237) :: line
       integer :: k
       do k = 1, events%n
@@ -601,8 +601,9 @@ contains
 
    !> One block of fragments at time t.
    subroutine write_fragments(out, t, dt, list)
-      type(outputs_t), intent(inout) :: out
-      real(wp), intent(in) :: t, dt
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      real(wp), intent(in) :: t
+      real(wp), intent(in) :: dt           !! time step [s]
       type(frag_info_t), intent(in) :: list(:)
       integer :: f
       character(len=:), allocatable :: g
@@ -645,9 +646,9 @@ contains
 
    !> One profile block at the state's time.
    subroutine write_profile(out, mesh, st, t_requested)
-      type(outputs_t), intent(inout) :: out
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: t_requested   !! the profile_times entry [s]
       integer :: i, n
       real(wp) :: dt

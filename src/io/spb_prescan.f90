@@ -39,7 +39,7 @@ contains
       character(len=*), intent(in) :: path               !! deck file
       character(len=*), intent(in) :: known_groups(:)    !! accepted group names
       type(deck_scan_t), intent(out) :: scan             !! groups and variables found
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: text
       integer :: u, ios, fsize
       character(len=256) :: msg
@@ -70,8 +70,8 @@ contains
    subroutine scan_text(text, known_groups, scan, err)
       character(len=*), intent(in) :: text               !! whole deck
       character(len=*), intent(in) :: known_groups(:)    !! accepted group names
-      type(deck_scan_t), intent(out) :: scan
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(deck_scan_t), intent(out) :: scan   !! the prescan of the deck
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(lexer_t) :: lx
       character :: c
 
@@ -125,9 +125,9 @@ contains
 
    !> A comment from '!' to the end of the line: no control characters in it.
    subroutine skip_comment(lx, text, err)
-      type(lexer_t), intent(inout) :: lx
-      character(len=*), intent(in) :: text
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(lexer_t), intent(inout) :: lx   !! where the scan is
+      character(len=*), intent(in) :: text   !! the deck text
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       do while (lx%i <= lx%n)
          if (text(lx%i:lx%i) == achar(10)) exit
          if (is_control(text(lx%i:lx%i))) then
@@ -148,9 +148,9 @@ contains
    !> A quoted string (a doubled quote stands for one), inside a group, terminated, not
    !> longer than a string variable, without control characters.
    subroutine skip_string(lx, text, err)
-      type(lexer_t), intent(inout) :: lx
-      character(len=*), intent(in) :: text
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(lexer_t), intent(inout) :: lx   !! where the scan is
+      character(len=*), intent(in) :: text   !! the deck text
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character :: quote
       integer :: j, string_line
       if (.not. lx%in_group) then
@@ -197,11 +197,11 @@ contains
 
    !> '&name' (or '$name') opens a known group not given before; '&end' closes one.
    subroutine group_marker(lx, text, known_groups, scan, err)
-      type(lexer_t), intent(inout) :: lx
-      character(len=*), intent(in) :: text
-      character(len=*), intent(in) :: known_groups(:)
-      type(deck_scan_t), intent(inout) :: scan
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(lexer_t), intent(inout) :: lx   !! where the scan is
+      character(len=*), intent(in) :: text   !! the deck text
+      character(len=*), intent(in) :: known_groups(:)   !! accepted group names
+      type(deck_scan_t), intent(inout) :: scan   !! the prescan of the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: word
       integer :: j
       j = lx%i + 1
@@ -245,10 +245,10 @@ contains
    !> A name inside a group; followed by an optional subscript and '=' it starts an
    !> assignment (a whole variable may be set once; elements, var(2) = ..., apart).
    subroutine name_or_assignment(lx, text, scan, err)
-      type(lexer_t), intent(inout) :: lx
-      character(len=*), intent(in) :: text
-      type(deck_scan_t), intent(inout) :: scan
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(lexer_t), intent(inout) :: lx   !! where the scan is
+      character(len=*), intent(in) :: text   !! the deck text
+      type(deck_scan_t), intent(inout) :: scan   !! the prescan of the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: word
       integer :: j, name_start, depth
       logical :: subscripted
@@ -299,8 +299,8 @@ contains
 
    !> Past blanks and tabs (not line ends).
    pure subroutine skip_blanks(lx, text)
-      type(lexer_t), intent(inout) :: lx
-      character(len=*), intent(in) :: text
+      type(lexer_t), intent(inout) :: lx   !! where the scan is
+      character(len=*), intent(in) :: text   !! the deck text
       do while (lx%i <= lx%n)
          if (text(lx%i:lx%i) /= ' ' .and. text(lx%i:lx%i) /= achar(9)) exit
          lx%i = lx%i + 1
@@ -309,7 +309,7 @@ contains
 
    !> End the open assignment (if any) at text position last.
    pure subroutine close_assignment(scan, last)
-      type(deck_scan_t), intent(inout) :: scan
+      type(deck_scan_t), intent(inout) :: scan   !! the prescan of the deck
       integer, intent(in) :: last
       integer :: k
       k = size(scan%last)
@@ -320,7 +320,7 @@ contains
    !> Assignment k as a one-assignment namelist record '&group var = value /' (empty when
    !> it belongs to another group): reading these one by one finds the one that fails.
    function assignment_text(scan, group, k, var) result(record)
-      type(deck_scan_t), intent(in) :: scan
+      type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
       character(len=*), intent(in) :: group
       integer, intent(in) :: k                          !! 1 .. size(scan%keys)
       character(len=:), allocatable, intent(out) :: var !! its variable name
@@ -336,7 +336,7 @@ contains
 
    !> True when the group appears in the deck.
    logical function has_group(scan, group)
-      type(deck_scan_t), intent(in) :: scan
+      type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
       character(len=*), intent(in) :: group
       has_group = .false.
       if (allocated(scan%groups)) has_group = any(scan%groups == group)
@@ -344,7 +344,7 @@ contains
 
    !> True when the deck assigns the variable (any element of it) in the group.
    logical function has_var(scan, group, var)
-      type(deck_scan_t), intent(in) :: scan
+      type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
       character(len=*), intent(in) :: group, var
       has_var = .false.     ! a deck built in memory has no scan
       if (allocated(scan%keys)) has_var = any(scan%keys == group // ':' // var)
@@ -364,7 +364,7 @@ contains
 
    !> Read an identifier starting at text(j:), lower-cased; j ends after it.
    subroutine read_word(text, j, word)
-      character(len=*), intent(in) :: text
+      character(len=*), intent(in) :: text   !! the deck text
       integer, intent(inout) :: j
       character(len=:), allocatable, intent(out) :: word
       integer :: j0

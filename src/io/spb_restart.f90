@@ -28,13 +28,13 @@ contains
    !> The previous files are set aside as PREFIX.ext.restart while this is done and removed
    !> after; nothing is touched when they do not hold what the marks count.
    subroutine resume_outputs(prefix, rec, mesh, report, marks, out, err)
-      character(len=*), intent(in) :: prefix
-      type(deck_record_t), intent(in) :: rec
-      type(mesh_t), intent(in) :: mesh
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)
-      type(output_marks_t), intent(in) :: marks
-      type(outputs_t), intent(out) :: out
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
+      type(outputs_t), intent(out) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer(int64) :: sz, head(4)
       integer :: k, nrows, u, ios
       logical :: there, ok
@@ -111,12 +111,12 @@ contains
 
    !> Append the body up to the mark of the set-aside file k to the fresh one.
    subroutine copy_body(prefix, k, head, body, out, err)
-      character(len=*), intent(in) :: prefix
+      character(len=*), intent(in) :: prefix   !! output path prefix
       integer, intent(in) :: k                 !! text file (text_extensions)
       integer(int64), intent(in) :: head       !! header bytes of the set-aside file
       integer(int64), intent(in) :: body       !! body bytes the checkpoint counts
-      type(outputs_t), intent(inout) :: out
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer, parameter :: chunk = 1048576
       character(len=:), allocatable :: buf
       integer(int64) :: pos, m
@@ -152,11 +152,11 @@ contains
    end subroutine copy_body
    !> PREFIX.h5: table rows and x-t times up to the marks, profile and fragment groups.
    subroutine replay_h5(prefix, mesh, marks, out, err)
-      character(len=*), intent(in) :: prefix
-      type(mesh_t), intent(in) :: mesh
-      type(output_marks_t), intent(in) :: marks
-      type(outputs_t), intent(inout) :: out
-      type(spb_error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: old     !! the previous PREFIX.h5, read while it is replayed
       integer :: k
       call h5_open_read(old, prefix // '.h5' // aside)
@@ -185,11 +185,13 @@ contains
    end subroutine replay_h5
    !> The first rows of every column of a table (integer columns read as float64).
    subroutine replay_table(prefix, old, path, columns, out, handle, rows, err)
-      character(len=*), intent(in) :: prefix, path, columns
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: columns
       type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
-      type(outputs_t), intent(inout) :: out
+      type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: handle, rows      !! table handle in out%h5; rows to copy
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=32), allocatable :: names(:)
       real(wp), allocatable :: col(:), table(:, :)
       integer :: c, r
@@ -217,12 +219,12 @@ contains
    end subroutine replay_table
    !> The first times of the x-t field, in blocks of columns.
    subroutine replay_xt(prefix, old, mesh, rows_xt, out, err)
-      character(len=*), intent(in) :: prefix
+      character(len=*), intent(in) :: prefix   !! output path prefix
       type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
-      type(mesh_t), intent(in) :: mesh
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       integer, intent(in) :: rows_xt           !! times to copy
-      type(outputs_t), intent(inout) :: out
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer, parameter :: width = 64
       real(wp), allocatable :: t(:), u(:, :), v(:, :), s(:, :)
       integer :: c0, m, j

@@ -43,7 +43,7 @@ contains
    !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay), or where the
    !> correction is smaller (min, (5.3)); corr is the chosen correction (5.2).
    pure subroutine choose_time(timing, d_acc, d_del, at_n, corr)
-      integer, intent(in) :: timing
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
       real(wp), intent(in) :: d_acc, d_del   !! corrections (5.2) for t^n and t^{n+1} [m]
       logical, intent(out) :: at_n           !! join at t^n (else at t^{n+1})
       real(wp), intent(out) :: corr          !! the correction of the chosen time [m]
@@ -60,12 +60,12 @@ contains
 
    !> Test every open section (and the base) after the trial step; join what collides.
    pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g                !! gravity [m/s^2]
       integer, intent(in) :: timing            !! timing_* rule
       integer, intent(in) :: policy            !! shift_* policy
-      type(event_list_t), intent(inout) :: events
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp), intent(in) :: i_top, i_bot     !! face-load integrals over the step [Pa s]
       integer, intent(in) :: rules             !! events_admissible | events_paper
       real(wp), intent(in) :: eps_rel          !! admissible: faces collide when they overlap
@@ -148,8 +148,8 @@ contains
    !> the base below), where an overlap at t^n within the contact tolerance counts as touching:
    !> the faces met then (to round-off), and moving a side by that much would only lift it.
    pure real(wp) function gap_at_n(mesh, st, i, tol) result(d_acc)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: i
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       if (i == mesh%n) then
@@ -162,10 +162,12 @@ contains
 
    !> Whether the admissible rules join split node i at t^n (as collide would decide now).
    pure logical function joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot, tol) result(at_n)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g, i_top, i_bot
-      integer, intent(in) :: timing, policy, i
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: i
       real(wp), intent(in) :: tol              !! contact tolerance [m]
       real(wp) :: d_acc, d_del, corr, x, y
       integer :: top, bot
@@ -180,10 +182,13 @@ contains
    !> can change: the two fragments and whatever either correction (5.2) shifts; the whole
    !> bar for 'above'.
    pure subroutine event_region(mesh, st, g, timing, policy, rules, i, r_top, r_bot, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g, i_top, i_bot
-      integer, intent(in) :: timing, policy, rules, i
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: rules         !! event rules (events_*)
+      integer, intent(in) :: i
       integer, intent(out) :: r_top, r_bot
       real(wp) :: d_acc, d_del, amount, corr, x, y
       integer :: j, k, top, bot
@@ -225,29 +230,32 @@ contains
 
    !> Trial increment of a split half over the step just taken, and its increment before.
    pure real(wp) function du_before_a(mesh, st, g, i) result(d)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      real(wp), intent(in) :: g
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: i
       d = st%dua(i) - (st%s_old(i) + mesh%ma(i) * g) / mesh%ma(i) * mesh%dt**2
    end function du_before_a
 
    pure real(wp) function du_before_b(mesh, st, g, i) result(d)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      real(wp), intent(in) :: g
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: i
       d = st%dub(i) - (mesh%mb(i) * g - st%s_old(i + 1)) / mesh%mb(i) * mesh%dt**2
    end function du_before_b
 
    !> Choose the rule's time, shift one side, join node i.
    pure subroutine collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot, tol)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g, i_top, i_bot
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
-      integer, intent(in) :: timing, policy, i, rules
-      type(event_list_t), intent(inout) :: events
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: i
+      integer, intent(in) :: rules         !! event rules (events_*)
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp) :: dua0, dub0, d_acc, d_del, corr, mass_a, mass_b, du_join, e0, de, sz, v_a, v_b
       real(wp) :: du_a_trial, du_b_trial, shift_amount, w, closing
       integer :: j, k, top, bot, parent_up, parent_dn
@@ -347,8 +355,8 @@ contains
 
    !> Momentum of the region from B_top to A_bot over the last step [kg/(m s)].
    pure real(wp) function span_momentum(mesh, st, top, bot) result(mom)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       integer :: i
       mom = 0.0_wp
@@ -361,8 +369,8 @@ contains
 
    !> Load on a free end face that belongs to the region top..bot, along +x [N/m^2].
    pure real(wp) function end_force(mesh, st, top, bot) result(f)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       f = 0.0_wp
       if (top == 0 .and. mesh%top == end_free) f = f + st%s(0)
@@ -376,9 +384,10 @@ contains
    !> (the region is too slow to have come that far) or where it would set the region
    !> back by more than the step.
    pure subroutine path_speed(mesh, st, g, top, bot, shift, w, ok)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      real(wp), intent(in) :: g, shift
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: shift
       integer, intent(in) :: top, bot
       real(wp), intent(out) :: w               !! [m/s]
       logical, intent(out) :: ok
@@ -404,9 +413,11 @@ contains
    !> lift the region against gravity and the loads for nothing: the paper's "fragments
    !> keep being pushed apart". The momentum w gives the region is booked in p_shift.
    pure subroutine shift_late(mesh, st, g, top, bot, shift, w)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g, shift, w
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: shift
+      real(wp), intent(in) :: w
       integer, intent(in) :: top, bot
       real(wp) :: de, mass, mom, f_end, work
       integer :: i
@@ -470,9 +481,10 @@ contains
    !> e_shift; far: the part lies beyond the fragments whose wave measure the event takes
    !> before and after, so the change is booked in e_lost_wave here too.
    pure subroutine shift_part(mesh, st, g, a, b, delta, far)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g, delta
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: delta
       integer, intent(in) :: a, b
       logical, intent(in) :: far
       real(wp) :: de
@@ -572,9 +584,10 @@ contains
    !> ending at A_i, or all above it for 'above'), the lower one where the upper is
    !> anchored, none if both are; a shifted side takes along what it would be pushed into.
    pure subroutine shift_side(mesh, st, policy, i, corr, top, bot, shift_amount)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      integer, intent(in) :: policy, i
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: i
       real(wp), intent(in) :: corr
       integer, intent(out) :: top, bot         !! the region moved, as for shift_span
       real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
@@ -602,8 +615,8 @@ contains
    !> e_join: the momentum join's kinetic loss and the strain measure, whose s^n follows
    !> the joined increment. [J/m^2]
    pure real(wp) function late_join_energy(mesh, st, i, closing) result(de)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: i
       real(wp), intent(in) :: closing          !! du_A - du_B over the step [m]
       real(wp) :: ma, mb
@@ -616,9 +629,9 @@ contains
    !> The region a landing's correction moves: the fragment on the base's side (all of the
    !> bar for 'above'), unless it is anchored; top node j.
    pure subroutine land_side(mesh, st, policy, corr, j, shift_amount)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      integer, intent(in) :: policy
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: policy        !! shift policy (shift_*)
       real(wp), intent(in) :: corr
       integer, intent(out) :: j
       real(wp), intent(out) :: shift_amount
@@ -636,12 +649,14 @@ contains
 
    !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
    pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top, tol)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g, i_top
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
-      integer, intent(in) :: timing, policy, rules
-      type(event_list_t), intent(inout) :: events
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: rules         !! event rules (events_*)
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias, other
       integer :: n, j, j_near, k
       logical :: at_n, ok
@@ -735,8 +750,8 @@ contains
    !> A shifted fragment must not be pushed into its neighbour: while the shift would make
    !> the faces at the region's top node overlap, the fragment above moves with it.
    pure subroutine extend_up(mesh, st, top, shift)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(inout) :: top
       real(wp), intent(in) :: shift
       do while (top > 0)
@@ -753,8 +768,8 @@ contains
 
    !> The same downward, for a shift of the lower side.
    pure subroutine extend_down(mesh, st, bot, shift)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(inout) :: bot
       real(wp), intent(in) :: shift
       do while (bot < mesh%n)
@@ -771,13 +786,13 @@ contains
 
    !> Fill the time, place and correction of a collision event and append it.
    pure subroutine finish_event(mesh, st, ev, node, at_n, corr, shift, above, below, events)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       type(event_t), intent(inout) :: ev       !! kind, stress and stress_bound already set
       integer, intent(in) :: node, above, below
       logical, intent(in) :: at_n              !! joined at t^n (else t^{n+1})
       real(wp), intent(in) :: corr, shift      !! correction (5.2) and the shift applied [m]
-      type(event_list_t), intent(inout) :: events
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       ev%step = st%step
       if (at_n) ev%step = st%step - 1
       ev%node = node
@@ -795,14 +810,14 @@ contains
    !> Work a face load does on a rigid shift of its face [J/m^2]: booked as work and, since no
    !> wave energy follows, as what the event removed.
    pure subroutine book_shift_work(st, work)
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: work
       st%ledger%w_wave = st%ledger%w_wave + work
       st%ledger%e_lost_wave = st%ledger%e_lost_wave + work
    end subroutine book_shift_work
 
    pure subroutine skip_next(st, i)
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: i
       call append(st%skip_test, st%n_skip, i)
    end subroutine skip_next

@@ -67,8 +67,8 @@ module spb_diag
 contains
 
    pure function energies(mesh, st, g) result(e)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g       !! gravity [m/s^2]
       type(energies_t) :: e
       integer :: n
@@ -87,8 +87,8 @@ contains
    !> Every fragment, top to bottom, with its mass, mean velocity and vibration energy.
    !> Fragments end at a split node (half-node model) or before a cut cell (full-mass model).
    pure subroutine fragment_list(mesh, st, list)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       type(frag_info_t), allocatable, intent(out) :: list(:)
       integer :: nf, top, bot, i, f
       logical :: whole_top, whole_bot

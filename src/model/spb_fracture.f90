@@ -25,9 +25,9 @@ contains
    !> Energy terms that live at node i: kinetic and potential energy of its two halves and
    !> the strain energy of the cells on either side (the scheme's own forms, spb_diag).
    pure real(wp) function node_energy(mesh, st, g, i) result(e)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      real(wp), intent(in) :: g
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: i
       real(wp) :: dt
       dt = mesh%dt
@@ -40,8 +40,8 @@ contains
    !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
    !> support that cannot move: a fixed end, or the base the bar rests on.
    pure logical function anchored(mesh, st, top, bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
                  (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
@@ -50,8 +50,8 @@ contains
 
    !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
    pure subroutine fragment_span(mesh, st, i, j, k)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: i
       integer, intent(out) :: j   !! top node of the fragment ending at A_i (0 or a split node)
       integer, intent(out) :: k   !! bottom node of the fragment starting at B_i (n or split)
@@ -70,7 +70,7 @@ contains
    !> Mass of the region from B_top to A_bot (as moved by shift_span) [kg/m^2]: its cells,
    !> and the outer half mass of an end node (a transmitting or full-mass end).
    pure real(wp) function span_mass(mesh, top, bot) result(mass)
-      type(mesh_t), intent(in) :: mesh
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       integer, intent(in) :: top, bot
       mass = mesh%m_above(bot) - mesh%m_above(top)
       if (top == 0) mass = mass + mesh%ma(0)
@@ -80,9 +80,10 @@ contains
    !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
    !> rigidly by delta; returns the change of gravity potential energy.
    pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g, delta
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: delta
       integer, intent(in) :: top, bot      !! end nodes; an end node of the bar moves whole
       real(wp), intent(out) :: de_pot      !! [J/m^2]
       integer :: i
@@ -96,7 +97,7 @@ contains
    !> Issue a new fragment id for the fragment whose top node is `node`, with its parent and
    !> birth step (kept per node like the id: memory does not grow with the events).
    pure subroutine new_fragment_id(st, parent, node)
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: parent
       integer, intent(in) :: node
       st%gen%n_frag_ids = st%gen%n_frag_ids + 1
@@ -108,11 +109,11 @@ contains
    !> Test every joined interior node at t^{n+1} = st%step dt and break those in tension
    !> beyond their strength; append one event per fracture.
    pure subroutine fracture_step(mesh, st, g, eps_rel, events, rules, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g          !! gravity [m/s^2]
       real(wp), intent(in) :: eps_rel    !! round-off guard, relative to the stress scale
-      type(event_list_t), intent(inout) :: events
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       integer, intent(in) :: rules       !! events_admissible | events_paper
       real(wp), intent(in) :: i_top, i_bot  !! face-load integrals over the step [Pa s]
       integer, allocatable :: brk(:)
@@ -206,12 +207,12 @@ contains
    !> faces open by what the continuum opens them in one step (no stage 2). The scheme's
    !> own measure changes by what e_fracture books.
    pure subroutine break_admissible(mesh, st, g, cand, i_top, i_bot, eps, events)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: cand(:)           !! sections whose S^{n+1/2} < -R - eps
       real(wp), intent(in) :: i_top, i_bot, eps
-      type(event_list_t), intent(inout) :: events
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp) :: du_a(size(cand)), du_b(size(cand)), s_brk(size(cand)), sig
       real(wp), allocatable :: f(:), gw(:)
       integer :: brk(size(cand))
@@ -259,9 +260,9 @@ contains
    !> (lower), the cells above and below by ds_a and ds_b; the section has no strength from
    !> now on, and the change of the scheme's measure is booked in e_fracture.
    pure subroutine open_section(mesh, st, g, i, dd_a, dd_b, ds_a, ds_b)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: i
       real(wp), intent(in) :: dd_a, dd_b   !! [m]
       real(wp), intent(in) :: ds_a, ds_b   !! [Pa]
@@ -284,11 +285,11 @@ contains
    !> node was j: both pieces are new fragments born of the one that broke; a section that had
    !> been open before (a crack, a dry contact) separates rather than fractures.
    pure subroutine record_break(mesh, st, i, j, stress, events)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: i, j
       real(wp), intent(in) :: stress          !! the section stress that broke it [Pa]
-      type(event_list_t), intent(inout) :: events
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       type(event_t) :: ev
       integer :: parent
       parent = st%gen%frag_id(j)
@@ -315,11 +316,12 @@ contains
    !> 'admissible', as a break: the bar left at t^n, and its bottom face moves over the step
    !> by 2 f_n of the continuum state at t^n (the base's impulse of the step is given back).
    pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g, eps
-      type(event_list_t), intent(inout) :: events
-      integer, intent(in) :: rules
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: eps
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      integer, intent(in) :: rules         !! event rules (events_*)
       real(wp), intent(in) :: i_top, i_bot
       real(wp) :: s_base, d_a, e0, de, e_wave0
       real(wp), allocatable :: f(:), gw(:)
@@ -383,10 +385,10 @@ contains
    !> falls below -R - eps is cut; from then on it carries compression only. No half masses,
    !> no corrections; the strain energy it held is booked in e_fracture.
    pure subroutine cut_springs(mesh, st, eps, events)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: eps
-      type(event_list_t), intent(inout) :: events
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       integer :: k, j, parent
       type(event_t) :: ev
       do k = 1, mesh%n
@@ -424,8 +426,8 @@ contains
 
    !> First split node whose faces have passed each other, u(A_i) - u(B_i) > tol (0: none).
    pure integer function first_overlap(mesh, st) result(node)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer :: i
       node = 0
       do i = 1, mesh%n - 1

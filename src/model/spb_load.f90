@@ -26,8 +26,8 @@ contains
 
    !> The end load of the problem (a table's rows come with it, read by spb_load_table).
    pure subroutine build_load(prob, load)
-      type(problem_t), intent(in) :: prob
-      type(load_t), intent(out) :: load
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(load_t), intent(out) :: load    !! the end load
       load%face = prob%load_face
       select case (prob%load_kind)
       case (load_power)
@@ -84,7 +84,7 @@ contains
 
    !> Integral of p(t) over [a, b] (b >= a), exact for both load forms.
    pure real(wp) function load_integral(load, a, b) result(q)
-      type(load_t), intent(in) :: load
+      type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: a, b   !! window [s]
       select case (load%kind)
       case (load_power)
@@ -99,7 +99,7 @@ contains
    end function load_integral
 
    pure real(wp) function power_integral(load, a, b) result(q)
-      type(load_t), intent(in) :: load
+      type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: a, b
       real(wp) :: lo, hi, ca, cb, k
       lo = max(a, 0.0_wp)
@@ -125,7 +125,7 @@ contains
 
    !> p0 exp(-t/t_k) on [0, t_cut]: p0 t_k exp(-lo/t_k) (1 - exp(-(hi - lo)/t_k)).
    pure real(wp) function exponential_integral(load, a, b) result(q)
-      type(load_t), intent(in) :: load
+      type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: a, b
       real(wp) :: lo, hi
       lo = max(a, 0.0_wp)
@@ -170,7 +170,7 @@ contains
 
    !> The stepwise load P^n = (1/(2 dt)) * integral of p from t^(n-1) to t^(n+1)  (ref [5]).
    pure real(wp) function step_load(load, n, dt) result(pn)
-      type(load_t), intent(in) :: load
+      type(load_t), intent(in) :: load     !! the end load
       integer, intent(in) :: n         !! step index
       real(wp), intent(in) :: dt       !! time step [s]
       pn = load_integral(load, real(n - 1, wp) * dt, real(n + 1, wp) * dt) / (2.0_wp * dt)

@@ -63,10 +63,10 @@ contains
    !> that no mesh can serve comes back as a fault (what and the numbers; the deck module
    !> words it in the deck's terms) and no mesh.
    subroutine build_mesh(prob, mesh, report, fault)
-      type(problem_t), intent(in) :: prob
-      type(mesh_t), intent(out) :: mesh
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(out) :: mesh    !! the mesh
       character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
-      type(mesh_fault_t), intent(out) :: fault
+      type(mesh_fault_t), intent(out) :: fault   !! why no mesh (fault_none: built)
       integer :: j, nseg, k, r
       integer, allocatable :: cells(:)
       real(wp), allocatable :: a(:), zz(:), ncont(:)
@@ -155,9 +155,9 @@ contains
    !> The per-cell and per-node arrays of a mesh whose segments' cell ranges and dt are set:
    !> dx = a dt, masses Z dt, stiffness E/dx, positions, half masses, cumulative mass.
    pure subroutine fill_cells(prob, a, zz, mesh)
-      type(problem_t), intent(in) :: prob
+      type(problem_t), intent(in) :: prob   !! the problem
       real(wp), intent(in) :: a(:), zz(:)     !! wave speed [m/s], impedance per segment
-      type(mesh_t), intent(inout) :: mesh
+      type(mesh_t), intent(inout) :: mesh   !! the mesh
       integer :: i, j, k
       real(wp) :: dt
       dt = mesh%dt

@@ -105,9 +105,9 @@ contains
 
    !> Initial state (2.4): unstressed or in self-weight equilibrium, plus segment velocities.
    subroutine init_state(prob, mesh, st)
-      type(problem_t), intent(in) :: prob
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(out) :: st
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(out) :: st     !! the state
       integer :: n, j, i
       real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap
 
@@ -207,8 +207,8 @@ contains
    !> Node velocities at t = 0: the segment's, at an interface the momentum-weighted mean;
    !> with a strain rate the uniform stretching about the centre of mass; held ends at rest.
    pure function initial_velocities(prob, mesh) result(v)
-      type(problem_t), intent(in) :: prob
-      type(mesh_t), intent(in) :: mesh
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp) :: v(0:mesh%n)                  !! [m/s]
       integer :: i, j, k, n
       real(wp) :: va, vb, xc
@@ -245,10 +245,10 @@ contains
 
    !> Section stresses S^{-1/2} of the initial state, from its cell stresses s.
    pure subroutine init_sections(prob, mesh, s, st)
-      type(problem_t), intent(in) :: prob
-      type(mesh_t), intent(in) :: mesh
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: s(:)             !! cell stresses at t = 0, cells 1..n [Pa]
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       integer :: i, n
       real(wp) :: g
       n = mesh%n
@@ -292,8 +292,8 @@ contains
    !> segment's strength inside it, the weaker one at a bonded interface, seed section 2);
    !> one cell breakable: its strength; ends never break.
    subroutine init_strength(mesh, st)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       integer :: i
       real(wp) :: ra, rb
       st%strength = -1.0_wp
@@ -315,8 +315,8 @@ contains
    !> &strength_field kind = 'weibull' a Weibull sample (spb_random, the deck's seed) for
    !> every cell of a segment whose strength is >= 0, drawn from the top cell down.
    function cell_strengths(prob, mesh) result(cs)
-      type(problem_t), intent(in) :: prob
-      type(mesh_t), intent(in) :: mesh
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp) :: cs(mesh%n)
       type(rng_t) :: g
       real(wp) :: u
@@ -333,13 +333,13 @@ contains
 
    !> Number of fragments: pieces between split interior nodes.
    pure integer function fragment_count(st) result(nf)
-      type(state_t), intent(in) :: st
+      type(state_t), intent(in) :: st      !! the state
       nf = 1 + st%fm%n_cut + st%n_split
    end function fragment_count
 
    !> Split interior node i (it must be joined): its halves move apart from now on. O(n_split).
    pure subroutine open_node(st, i)
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: i
       integer :: c
       c = st%n_split
@@ -355,7 +355,7 @@ contains
 
    !> Join split interior node i: its halves move together from now on. O(n_split).
    pure subroutine close_node(st, i)
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: i
       integer :: c, k
       k = 0

@@ -16,7 +16,7 @@ contains
    !> Static displacements u(0:n), cell stresses s(1:n) and end stresses [Pa] that the
    !> supports exert (s_top acts on node 0 like a cell above it, s_bot like a cell below).
    pure subroutine static_state(mesh, g, u, s, s_top, s_bot)
-      type(mesh_t), intent(in) :: mesh
+      type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g                   !! gravity [m/s^2]
       real(wp), intent(out) :: u(0:mesh%n)        !! [m]
       real(wp), intent(out) :: s(1:mesh%n)        !! [Pa], compression positive

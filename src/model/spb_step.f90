@@ -33,9 +33,9 @@ contains
    !> stress p(t) arriving through it; 0 otherwise. s_top pushes node 0 like a cell above
    !> it; s_bot pushes node n like a cell below it.
    pure subroutine end_stresses(mesh, load, st, s_top, s_bot, step)
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(out) :: s_top, s_bot   !! [Pa]
       integer, intent(in), optional :: step   !! the step index n (default st%step)
       real(wp) :: p
@@ -72,8 +72,8 @@ contains
    !> face [Pa s] (0 where the load acts elsewhere or the face is not free): the exact work
    !> of the load on the continuum state is I du / dt (spb_wave).
    pure subroutine face_load_integrals(mesh, load, step, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
       integer, intent(in) :: step
       real(wp), intent(out) :: i_top, i_bot
       real(wp) :: q
@@ -90,9 +90,9 @@ contains
 
    !> Integral of the load over the step from t^n to t^{n+1} on the face it acts on [Pa s].
    pure subroutine step_load_integrals(load, n, dt, q_top, q_bot)
-      type(load_t), intent(in) :: load
+      type(load_t), intent(in) :: load     !! the end load
       integer, intent(in) :: n
-      real(wp), intent(in) :: dt
+      real(wp), intent(in) :: dt           !! time step [s]
       real(wp), intent(out) :: q_top, q_bot
       real(wp) :: q
       q_top = 0.0_wp
@@ -108,10 +108,10 @@ contains
 
    !> Advance the state from t^n to t^{n+1}.
    pure subroutine advance(mesh, load, g, st)
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       real(wp), allocatable :: swap(:), du_cut_old(:)
       real(wp) :: old_a(st%n_split), old_b(st%n_split), old_sec(st%n_split)
       real(wp) :: dt, dt2, d, w_cut, strain_cut
@@ -206,8 +206,8 @@ contains
    !> fracture_step): every node is joined, none can break (no node, no spring), no rigid
    !> base to land on or leave, and no support is being hit.
    pure logical function joined_only(mesh, st)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%fm%n_cut == 0 .and. &
                     mesh%bottom /= end_base .and. .not. (st%ends%landing_top .or. st%ends%landing_bot)
    end function joined_only
@@ -220,10 +220,10 @@ contains
    !> is recorded per step and booked in step order at the end. s_old is not kept: the
    !> caller ends with an ordinary step (a history row reads s^{n-1}).
    pure subroutine advance_joined(mesh, load, g, st, nsteps, block_nodes, max_sec_bottom)
-      type(mesh_t), intent(in) :: mesh
-      type(load_t), intent(in) :: load
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: g                     !! gravity along +x [m/s^2]
-      type(state_t), intent(inout) :: st
+      type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: nsteps
       integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
       real(wp), intent(out), optional :: max_sec_bottom  !! largest sec(n) of these steps [Pa]
@@ -311,8 +311,8 @@ contains
 
    !> (2.3)1-2 for joined nodes i0..i1: du += (forces of both halves) / (their mass) dt^2.
    pure subroutine joined_increments(mesh, g, s, du, i0, i1)
-      type(mesh_t), intent(in) :: mesh
-      real(wp), intent(in) :: g
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       real(wp), intent(in) :: s(0:)       !! cell stresses s^n, ends included [Pa]
       real(wp), intent(inout) :: du(0:)   !! increments [m]
       integer, intent(in) :: i0, i1
@@ -334,8 +334,8 @@ contains
 
    !> A fixed top stops node 0; the momentum it takes is recorded.
    pure subroutine hold_top(mesh, st, r)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       type(end_step_t), intent(inout) :: r
       r%held_top = mesh%top == end_fixed
       if (r%held_top) then
@@ -348,8 +348,8 @@ contains
 
    !> A fixed bottom, or the base the bar rests on, stops node n.
    pure subroutine hold_bottom(mesh, st, r)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
       type(end_step_t), intent(inout) :: r
       integer :: n
       n = mesh%n
@@ -365,9 +365,9 @@ contains
    !> The end nodes' part of one step, in the order the step makes it: impulse of the end
    !> stresses and of the supports, work of the end stresses, section stresses at the supports.
    pure subroutine book_ends(mesh, g, st, r)
-      type(mesh_t), intent(in) :: mesh
-      real(wp), intent(in) :: g
-      type(state_t), intent(inout) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state
       type(end_step_t), intent(in) :: r
       real(wp) :: dt, du_top_old, du_bot_old
       integer :: n

@@ -45,8 +45,8 @@ contains
    !> Wave energy of the bar at t^{n+1} = st%step dt. i_top, i_bot: integrals of the load on the
    !> top and bottom faces over the step just taken [Pa s] (0 where no load acts there).
    pure function wave_energy(mesh, st, g, i_top, i_bot) result(w)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g        !! gravity along +x [m/s^2]
       real(wp), intent(in) :: i_top, i_bot
       type(wave_t) :: w
@@ -75,8 +75,8 @@ contains
    !> between the fragment boundaries top and bot (0 or a split node, n or a split node)
    !> [J/m^2]: what an event that acts there (breaks, joins, shifts) changes.
    pure real(wp) function region_wave(mesh, st, g, i_top, i_bot, top, bot) result(e_sum)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g, i_top, i_bot
       integer, intent(in) :: top, bot
       real(wp) :: e, jp, jr, ja
@@ -111,8 +111,8 @@ contains
    !> B = sum (-1)^(bot-k) (2 hd + s dt)/Z and C = sum 1/Z the energy is
    !> (A + 2 beta B + 2 beta^2 C)/dt.
    pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
       real(wp), intent(out) :: e             !! continuum energy [J/m^2]
@@ -176,12 +176,13 @@ contains
    !> Over the step a joined node moves by 2 (Z_i f_i + Z_{i+1} g_{i+1}) / (Z_i + Z_{i+1})
    !> (t^n intervals), a free bottom face by 2 f_i, a free top face by 2 g_{i+1}.
    pure subroutine fragment_characteristics(mesh, st, top, bot, i_top, i_bot, at_n, f, g)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
       logical, intent(in) :: at_n
-      real(wp), intent(out) :: f(top+1:), g(top+1:)
+      real(wp), intent(out) :: f(top+1:)
+      real(wp), intent(out) :: g(top+1:)   !! gravity along +x [m/s^2]
       real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot)), jp, jr, ja
       call fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jp, jr, ja)
       g(top+1:bot) = h(top+1:bot) / mesh%z(top+1:bot)
@@ -294,8 +295,8 @@ contains
    !> The face loads' terms of J', and the alternating sum counted from the held end: from
    !> the bottom where only the bottom is held (the top otherwise).
    pure subroutine face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       logical, intent(in) :: eq_top, eq_bot          !! the faces give equations
       real(wp), intent(in) :: load_top, load_bot     !! their load terms [kg/(m s)]
@@ -322,8 +323,8 @@ contains
    !> w_i = (-1)^(i-top-1) (1/2 - C_i/C) with C_i the compliance of the cells above node i:
    !> with -(g dt/2) in front, the exact gravity term of an odd cell count [kg/(m s)].
    pure real(wp) function held_weights(mesh, st, top, bot) result(jp)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot
       real(wp) :: c_total, c_above, sgn
       integer :: i
@@ -342,8 +343,8 @@ contains
 
    !> m du / dt of node i as the fragment top..bot owns it [kg/(m s)].
    pure real(wp) function node_momentum(mesh, st, top, bot, i) result(p)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top, bot, i
       if (i == top .and. top > 0) then
          p = mesh%mb(i) * st%dub(i)             ! the lower half of a split node

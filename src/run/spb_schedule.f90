@@ -26,21 +26,21 @@ contains
 
    !> Action act is due at every multiple of period (period <= 0: never by period).
    pure subroutine schedule_every(sched, act, period)
-      type(schedule_t), intent(inout) :: sched
+      type(schedule_t), intent(inout) :: sched   !! the schedule
       integer, intent(in) :: act, period   !! act_* ; [steps]
       sched%every(act) = max(period, 0)
    end subroutine schedule_every
 
    !> The profile action is due at these steps.
    pure subroutine schedule_at(sched, steps)
-      type(schedule_t), intent(inout) :: sched
+      type(schedule_t), intent(inout) :: sched   !! the schedule
       integer, intent(in) :: steps(:)      !! [steps], non-decreasing
       sched%at = steps
    end subroutine schedule_at
 
    !> Whether action act is due by its period at step n (list actions: see next_due).
    pure logical function is_due(sched, act, n)
-      type(schedule_t), intent(in) :: sched
+      type(schedule_t), intent(in) :: sched   !! the schedule
       integer, intent(in) :: act, n
       is_due = .false.
       if (sched%every(act) > 0) is_due = mod(n, sched%every(act)) == 0
@@ -49,7 +49,7 @@ contains
    !> The first step after n at which an action is due or the run ends; next_at is the index
    !> into the profile list of the first profile not yet written (its step counts if > n).
    pure integer function next_due(sched, n, next_at) result(m)
-      type(schedule_t), intent(in) :: sched
+      type(schedule_t), intent(in) :: sched   !! the schedule
       integer, intent(in) :: n         !! the step just taken
       integer, intent(in) :: next_at   !! index of the next profile in sched%at
       integer(int64) :: m8

@@ -78,7 +78,7 @@ contains
    !> half-mass model; the full-mass comparison model has no continuum reading and keeps the
    !> scheme's own (e_wave = e_kin + e_strain, w_wave = w_ext, e_lost_w = e_lost).
    pure subroutine measure(sim, e, wv, w_wave, e_lost_w)
-      type(sim_t), intent(in) :: sim
+      type(sim_t), intent(in) :: sim       !! the simulation
       type(energies_t), intent(in) :: e
       type(wave_t), intent(out) :: wv
       real(wp), intent(out) :: w_wave, e_lost_w     !! [J/m^2]
@@ -98,7 +98,7 @@ contains
    !> The largest overlap of two faces at a split node, or of the bottom face and the base,
    !> in cells of that node (<= 0: none; -huge with no open face) [-].
    pure real(wp) function largest_overlap(sim) result(ov)
-      type(sim_t), intent(in) :: sim
+      type(sim_t), intent(in) :: sim       !! the simulation
       integer :: c, i
       ov = -huge(1.0_wp)
       do c = 1, sim%st%n_split
@@ -112,9 +112,9 @@ contains
 
    !> Build mesh, load and initial state from a validated deck.
    subroutine sim_setup(deck, sim, err)
-      type(deck_t), intent(in) :: deck
-      type(sim_t), intent(out) :: sim
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(sim_t), intent(out) :: sim      !! the simulation
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       sim%record = deck_record(deck)
       sim%opt%history_every = deck%run%history_every
       sim%opt%field_every = deck%run%field_every
@@ -130,12 +130,12 @@ contains
    !> The problem of a validated deck, its mesh and its load (the load table read here, after
    !> the mesh: a deck with faults in both reports the mesh's first).
    subroutine setup_model(deck, prob, mesh, load, report, err)
-      type(deck_t), intent(in) :: deck
-      type(problem_t), intent(out) :: prob
-      type(mesh_t), intent(out) :: mesh
-      type(load_t), intent(out) :: load
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(problem_t), intent(out) :: prob   !! the problem
+      type(mesh_t), intent(out) :: mesh    !! the mesh
+      type(load_t), intent(out) :: load    !! the end load
       character(len=200), allocatable, intent(out) :: report(:)   !! mesh fit report
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(mesh_fault_t) :: fault
       prob = problem_from_deck(deck)
       call build_mesh(prob, mesh, report, fault)
@@ -153,7 +153,7 @@ contains
    !> One step of the whole method: the trial update, collisions by the timing rule, then
    !> fracture and separation at t^{n+1}.
    pure subroutine sim_step(sim, events)
-      type(sim_t), intent(inout) :: sim
+      type(sim_t), intent(inout) :: sim    !! the simulation
       type(event_list_t), intent(inout) :: events   !! events of this step are appended
       real(wp) :: i_top, i_bot
       associate (p => sim%prob)
@@ -172,11 +172,11 @@ contains
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
    !> signal stops the run. What happens between steps is the schedule's (spb_schedule).
    subroutine sim_run(sim, prefix, progress, summary, err, files, resume)
-      type(sim_t), intent(inout) :: sim
+      type(sim_t), intent(inout) :: sim    !! the simulation
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! show a progress line on stderr
-      type(run_summary_t), intent(out) :: summary
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(run_summary_t), intent(out) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       logical, intent(in), optional :: files   !! write the outputs (default .true.)
       type(checkpoint_t), intent(in), optional :: resume   !! continue from this checkpoint
       type(run_t) :: run
@@ -213,11 +213,11 @@ contains
 
    !> Open (or resume) the outputs, check the checkpoint path, and lay out the schedule.
    subroutine start_run(sim, run, summary, prefix, err, resume)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
-      character(len=*), intent(in) :: prefix
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(checkpoint_t), intent(in), optional :: resume
       associate (opt => sim%opt)
          run%ck_on = run%to_files .and. len(opt%checkpoint) > 0
@@ -255,10 +255,10 @@ contains
 
    !> The energy references and the rows, profiles and fields of t = 0.
    subroutine first_rows(sim, run, summary, err)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(energies_t) :: e0
       type(wave_t) :: w0
       real(wp) :: w_w, e_l
@@ -280,9 +280,9 @@ contains
    !> cache-blocked call where the bar is joined and nothing can break, then that step with
    !> its events (written and counted).
    subroutine take_steps(sim, run, summary)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
       integer :: k, j
       real(wp) :: sec_max
       k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
@@ -311,10 +311,10 @@ contains
    !> What is due after step n: the row or the check between rows, profiles, the field row,
    !> a checkpoint, the end on a stop signal, the progress line. stop_now: the run ends here.
    subroutine after_step(sim, run, summary, err, stop_now)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       logical, intent(out) :: stop_now
       integer :: n, sig
       logical :: wrote_row
@@ -366,10 +366,10 @@ contains
 
    !> Between rows: the state's finiteness and the energy guard (a failing one writes its row).
    subroutine check_between_rows(sim, run, summary, err)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(energies_t) :: e
       type(wave_t) :: wv
       real(wp) :: w_w, e_l
@@ -385,10 +385,10 @@ contains
 
    !> Write the checkpoint of step n (its outputs written through first).
    subroutine checkpoint(sim, run, summary, err)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(output_marks_t) :: marks
       call mark_outputs(run%out, marks)
       summary%checkpoints = summary%checkpoints + 1
@@ -400,10 +400,10 @@ contains
    !> One history row (and the run summary's running values); a state that is not finite
    !> ends the run here (exit 3), naming the first bad node.
    subroutine row(sim, run, summary, err)
-      type(sim_t), intent(inout) :: sim
-      type(run_t), intent(inout) :: run
-      type(run_summary_t), intent(inout) :: summary
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(energies_t) :: e
       type(wave_t) :: wv
       real(wp) :: s_top, s_bot, w_w, e_l, g
@@ -454,12 +454,12 @@ contains
    !> loads (gravity's work is in e_pot) by more than energy_guard times the scale. The
    !> energy is the wave measure (spb_wave), which no zig-zag growth can hide from.
    subroutine guard(sim, summary, e, wv, w_w, err)
-      type(sim_t), intent(in) :: sim
-      type(run_summary_t), intent(inout) :: summary
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
       type(energies_t), intent(in) :: e
       type(wave_t), intent(in) :: wv
       real(wp), intent(in) :: w_w      !! work in that measure [J/m^2]
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       real(wp) :: excess
       character(len=16) :: b1, b2
       if (allocated(err)) return
@@ -484,8 +484,8 @@ contains
 
    !> The profiles (and fragment lists) due at this step.
    subroutine profiles(sim, run)
-      type(sim_t), intent(in) :: sim
-      type(run_t), intent(inout) :: run
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
       type(frag_info_t), allocatable :: list(:)
       do while (run%next_profile <= size(run%sched%at))
          if (run%sched%at(run%next_profile) /= sim%st%step) exit
@@ -501,7 +501,7 @@ contains
 
    !> The progress line on stderr: share done, speed, time to go.
    subroutine show_progress(sim, n_done, elapsed)
-      type(sim_t), intent(in) :: sim
+      type(sim_t), intent(in) :: sim       !! the simulation
       integer, intent(in) :: n_done            !! steps done
       real(wp), intent(in) :: elapsed          !! wall time so far [s]
       real(wp) :: frac, speed

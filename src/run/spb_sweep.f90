@@ -78,18 +78,18 @@ contains
 
    !> Number of cases: values x realizations (at least one of each).
    pure integer function sweep_case_count(deck) result(nc)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       nc = max(1, deck%sweep%n_values) * max(1, deck%sweep%realizations)
    end function sweep_case_count
 
    !> The deck of case c: the varied variable set to its value, the realization's seed.
    subroutine case_deck(deck, c, cdeck, value, realization, err)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: c
       type(deck_t), intent(out) :: cdeck
       real(wp), intent(out) :: value
       integer, intent(out) :: realization
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer :: nrep, iv
       nrep = max(1, deck%sweep%realizations)
       iv = (c - 1) / nrep + 1
@@ -112,7 +112,7 @@ contains
    !> Run case c without files: its table row and fragment-length histogram over
    !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin).
    subroutine run_case(deck, c, nbins, l_hist, row, hist)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: c, nbins
       real(wp), intent(in) :: l_hist         !! histogram range [m]
       real(wp), intent(out) :: row(n_columns)
@@ -165,11 +165,11 @@ contains
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
    !> over the ranks; rank 0 writes PREFIX.sweep and PREFIX_sweep.h5.
    subroutine run_sweep(deck, prefix, progress, summary, err)
-      type(deck_t), intent(in) :: deck
-      character(len=*), intent(in) :: prefix
+      type(deck_t), intent(in) :: deck     !! the deck
+      character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
-      type(sweep_summary_t), intent(out) :: summary
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(sweep_summary_t), intent(out) :: summary   !! the run's summary
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       real(wp), allocatable :: rows(:, :)
       integer, allocatable :: hists(:, :)
       real(wp) :: l_hist, t0
@@ -222,7 +222,7 @@ contains
    !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
    !> case order (rank 0 receives in the same order: no deadlock).
    subroutine run_static(deck, k, me, l_hist, progress, t0, rows, hists)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: k, me             !! ranks, this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
@@ -260,7 +260,7 @@ contains
    !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
    !> the other ranks compute. Case 0 means stop.
    subroutine run_dynamic(deck, rank, nranks, l_hist, progress, t0, rows, hists)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: rank, nranks      !! this rank, ranks
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
@@ -323,9 +323,9 @@ contains
    !> Every value's deck and mesh must build (bad input: exit 2 before anything runs); the
    !> histogram range is the longest bar of the cases.
    subroutine check_cases(deck, l_hist, err)
-      type(deck_t), intent(in) :: deck
+      type(deck_t), intent(in) :: deck     !! the deck
       real(wp), intent(out) :: l_hist
-      type(spb_error_t), allocatable, intent(out) :: err
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(deck_t) :: cdeck
       type(mesh_t) :: mesh
       type(load_t) :: load
@@ -356,10 +356,10 @@ contains
    !> PREFIX.sweep: header (deck echo with &sweep, columns, units), one row per case, in
    !> case order; written to PREFIX.sweep.part and renamed when complete.
    subroutine write_table(deck, prefix, rows, err)
-      type(deck_t), intent(in) :: deck
-      character(len=*), intent(in) :: prefix
+      type(deck_t), intent(in) :: deck     !! the deck
+      character(len=*), intent(in) :: prefix   !! output path prefix
       real(wp), intent(in) :: rows(:, :)
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=24) :: cell
       character(len=:), allocatable :: line
       integer :: u, ios, c, k
@@ -409,12 +409,12 @@ contains
    !> the table), /histogram/edges [m] and /histogram/counts (bins x cases; h5py: cases x
    !> bins). Written to PREFIX_sweep.h5.part and renamed when complete.
    subroutine write_h5(deck, prefix, rows, hists, l_hist, err)
-      type(deck_t), intent(in) :: deck
-      character(len=*), intent(in) :: prefix
+      type(deck_t), intent(in) :: deck     !! the deck
+      character(len=*), intent(in) :: prefix   !! output path prefix
       real(wp), intent(in) :: rows(:, :)
       integer, intent(in) :: hists(:, :)
       real(wp), intent(in) :: l_hist
-      type(spb_error_t), allocatable, intent(inout) :: err
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       real(wp) :: col(size(rows, 2))
       integer :: k, nb
