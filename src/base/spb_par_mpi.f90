@@ -51,22 +51,27 @@ contains
    end function par_wtime
 
    subroutine send_real(buf, dest, tag)
-      real(wp), intent(in) :: buf(:)
-      integer, intent(in) :: dest, tag
+      real(wp), intent(in) :: buf(:)       !! the message
+      integer, intent(in) :: dest          !! rank to send to
+      integer, intent(in) :: tag           !! message tag
       call MPI_Send(buf, size(buf), MPI_DOUBLE_PRECISION, dest, tag, MPI_COMM_WORLD)
    end subroutine send_real
 
    subroutine send_int(i, dest, tag)
-      integer, intent(in) :: i, dest, tag
+      integer, intent(in) :: i             !! the integer
+      integer, intent(in) :: dest          !! rank to send to
+      integer, intent(in) :: tag           !! message tag
       call MPI_Send(i, 1, MPI_INTEGER, dest, tag, MPI_COMM_WORLD)
    end subroutine send_int
 
    !> Receive buf from source (par_any: any rank) with tag (par_any: any tag); who and what
    !> tag it came with.
    subroutine recv_real(buf, source, tag, got_source, got_tag)
-      real(wp), intent(out) :: buf(:)
-      integer, intent(in) :: source, tag
-      integer, intent(out), optional :: got_source, got_tag
+      real(wp), intent(out) :: buf(:)      !! the message
+      integer, intent(in) :: source        !! rank to receive from
+      integer, intent(in) :: tag           !! message tag
+      integer, intent(out), optional :: got_source   !! the rank it came from
+      integer, intent(out), optional :: got_tag   !! its tag
       type(MPI_Status) :: status
       call MPI_Recv(buf, size(buf), MPI_DOUBLE_PRECISION, mpi_source(source), mpi_tag(tag), &
                     MPI_COMM_WORLD, status)
@@ -75,9 +80,11 @@ contains
    end subroutine recv_real
 
    subroutine recv_int(i, source, tag, got_source, got_tag)
-      integer, intent(out) :: i
-      integer, intent(in) :: source, tag
-      integer, intent(out), optional :: got_source, got_tag
+      integer, intent(out) :: i            !! the integer
+      integer, intent(in) :: source        !! rank to receive from
+      integer, intent(in) :: tag           !! message tag
+      integer, intent(out), optional :: got_source   !! the rank it came from
+      integer, intent(out), optional :: got_tag   !! its tag
       type(MPI_Status) :: status
       call MPI_Recv(i, 1, MPI_INTEGER, mpi_source(source), mpi_tag(tag), MPI_COMM_WORLD, status)
       if (present(got_source)) got_source = status%MPI_SOURCE
@@ -85,13 +92,13 @@ contains
    end subroutine recv_int
 
    integer function mpi_source(source)
-      integer, intent(in) :: source
+      integer, intent(in) :: source        !! rank to receive from
       mpi_source = source
       if (source == par_any) mpi_source = MPI_ANY_SOURCE
    end function mpi_source
 
    integer function mpi_tag(tag)
-      integer, intent(in) :: tag
+      integer, intent(in) :: tag           !! message tag
       mpi_tag = tag
       if (tag == par_any) mpi_tag = MPI_ANY_TAG
    end function mpi_tag

@@ -42,28 +42,35 @@ contains
 
    ! One rank never sends or receives: the sweep driver does not call these with size 1.
    subroutine send_real(buf, dest, tag)
-      real(wp), intent(in) :: buf(:)
-      integer, intent(in) :: dest, tag
+      real(wp), intent(in) :: buf(:)       !! the message
+      integer, intent(in) :: dest          !! rank to send to
+      integer, intent(in) :: tag           !! message tag
       error stop 'spb_par: no messages in a serial build'
    end subroutine send_real
 
    subroutine send_int(i, dest, tag)
-      integer, intent(in) :: i, dest, tag
+      integer, intent(in) :: i             !! the integer
+      integer, intent(in) :: dest          !! rank to send to
+      integer, intent(in) :: tag           !! message tag
       error stop 'spb_par: no messages in a serial build'
    end subroutine send_int
 
    subroutine recv_real(buf, source, tag, got_source, got_tag)
-      real(wp), intent(out) :: buf(:)
-      integer, intent(in) :: source, tag
-      integer, intent(out), optional :: got_source, got_tag
+      real(wp), intent(out) :: buf(:)      !! the message
+      integer, intent(in) :: source        !! rank to receive from
+      integer, intent(in) :: tag           !! message tag
+      integer, intent(out), optional :: got_source   !! the rank it came from
+      integer, intent(out), optional :: got_tag   !! its tag
       buf = 0.0_wp
       error stop 'spb_par: no messages in a serial build'
    end subroutine recv_real
 
    subroutine recv_int(i, source, tag, got_source, got_tag)
-      integer, intent(out) :: i
-      integer, intent(in) :: source, tag
-      integer, intent(out), optional :: got_source, got_tag
+      integer, intent(out) :: i            !! the integer
+      integer, intent(in) :: source        !! rank to receive from
+      integer, intent(in) :: tag           !! message tag
+      integer, intent(out), optional :: got_source   !! the rank it came from
+      integer, intent(out), optional :: got_tag   !! its tag
       i = 0
       error stop 'spb_par: no messages in a serial build'
    end subroutine recv_int

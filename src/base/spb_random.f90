@@ -49,7 +49,7 @@ contains
 
    !> Next number, uniform in (0, 1) (never 0 or 1).
    pure subroutine rng_uniform(g, u)
-      type(rng_t), intent(inout) :: g      !! gravity along +x [m/s^2]
+      type(rng_t), intent(inout) :: g      !! the generator
       real(wp), intent(out) :: u
       integer(int64) :: p1, p2, z
       p1 = modulo(a12 * g%s1(2) - a13n * g%s1(1), m1)

@@ -21,7 +21,7 @@ contains
    !> write(es20.12e3).
    !> tests/test_format.pf compares both on a million values.
    pure function es20_12(x) result(out)
-      real(wp), intent(in) :: x
+      real(wp), intent(in) :: x            !! the number
       character(len=20) :: out
       integer :: e, k, j
       real(wp), parameter :: pow10(0:22) = [(10.0_wp**k, k = 0, 22)]
@@ -144,7 +144,7 @@ contains
 
    !> Shortest decimal text that reads back as exactly the same real (up to 17 digits).
    function rtoa(x) result(s)
-      real(wp), intent(in) :: x
+      real(wp), intent(in) :: x            !! the number
       character(len=:), allocatable :: s
       character(len=40) :: buf
       character(len=16) :: fmt
@@ -174,7 +174,7 @@ contains
    !> Turn '1.5E+000' into '1.5', '2.5E-001' into '0.25', '1.25E+010' into '1.25e10'.
    !> Plain decimals for exponents -4..6, otherwise mantissa e exponent.
    subroutine tidy(s)
-      character(len=:), allocatable, intent(inout) :: s
+      character(len=:), allocatable, intent(inout) :: s   !! the string
       integer :: ie, k, ex
       character(len=:), allocatable :: mant, digits, sgn
       ie = scan(s, 'Ee')
@@ -207,7 +207,7 @@ contains
 
    !> Lower-case copy of a string.
    pure function lower(s) result(r)
-      character(len=*), intent(in) :: s
+      character(len=*), intent(in) :: s    !! the string
       character(len=len(s)) :: r
       integer :: k, ic
       r = s

@@ -49,7 +49,7 @@ contains
 
    !> Refuse (exit 2) a checkpoint path that cannot be written, before the run starts.
    subroutine check_checkpoint_path(path, err)
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! checkpoint file
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer :: u, ios
       character(len=256) :: msg
@@ -65,7 +65,7 @@ contains
 
    !> Write the checkpoint of a run at its state's step.
    subroutine write_checkpoint(path, rec, mesh, load, st, summary, marks, err)
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! checkpoint file
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
@@ -215,8 +215,9 @@ contains
    subroutine field_int(h5, writing, group, name, v)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: group, name
-      integer, intent(inout) :: v
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      integer, intent(inout) :: v          !! the value
       if (writing) then
          call h5_attr(h5, group, name, v)
       else
@@ -227,8 +228,9 @@ contains
    subroutine field_real(h5, writing, group, name, v)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: group, name
-      real(wp), intent(inout) :: v
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      real(wp), intent(inout) :: v         !! the value
       if (writing) then
          call h5_attr(h5, group, name, v)
       else
@@ -240,8 +242,9 @@ contains
    subroutine field_logical(h5, writing, group, name, v)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: group, name
-      logical, intent(inout) :: v
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      logical, intent(inout) :: v          !! the value
       integer :: flag
       flag = merge(1, 0, v)
       call field_int(h5, writing, group, name, flag)
@@ -255,8 +258,8 @@ contains
    subroutine array_reals(h5, writing, name, a)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: name
-      real(wp), allocatable, intent(inout) :: a(:)
+      character(len=*), intent(in) :: name   !! field name
+      real(wp), allocatable, intent(inout) :: a(:)   !! the array
       real(wp), allocatable :: v(:)
       integer :: lb, n
       if (writing) then
@@ -285,8 +288,8 @@ contains
    subroutine array_ints(h5, writing, name, a)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: name
-      integer, allocatable, intent(inout) :: a(:)
+      character(len=*), intent(in) :: name   !! field name
+      integer, allocatable, intent(inout) :: a(:)   !! the array
       integer :: lb, n
       real(wp), allocatable :: v(:)
       if (writing) then
@@ -306,8 +309,8 @@ contains
    subroutine array_logicals(h5, writing, name, a)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: name
-      logical, allocatable, intent(inout) :: a(:)
+      character(len=*), intent(in) :: name   !! field name
+      logical, allocatable, intent(inout) :: a(:)   !! the array
       integer, allocatable :: v(:)
       if (writing) then
          if (.not. allocated(a)) return
@@ -323,7 +326,7 @@ contains
    !> Read a checkpoint for the run set up from deck (mesh, load) and check that the
    !> restart can be identical to an uninterrupted run; every refusal is exit status 2.
    subroutine read_checkpoint(path, rec, mesh, load, ck, err)
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! checkpoint file
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
@@ -519,7 +522,8 @@ contains
 
    !> The first line of a that differs from b, for a message.
    function first_difference(a, b) result(msg)
-      character(len=*), intent(in) :: a, b
+      character(len=*), intent(in) :: a    !! the array
+      character(len=*), intent(in) :: b
       character(len=:), allocatable :: msg
       integer :: i, ia, ib
       i = 1
@@ -544,7 +548,8 @@ contains
 
    !> Two arrays equal bit for bit (and in size).
    pure logical function same(a, b)
-      real(wp), intent(in) :: a(:), b(:)
+      real(wp), intent(in) :: a(:)         !! the array
+      real(wp), intent(in) :: b(:)
       same = size(a) == size(b)
       if (same) same = all(transfer(a, 0_int64, size(a)) == transfer(b, 0_int64, size(b)))
    end function same

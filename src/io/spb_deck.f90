@@ -288,7 +288,9 @@ contains
    !> characters, and a cut value could look like a valid one).
    subroutine check_word(err, group, var, value)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=*), intent(in) :: group, var, value
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: var   !! variable name
+      character(len=*), intent(in) :: value   !! its value text
       if (allocated(err)) return
       if (len_trim(value) > name_len) call make_error(err, '&' // group // ': ' // var // &
          ': ''' // value(1:20) // '...'' is longer than any choice (' // itoa(name_len) // &
@@ -298,7 +300,10 @@ contains
    !> The error for the one assignment (record, '&group var = value /') that does not read.
    subroutine blame(err, group, var, record, msg)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=*), intent(in) :: group, var, record, msg
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: var   !! variable name
+      character(len=*), intent(in) :: record
+      character(len=*), intent(in) :: msg
       character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
       character(len=:), allocatable :: value, name
       integer :: k
@@ -333,7 +338,8 @@ contains
    !> Turn a namelist read status into an error naming the group (and the variable).
    subroutine read_status(deck, group, ios, msg, err)
       type(deck_t), intent(in) :: deck     !! the deck
-      character(len=*), intent(in) :: group, msg
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: msg
       integer, intent(in) :: ios
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
@@ -367,7 +373,7 @@ contains
    end subroutine read_status
 
    subroutine read_run(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: title
@@ -447,7 +453,7 @@ contains
    end subroutine read_run
 
    subroutine read_mesh(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: cells, ref_segment, ios
@@ -486,7 +492,7 @@ contains
    end subroutine read_mesh
 
    subroutine read_segments(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: n, ios, j
@@ -537,7 +543,7 @@ contains
    end subroutine read_segments
 
    subroutine read_ends(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: top, bottom
@@ -575,7 +581,7 @@ contains
    end subroutine read_ends
 
    subroutine read_load(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: kind, face
@@ -627,7 +633,7 @@ contains
    end subroutine read_load
 
    subroutine read_initial(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: state
@@ -662,7 +668,7 @@ contains
    end subroutine read_initial
 
    subroutine read_strength_field(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: kind
@@ -701,7 +707,7 @@ contains
    end subroutine read_strength_field
 
    subroutine read_sweep(u, deck, err)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=path_len) :: vary, distribution
@@ -822,8 +828,8 @@ contains
    !> Set the deck variable a sweep varies: name as in the deck, 'p0' or 'velocity(2)'.
    subroutine set_deck_value(deck, name, value, err)
       type(deck_t), intent(inout) :: deck   !! the deck
-      character(len=*), intent(in) :: name
-      real(wp), intent(in) :: value
+      character(len=*), intent(in) :: name   !! variable name
+      real(wp), intent(in) :: value        !! the value to set
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: base
       integer :: j, p, ios
@@ -918,7 +924,8 @@ contains
    !> Error unless x is a finite number; name is the variable as the user writes it.
    subroutine need_finite(err, group, name, x)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=*), intent(in) :: group, name
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: name   !! variable name
       real(wp), intent(in) :: x
       if (allocated(err)) return
       if (.not. ieee_is_finite(x)) call make_error(err, '&' // group // ': ' // name // &
@@ -928,7 +935,8 @@ contains
    !> Error unless x was given, is finite and > 0 (or >= 0 when zero_ok).
    subroutine need_positive(err, group, name, x, zero_ok)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=*), intent(in) :: group, name
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: name   !! variable name
       real(wp), intent(in) :: x
       logical, intent(in), optional :: zero_ok
       logical :: zok
@@ -953,7 +961,9 @@ contains
    !> Error unless value is one of choices.
    subroutine need_choice(err, group, name, value, choices)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=*), intent(in) :: group, name, value
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: name   !! variable name
+      character(len=*), intent(in) :: value   !! its value text
       character(len=*), intent(in) :: choices(:)
       character(len=:), allocatable :: list
       integer :: k
@@ -970,7 +980,7 @@ contains
 
 
    subroutine validate_run(run, err)
-      type(run_cfg), intent(inout) :: run   !! the run's context (outputs, schedule, clock)
+      type(run_cfg), intent(inout) :: run   !! &run values
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: k
       call need_positive(err, 'run', 't_end', run%t_end)
@@ -1047,7 +1057,7 @@ contains
    end subroutine validate_run
 
    subroutine validate_mesh(mesh, nseg, err)
-      type(mesh_cfg), intent(in) :: mesh   !! the mesh
+      type(mesh_cfg), intent(in) :: mesh   !! &mesh values
       integer, intent(in) :: nseg
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       if (allocated(err)) return
@@ -1130,7 +1140,7 @@ contains
       end do
    contains
       subroutine beyond_n(name, x)
-         character(len=*), intent(in) :: name
+         character(len=*), intent(in) :: name   !! variable name
          real(wp), intent(in) :: x
          if (allocated(err)) return
          if (is_set(x)) call make_error(err, '&segments: ' // name // sj // ' is given but n = ' &
@@ -1154,7 +1164,7 @@ contains
    end subroutine validate_ends
 
    subroutine validate_load(load, ends, err)
-      type(load_cfg), intent(in) :: load   !! the end load
+      type(load_cfg), intent(in) :: load   !! &load values
       type(ends_cfg), intent(in) :: ends
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=name_len) :: face_end
@@ -1349,9 +1359,9 @@ contains
       end if
    contains
       subroutine item(g, name, value, unit)
-         character(len=*), intent(in) :: g   !! gravity along +x [m/s^2]
-         character(len=*), intent(in) :: name
-         character(len=*), intent(in) :: value
+         character(len=*), intent(in) :: g   !! group name
+         character(len=*), intent(in) :: name   !! variable name
+         character(len=*), intent(in) :: value   !! its value text
          character(len=*), intent(in) :: unit
          items = [items, echo_item_t(g, name, value, unit, has_var(deck%scan, g, name))]
       end subroutine item

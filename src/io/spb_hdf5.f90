@@ -105,7 +105,7 @@ contains
    !> Create (truncate) the file.
    subroutine h5_create(h5, path)
       type(h5file_t), intent(out) :: h5    !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! the file
       integer :: hdferr
       integer(hid_t) :: fcpl
       h5%path = path
@@ -131,7 +131,7 @@ contains
    !> Create the group path (its parent must exist).
    subroutine h5_group(h5, path)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer(hid_t) :: g
       integer :: hdferr
       if (h5%file < 0) return
@@ -143,8 +143,8 @@ contains
    !> Open a group or dataset path for attributes.
    subroutine open_obj(h5, path, obj, is_dset)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
-      integer(hid_t), intent(out) :: obj
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      integer(hid_t), intent(out) :: obj   !! an open group or dataset
       logical, intent(out) :: is_dset
       integer :: hdferr
       is_dset = .false.
@@ -160,7 +160,9 @@ contains
 
    subroutine attr_string(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name, value
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      character(len=*), intent(in) :: value   !! its value
       integer(hid_t) :: obj, space, atype, attr
       integer(hsize_t) :: dims(1)
       integer :: hdferr
@@ -188,8 +190,9 @@ contains
 
    subroutine attr_real(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name
-      real(wp), intent(in) :: value
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      real(wp), intent(in) :: value        !! its value
       integer(hid_t) :: obj, space, attr
       integer(hsize_t) :: dims(1)
       integer :: hdferr
@@ -212,8 +215,9 @@ contains
 
    subroutine attr_int(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name
-      integer, intent(in) :: value
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer, intent(in) :: value         !! its value
       integer(hid_t) :: obj, space, attr
       integer(hsize_t) :: dims(1)
       integer :: hdferr
@@ -237,8 +241,9 @@ contains
    !> A fixed 1-D dataset with a units attribute.
    subroutine write_real_1d(h5, path, values, units)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, units
-      real(wp), intent(in) :: values(:)
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: units   !! unit of the data
+      real(wp), intent(in) :: values(:)    !! the data
       integer(hid_t) :: space, dset
       integer(hsize_t) :: dims(1)
       integer :: hdferr
@@ -258,16 +263,18 @@ contains
 
    subroutine write_int_1d(h5, path, values, units)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, units
-      integer, intent(in) :: values(:)
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: units   !! unit of the data
+      integer, intent(in) :: values(:)     !! the data
       call write_int_shaped(h5, path, values, [size(values, kind=hsize_t)], units)
    end subroutine write_int_1d
 
    !> A fixed 2-D integer dataset values(nx, ny) (h5py: shape (ny, nx)) with units.
    subroutine write_int_2d(h5, path, values, units)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, units
-      integer, intent(in) :: values(:, :)
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: units   !! unit of the data
+      integer, intent(in) :: values(:, :)   !! the data
       call write_int_shaped(h5, path, reshape(values, [size(values)]), &
                             shape(values, kind=hsize_t), units)
    end subroutine write_int_2d
@@ -275,8 +282,9 @@ contains
    !> An integer dataset of the given dims from its values in Fortran (column-major) order.
    subroutine write_int_shaped(h5, path, values, dims, units)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, units
-      integer, intent(in) :: values(:)
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: units   !! unit of the data
+      integer, intent(in) :: values(:)     !! the data
       integer(hsize_t), intent(in) :: dims(:)
       integer(hid_t) :: space, dset
       integer :: hdferr
@@ -296,7 +304,7 @@ contains
    !> An extendible, chunked, deflated dataset of rank 1 (nrow = 0) or 2 (nrow rows).
    subroutine create_extendible(h5, path, dtype, nrow, dset)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer(hid_t), intent(in) :: dtype
       integer, intent(in) :: nrow
       integer(hid_t), intent(out) :: dset
@@ -328,10 +336,11 @@ contains
    !> A table: group path with one extendible column per name; returns its handle.
    subroutine h5_table(h5, path, names, units, is_int, handle)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
-      character(len=*), intent(in) :: names(:), units(:)
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: names(:)
+      character(len=*), intent(in) :: units(:)   !! unit of the data
       logical, intent(in) :: is_int(:)
-      integer, intent(out) :: handle
+      integer, intent(out) :: handle       !! table handle (h5_table)
       type(table_t) :: tab
       integer :: k
       handle = 0
@@ -356,7 +365,7 @@ contains
    !> Append one row to a table (buffered).
    subroutine h5_append(h5, handle, row)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      integer, intent(in) :: handle
+      integer, intent(in) :: handle        !! table handle (h5_table)
       real(wp), intent(in) :: row(:)
       if (h5%file < 0 .or. handle < 1) return
       associate (tab => h5%tables(handle))
@@ -368,7 +377,7 @@ contains
 
    subroutine write_table(h5, handle)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      integer, intent(in) :: handle
+      integer, intent(in) :: handle        !! table handle (h5_table)
       integer(hid_t) :: fspace, mspace
       integer(hsize_t) :: off(1), cnt(1), newsize(1)
       integer :: k, hdferr
@@ -406,7 +415,7 @@ contains
    !> The x-t fields under path: t(nt) and u, v, stress(nrow, nt), with units.
    subroutine h5_xt(h5, path, nrow)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer, intent(in) :: nrow
       character(len=6), parameter :: names(3) = [character(len=6) :: 'u', 'v', 'stress']
       character(len=6), parameter :: units(3) = [character(len=6) :: 'm', 'm/s', 'Pa']
@@ -514,7 +523,7 @@ contains
    !> Open an existing file read-only (the h5_get* readers, h5_copy's source; h5_close).
    subroutine h5_open_read(h5, path)
       type(h5file_t), intent(out) :: h5    !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! the file
       integer :: hdferr
       h5%path = path
       h5%read_only = .true.
@@ -531,7 +540,7 @@ contains
    !> h5lexists_f needs them.
    logical function h5_exists(h5, path)
       type(h5file_t), intent(in) :: h5     !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer :: j, k, hdferr
       logical :: ok
       h5_exists = .false.
@@ -551,7 +560,7 @@ contains
    !> Dimensions of a dataset (Fortran order; rank <= 2); rank = -1 when it is absent.
    subroutine h5_dims(h5, path, dims, rank)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer(hsize_t), intent(out) :: dims(2)
       integer, intent(out) :: rank
       integer(hid_t) :: dset, space
@@ -572,7 +581,7 @@ contains
    !> Open a 1-D dataset for reading: its handle and length (false if absent).
    logical function open_1d(h5, path, dset, n)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer(hid_t), intent(out) :: dset
       integer(hsize_t), intent(out) :: n
       integer(hsize_t) :: dims(2)
@@ -592,8 +601,8 @@ contains
    !> (unallocated if absent).
    subroutine get_real_1d(h5, path, values)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
-      real(wp), allocatable, intent(out) :: values(:)
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      real(wp), allocatable, intent(out) :: values(:)   !! the data
       integer(hid_t) :: dset
       integer(hsize_t) :: n
       integer :: hdferr
@@ -607,9 +616,9 @@ contains
    !> Columns c0+1 .. c0+size(values, 2) of a 2-D float64 dataset (rows = size(values, 1)).
    subroutine h5_get_columns(h5, path, c0, values)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer, intent(in) :: c0
-      real(wp), intent(out) :: values(:, :)
+      real(wp), intent(out) :: values(:, :)   !! the data
       integer(hid_t) :: dset, fspace, mspace
       integer(hsize_t) :: off(2), cnt(2)
       integer :: hdferr
@@ -635,8 +644,10 @@ contains
    !> Open the attribute name of the object path (attr < 0 and an error if absent).
    subroutine open_attr(h5, path, name, obj, attr)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name
-      integer(hid_t), intent(out) :: obj, attr
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer(hid_t), intent(out) :: obj   !! an open group or dataset
+      integer(hid_t), intent(out) :: attr
       integer :: hdferr
       logical :: is_dset, exists
       attr = -1
@@ -660,7 +671,8 @@ contains
    end subroutine open_attr
 
    subroutine close_attr(obj, attr)
-      integer(hid_t), intent(in) :: obj, attr
+      integer(hid_t), intent(in) :: obj    !! an open group or dataset
+      integer(hid_t), intent(in) :: attr
       integer :: hdferr
       if (attr >= 0) call h5aclose_f(attr, hdferr)
       if (obj >= 0) call h5oclose_f(obj, hdferr)
@@ -668,8 +680,9 @@ contains
 
    subroutine get_attr_real(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name
-      real(wp), intent(out) :: value
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      real(wp), intent(out) :: value       !! its value
       integer(hid_t) :: obj, attr
       integer :: hdferr
       value = 0.0_wp
@@ -683,8 +696,9 @@ contains
 
    subroutine get_attr_int(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name
-      integer, intent(out) :: value
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer, intent(out) :: value        !! its value
       integer(hid_t) :: obj, attr
       integer :: hdferr
       value = 0
@@ -699,8 +713,9 @@ contains
    !> A fixed-length string attribute as written by h5_attr (trailing blanks dropped).
    subroutine get_attr_string(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      character(len=*), intent(in) :: path, name
-      character(len=:), allocatable, intent(out) :: value
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      character(len=:), allocatable, intent(out) :: value   !! its value
       integer(hid_t) :: obj, attr, atype
       integer(size_t) :: n
       integer :: hdferr
@@ -733,7 +748,7 @@ contains
    !> Rows a table holds, buffered ones included.
    integer function h5_table_rows(h5, handle) result(rows)
       type(h5file_t), intent(in) :: h5     !! the HDF5 file
-      integer, intent(in) :: handle
+      integer, intent(in) :: handle        !! table handle (h5_table)
       rows = 0
       if (handle < 1 .or. handle > size(h5%tables)) return
       rows = int(h5%tables(handle)%rows) + h5%tables(handle)%nbuf
@@ -748,7 +763,8 @@ contains
 
    !> Length of a 1-D dataset (or the last dimension) in an existing file; -1 if absent.
    subroutine h5_read_size(path, dset_path, n)
-      character(len=*), intent(in) :: path, dset_path
+      character(len=*), intent(in) :: path   !! the file
+      character(len=*), intent(in) :: dset_path
       integer, intent(out) :: n
       integer(hid_t) :: file, dset, space
       integer(hsize_t) :: dims(2), maxdims(2)
@@ -772,8 +788,9 @@ contains
 
    !> Read a 1-D float64 dataset of an existing file into values (size from h5_read_size).
    subroutine h5_read(path, dset_path, values, ok)
-      character(len=*), intent(in) :: path, dset_path
-      real(wp), intent(out) :: values(:)
+      character(len=*), intent(in) :: path   !! the file
+      character(len=*), intent(in) :: dset_path
+      real(wp), intent(out) :: values(:)   !! the data
       logical, intent(out) :: ok
       integer(hid_t) :: file, dset
       integer(hsize_t) :: dims(1)

@@ -171,7 +171,7 @@ contains
    contains
       subroutine open_one(ext, u)
          character(len=*), intent(in) :: ext
-         integer, intent(out) :: u
+         integer, intent(out) :: u         !! open formatted unit
          integer :: ios
          character(len=256) :: msg
          open(newunit=u, file=prefix // ext, status='replace', action='write', iostat=ios, &
@@ -182,7 +182,7 @@ contains
          end if
       end subroutine open_one
       subroutine header(u, what)
-         integer, intent(in) :: u
+         integer, intent(in) :: u          !! open formatted unit
          character(len=*), intent(in) :: what
          write(u, '(a)') '# spallbar ' // version // ' -- ' // what
          write(u, '(a)') '# title: ' // rec%title
@@ -193,7 +193,7 @@ contains
 
    !> The mesh as built: dt, cells, steps, and each segment's cells and lengths.
    subroutine write_mesh_summary(u, mesh, report, prefix)
-      integer, intent(in) :: u
+      integer, intent(in) :: u             !! open formatted unit
       type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)
       character(len=*), intent(in) :: prefix   !! output path prefix
@@ -294,7 +294,7 @@ contains
    !> The unit of text file k (text_extensions order).
    pure integer function text_unit(out, k) result(u)
       type(outputs_t), intent(in) :: out   !! the outputs
-      integer, intent(in) :: k
+      integer, intent(in) :: k             !! text file (text_extensions)
       integer :: units(4)
       units = [out%his, out%prf, out%evt, out%frg]
       u = units(k)
@@ -302,7 +302,8 @@ contains
 
    subroutine set_text_unit(out, k, u)
       type(outputs_t), intent(inout) :: out   !! the outputs
-      integer, intent(in) :: k, u
+      integer, intent(in) :: k             !! text file (text_extensions)
+      integer, intent(in) :: u             !! open formatted unit
       select case (k)
       case (1)
          out%his = u
@@ -317,7 +318,7 @@ contains
 
    !> The column line that ends the header of text file k.
    pure function column_line(k) result(line)
-      integer, intent(in) :: k
+      integer, intent(in) :: k             !! text file (text_extensions)
       character(len=:), allocatable :: line
       select case (k)
       case (1)
@@ -334,8 +335,8 @@ contains
    !> Bytes of the header of a text output (up to its column line), -1 if there is none in
    !> its first MiBs, and the file's size.
    subroutine find_header(path, k, head, size_bytes)
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: k
+      character(len=*), intent(in) :: path   !! file path
+      integer, intent(in) :: k             !! text file (text_extensions)
       integer(int64), intent(out) :: head, size_bytes
       integer, parameter :: scan_max = 4194304
       character(len=:), allocatable :: buf
@@ -478,7 +479,9 @@ contains
    pure subroutine half_rows(mesh, st, u, v, s)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(out) :: u(:), v(:), s(:)
+      real(wp), intent(out) :: u(:)        !! displacement of each half-node row [m]
+      real(wp), intent(out) :: v(:)
+      real(wp), intent(out) :: s(:)
       integer :: i, r
       r = 0
       do i = 0, mesh%n
@@ -602,7 +605,7 @@ contains
    !> One block of fragments at time t.
    subroutine write_fragments(out, t, dt, list)
       type(outputs_t), intent(inout) :: out   !! the outputs
-      real(wp), intent(in) :: t
+      real(wp), intent(in) :: t            !! time of the row [s]
       real(wp), intent(in) :: dt           !! time step [s]
       type(frag_info_t), intent(in) :: list(:)
       integer :: f
@@ -696,7 +699,7 @@ contains
 
    !> Name of the k-th block group: 'p000', 'p001', ... (sorts in time order).
    pure function block_name(k) result(name)
-      integer, intent(in) :: k
+      integer, intent(in) :: k             !! block number, from 1
       character(len=:), allocatable :: name
       character(len=12) :: buf
       write(buf, '(a,i3.3)') 'p', k - 1

@@ -321,7 +321,7 @@ contains
    !> it belongs to another group): reading these one by one finds the one that fails.
    function assignment_text(scan, group, k, var) result(record)
       type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
-      character(len=*), intent(in) :: group
+      character(len=*), intent(in) :: group   !! group name
       integer, intent(in) :: k                          !! 1 .. size(scan%keys)
       character(len=:), allocatable, intent(out) :: var !! its variable name
       character(len=:), allocatable :: record
@@ -337,7 +337,7 @@ contains
    !> True when the group appears in the deck.
    logical function has_group(scan, group)
       type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
-      character(len=*), intent(in) :: group
+      character(len=*), intent(in) :: group   !! group name
       has_group = .false.
       if (allocated(scan%groups)) has_group = any(scan%groups == group)
    end function has_group
@@ -345,7 +345,8 @@ contains
    !> True when the deck assigns the variable (any element of it) in the group.
    logical function has_var(scan, group, var)
       type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
-      character(len=*), intent(in) :: group, var
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: var   !! variable name
       has_var = .false.     ! a deck built in memory has no scan
       if (allocated(scan%keys)) has_var = any(scan%keys == group // ':' // var)
    end function has_var

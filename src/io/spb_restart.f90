@@ -186,8 +186,8 @@ contains
    !> The first rows of every column of a table (integer columns read as float64).
    subroutine replay_table(prefix, old, path, columns, out, handle, rows, err)
       character(len=*), intent(in) :: prefix   !! output path prefix
-      character(len=*), intent(in) :: path
-      character(len=*), intent(in) :: columns
+      character(len=*), intent(in) :: path   !! table path in the file
+      character(len=*), intent(in) :: columns   !! its column names, blank-separated
       type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: handle, rows      !! table handle in out%h5; rows to copy
@@ -254,7 +254,7 @@ contains
 
    !> Delete a file if it is there.
    subroutine remove_file(path)
-      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: path   !! table path in the file
       integer :: u, ios
       open(newunit=u, file=path, status='old', iostat=ios)
       if (ios == 0) close(u, status='delete')

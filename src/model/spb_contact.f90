@@ -150,7 +150,7 @@ contains
    pure real(wp) function gap_at_n(mesh, st, i, tol) result(d_acc)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       if (i == mesh%n) then
          d_acc = (st%ua(i) - st%dua(i)) - st%ends%u_base
@@ -167,7 +167,7 @@ contains
       real(wp), intent(in) :: g, i_top, i_bot
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       real(wp), intent(in) :: tol              !! contact tolerance [m]
       real(wp) :: d_acc, d_del, corr, x, y
       integer :: top, bot
@@ -188,7 +188,7 @@ contains
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(in) :: rules         !! event rules (events_*)
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       integer, intent(out) :: r_top, r_bot
       real(wp) :: d_acc, d_del, amount, corr, x, y
       integer :: j, k, top, bot
@@ -233,7 +233,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       d = st%dua(i) - (st%s_old(i) + mesh%ma(i) * g) / mesh%ma(i) * mesh%dt**2
    end function du_before_a
 
@@ -241,7 +241,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       d = st%dub(i) - (mesh%mb(i) * g - st%s_old(i + 1)) / mesh%mb(i) * mesh%dt**2
    end function du_before_b
 
@@ -253,7 +253,7 @@ contains
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       integer, intent(in) :: rules         !! event rules (events_*)
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp) :: dua0, dub0, d_acc, d_del, corr, mass_a, mass_b, du_join, e0, de, sz, v_a, v_b
@@ -357,7 +357,8 @@ contains
    pure real(wp) function span_momentum(mesh, st, top, bot) result(mom)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       integer :: i
       mom = 0.0_wp
       do i = top, bot
@@ -371,7 +372,8 @@ contains
    pure real(wp) function end_force(mesh, st, top, bot) result(f)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       f = 0.0_wp
       if (top == 0 .and. mesh%top == end_free) f = f + st%s(0)
       if (bot == mesh%n .and. mesh%bottom == end_free) f = f - st%s(mesh%n + 1)
@@ -387,8 +389,9 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: shift
-      integer, intent(in) :: top, bot
+      real(wp), intent(in) :: shift        !! its shift along x [m]
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       real(wp), intent(out) :: w               !! [m/s]
       logical, intent(out) :: ok
       real(wp) :: mass, force, vm, disc
@@ -416,9 +419,10 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: shift
+      real(wp), intent(in) :: shift        !! its shift along x [m]
       real(wp), intent(in) :: w
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       real(wp) :: de, mass, mom, f_end, work
       integer :: i
       mass = span_mass(mesh, top, bot)
@@ -587,8 +591,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: policy        !! shift policy (shift_*)
-      integer, intent(in) :: i
-      real(wp), intent(in) :: corr
+      integer, intent(in) :: i             !! split node
+      real(wp), intent(in) :: corr         !! the chosen correction (5.2) [m]
       integer, intent(out) :: top, bot         !! the region moved, as for shift_span
       real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
       integer :: j, k
@@ -617,7 +621,7 @@ contains
    pure real(wp) function late_join_energy(mesh, st, i, closing) result(de)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       real(wp), intent(in) :: closing          !! du_A - du_B over the step [m]
       real(wp) :: ma, mb
       ma = mesh%ma(i)
@@ -632,8 +636,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: policy        !! shift policy (shift_*)
-      real(wp), intent(in) :: corr
-      integer, intent(out) :: j
+      real(wp), intent(in) :: corr         !! the chosen correction (5.2) [m]
+      integer, intent(out) :: j            !! top node of the region
       real(wp), intent(out) :: shift_amount
       integer :: k
       call fragment_span(mesh, st, mesh%n, j, k)
@@ -752,8 +756,8 @@ contains
    pure subroutine extend_up(mesh, st, top, shift)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(inout) :: top
-      real(wp), intent(in) :: shift
+      integer, intent(inout) :: top        !! top node of the region (0 or a split node)
+      real(wp), intent(in) :: shift        !! its shift along x [m]
       do while (top > 0)
          if (st%joined(top)) exit
          if (.not. ((st%ub(top) + shift) - st%ua(top) < 0.0_wp)) exit
@@ -770,8 +774,8 @@ contains
    pure subroutine extend_down(mesh, st, bot, shift)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(inout) :: bot
-      real(wp), intent(in) :: shift
+      integer, intent(inout) :: bot        !! bottom node of the region (n or a split node)
+      real(wp), intent(in) :: shift        !! its shift along x [m]
       do while (bot < mesh%n)
          if (st%joined(bot)) exit
          if (.not. (st%ub(bot) - (st%ua(bot) + shift) < 0.0_wp)) exit
@@ -818,7 +822,7 @@ contains
 
    pure subroutine skip_next(st, i)
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! split node
       call append(st%skip_test, st%n_skip, i)
    end subroutine skip_next
 end module spb_contact

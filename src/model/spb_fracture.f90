@@ -28,7 +28,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! node
       real(wp) :: dt
       dt = mesh%dt
       e = 0.5_wp * (mesh%ma(i) * st%dua(i)**2 + mesh%mb(i) * st%dub(i)**2) / dt**2 &
@@ -42,7 +42,8 @@ contains
    pure logical function anchored(mesh, st, top, bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
                  (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
                   (mesh%bottom == end_base .and. st%ends%base_contact)))
@@ -52,7 +53,7 @@ contains
    pure subroutine fragment_span(mesh, st, i, j, k)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! node
       integer, intent(out) :: j   !! top node of the fragment ending at A_i (0 or a split node)
       integer, intent(out) :: k   !! bottom node of the fragment starting at B_i (n or split)
       j = i - 1
@@ -71,7 +72,8 @@ contains
    !> and the outer half mass of an end node (a transmitting or full-mass end).
    pure real(wp) function span_mass(mesh, top, bot) result(mass)
       type(mesh_t), intent(in) :: mesh     !! the mesh
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       mass = mesh%m_above(bot) - mesh%m_above(top)
       if (top == 0) mass = mass + mesh%ma(0)
       if (bot == mesh%n) mass = mass + mesh%mb(mesh%n)
@@ -263,7 +265,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! node
       real(wp), intent(in) :: dd_a, dd_b   !! [m]
       real(wp), intent(in) :: ds_a, ds_b   !! [Pa]
       real(wp) :: e0
@@ -287,7 +289,8 @@ contains
    pure subroutine record_break(mesh, st, i, j, stress, events)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: i, j
+      integer, intent(in) :: i             !! node
+      integer, intent(in) :: j
       real(wp), intent(in) :: stress          !! the section stress that broke it [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       type(event_t) :: ev
@@ -319,7 +322,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: eps
+      real(wp), intent(in) :: eps          !! round-off guard [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       integer, intent(in) :: rules         !! event rules (events_*)
       real(wp), intent(in) :: i_top, i_bot
@@ -387,7 +390,7 @@ contains
    pure subroutine cut_springs(mesh, st, eps, events)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: eps
+      real(wp), intent(in) :: eps          !! round-off guard [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       integer :: k, j, parent
       type(event_t) :: ev

@@ -78,7 +78,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g, i_top, i_bot
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp) :: e, jp, jr, ja
       integer :: t, b, i
       ! gravity potential at mid-step, -g m (u^n + u^{n+1})/2, of the halves the region owns
@@ -113,7 +114,8 @@ contains
    pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
       real(wp), intent(out) :: e             !! continuum energy [J/m^2]
       real(wp), intent(out) :: jprime        !! alternating sum J' with the load terms [kg/(m s)]
@@ -178,7 +180,8 @@ contains
    pure subroutine fragment_characteristics(mesh, st, top, bot, i_top, i_bot, at_n, f, g)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
       logical, intent(in) :: at_n
       real(wp), intent(out) :: f(top+1:)
@@ -297,7 +300,8 @@ contains
    pure subroutine face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       logical, intent(in) :: eq_top, eq_bot          !! the faces give equations
       real(wp), intent(in) :: load_top, load_bot     !! their load terms [kg/(m s)]
       real(wp), intent(inout) :: jprime              !! J' from the nodes [kg/(m s)]
@@ -325,7 +329,8 @@ contains
    pure real(wp) function held_weights(mesh, st, top, bot) result(jp)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp) :: c_total, c_above, sgn
       integer :: i
       c_total = sum(1.0_wp / mesh%z(top+1:bot))
@@ -345,7 +350,9 @@ contains
    pure real(wp) function node_momentum(mesh, st, top, bot, i) result(p)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top, bot, i
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      integer, intent(in) :: i             !! node
       if (i == top .and. top > 0) then
          p = mesh%mb(i) * st%dub(i)             ! the lower half of a split node
       else if (i == bot .and. bot < mesh%n) then

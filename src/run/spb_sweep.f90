@@ -168,7 +168,7 @@ contains
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
-      type(sweep_summary_t), intent(out) :: summary   !! the run's summary
+      type(sweep_summary_t), intent(out) :: summary   !! the sweep's summary
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       real(wp), allocatable :: rows(:, :)
       integer, allocatable :: hists(:, :)
