@@ -24,12 +24,14 @@ module spb_par
 
 contains
 
+   !> Start the parallel run (MPI_Init).
    subroutine par_init()
       logical :: started
       call MPI_Initialized(started)
       if (.not. started) call MPI_Init()
    end subroutine par_init
 
+   !> End the parallel run.
    subroutine par_finalize()
       logical :: started, done
       call MPI_Initialized(started)
@@ -38,18 +40,22 @@ contains
       if (.not. done) call MPI_Finalize()
    end subroutine par_finalize
 
+   !> This rank (0 .. ranks - 1).
    integer function par_rank()
       call MPI_Comm_rank(MPI_COMM_WORLD, par_rank)
    end function par_rank
 
+   !> The number of ranks.
    integer function par_size()
       call MPI_Comm_size(MPI_COMM_WORLD, par_size)
    end function par_size
 
+   !> Wall time [s] (a common clock for differences).
    real(wp) function par_wtime()
       par_wtime = real(MPI_Wtime(), wp)
    end function par_wtime
 
+   !> Send a message of reals to rank dest with tag.
    subroutine send_real(buf, dest, tag)
       real(wp), intent(in) :: buf(:)       !! the message
       integer, intent(in) :: dest          !! rank to send to
@@ -57,6 +63,7 @@ contains
       call MPI_Send(buf, size(buf), MPI_DOUBLE_PRECISION, dest, tag, MPI_COMM_WORLD)
    end subroutine send_real
 
+   !> Send one integer to rank dest with tag.
    subroutine send_int(i, dest, tag)
       integer, intent(in) :: i             !! the integer
       integer, intent(in) :: dest          !! rank to send to
@@ -79,6 +86,7 @@ contains
       if (present(got_tag)) got_tag = status%MPI_TAG
    end subroutine recv_real
 
+   !> Receive one integer from rank source with tag (par_any: any of either).
    subroutine recv_int(i, source, tag, got_source, got_tag)
       integer, intent(out) :: i            !! the integer
       integer, intent(in) :: source        !! rank to receive from
@@ -91,12 +99,14 @@ contains
       if (present(got_tag)) got_tag = status%MPI_TAG
    end subroutine recv_int
 
+   !> The MPI source for a rank or par_any.
    integer function mpi_source(source)
       integer, intent(in) :: source        !! rank to receive from
       mpi_source = source
       if (source == par_any) mpi_source = MPI_ANY_SOURCE
    end function mpi_source
 
+   !> The MPI tag for a tag or par_any.
    integer function mpi_tag(tag)
       integer, intent(in) :: tag           !! message tag
       mpi_tag = tag

@@ -20,20 +20,25 @@ module spb_par
 
 contains
 
+   !> Start the parallel run (MPI_Init).
    subroutine par_init()
    end subroutine par_init
 
+   !> End the parallel run.
    subroutine par_finalize()
    end subroutine par_finalize
 
+   !> This rank (0 .. ranks - 1).
    integer function par_rank()
       par_rank = 0
    end function par_rank
 
+   !> The number of ranks.
    integer function par_size()
       par_size = 1
    end function par_size
 
+   !> Wall time [s] (a common clock for differences).
    real(wp) function par_wtime()
       integer(int64) :: c, rate
       call system_clock(c, rate)
@@ -41,6 +46,7 @@ contains
    end function par_wtime
 
    ! One rank never sends or receives: the sweep driver does not call these with size 1.
+   !> Send a message of reals to rank dest with tag.
    subroutine send_real(buf, dest, tag)
       real(wp), intent(in) :: buf(:)       !! the message
       integer, intent(in) :: dest          !! rank to send to
@@ -48,6 +54,7 @@ contains
       error stop 'spb_par: no messages in a serial build'
    end subroutine send_real
 
+   !> Send one integer to rank dest with tag.
    subroutine send_int(i, dest, tag)
       integer, intent(in) :: i             !! the integer
       integer, intent(in) :: dest          !! rank to send to
@@ -55,6 +62,7 @@ contains
       error stop 'spb_par: no messages in a serial build'
    end subroutine send_int
 
+   !> Receive a message of reals from rank source with tag (par_any: any of either).
    subroutine recv_real(buf, source, tag, got_source, got_tag)
       real(wp), intent(out) :: buf(:)      !! the message
       integer, intent(in) :: source        !! rank to receive from
@@ -65,6 +73,7 @@ contains
       error stop 'spb_par: no messages in a serial build'
    end subroutine recv_real
 
+   !> Receive one integer from rank source with tag (par_any: any of either).
    subroutine recv_int(i, source, tag, got_source, got_tag)
       integer, intent(out) :: i            !! the integer
       integer, intent(in) :: source        !! rank to receive from

@@ -86,6 +86,7 @@ contains
       end do
       write(out, '(es20.12e3)') x
    contains
+      !> Dekker's split of v into a high part vh and a low part vl = v - vh, exactly.
       pure subroutine split(v, vh, vl)
          real(wp), intent(in) :: v
          real(wp), intent(out) :: vh, vl
@@ -123,6 +124,7 @@ contains
       s = trim(buf)
    end function itoa_default
 
+   !> The decimal text of a 64-bit integer.
    pure function itoa_int64(k) result(s)
       integer(int64), intent(in) :: k
       character(len=:), allocatable :: s

@@ -18,17 +18,20 @@ module spb_sys
    integer(c_int), volatile :: caught = 0_c_int
 
    interface
+      !> C exit(3): ends the process from a signal handler's context.
       subroutine c_exit(status) bind(c, name='exit')
          import :: c_int
          implicit none
          integer(c_int), value :: status
       end subroutine c_exit
+      !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
          import :: c_int
          implicit none
          integer(c_int), value :: fd
          integer(c_int) :: r
       end function c_isatty
+      !> C rename(2) on NUL-terminated names.
       function c_rename(old, new) bind(c, name='rename') result(r)
          import :: c_int, c_char
          implicit none
@@ -37,12 +40,14 @@ module spb_sys
          character(kind=c_char), intent(in) :: old(*), new(*)
          integer(c_int) :: r
       end function c_rename
+      !> C mallopt(3).
       function c_mallopt(param, value) bind(c, name='mallopt') result(r)
          import :: c_int
          implicit none
          integer(c_int), value :: param, value
          integer(c_int) :: r
       end function c_mallopt
+      !> C signal(2): install a handler.
       function c_signal(signum, handler) bind(c, name='signal') result(previous)
          import :: c_int, c_funptr
          implicit none
@@ -113,6 +118,7 @@ contains
       stop_signal = int(caught)
    end function stop_signal
 
+   !> The handler of SIGTERM/SIGINT: remembers the signal (the run stops at the next step).
    subroutine on_signal(signum) bind(c)
       integer(c_int), value :: signum
       caught = signum

@@ -225,6 +225,7 @@ contains
       end if
    end subroutine field_int
 
+   !> A real scalar field: an attribute of group, written or read back.
    subroutine field_real(h5, writing, group, name, v)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
@@ -285,6 +286,7 @@ contains
       allocate(a(lb:lb + n - 1), source=v)
    end subroutine array_reals
 
+   !> An integer array of /state (see array_reals).
    subroutine array_ints(h5, writing, name, a)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
@@ -306,6 +308,7 @@ contains
       if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
    end subroutine array_ints
 
+   !> A logical array of /state as 0/1 (see array_reals).
    subroutine array_logicals(h5, writing, name, a)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       logical, intent(in) :: writing       !! write (else read back)
@@ -413,6 +416,7 @@ contains
       end if
       call h5_close(h5)
    contains
+      !> Refuse the checkpoint (exit 2) with the reason, and close it.
       subroutine refuse(why)
          character(len=*), intent(in) :: why
          call make_error(err, '--restart: ''' // path // ''' ' // why, code=exit_input)

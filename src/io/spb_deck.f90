@@ -213,6 +213,7 @@ contains
       prob%events = merge(events_paper, events_admissible, deck%run%events == 'paper')
       prob%eps_rel = deck%run%eps_rel
    contains
+      !> The end code of an end keyword.
       integer function end_of(word)
          character(len=*), intent(in) :: word
          select case (word)
@@ -228,6 +229,7 @@ contains
       end function end_of
    end function problem_from_deck
 
+   !> Whether a real was given (not the "not given" marker).
    logical elemental function is_set(x)
       real(wp), intent(in) :: x
       is_set = .true.
@@ -372,6 +374,7 @@ contains
       end if
    end subroutine read_status
 
+   !> Read &run (defaults kept for what the deck leaves out).
    subroutine read_run(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -452,6 +455,7 @@ contains
       deck%run%energy_guard = energy_guard
    end subroutine read_run
 
+   !> Read &mesh.
    subroutine read_mesh(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -491,6 +495,7 @@ contains
       deck%mesh%fit = lower(fit)
    end subroutine read_mesh
 
+   !> Read &segments.
    subroutine read_segments(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -542,6 +547,7 @@ contains
       deck%seg%gap = gap
    end subroutine read_segments
 
+   !> Read &ends.
    subroutine read_ends(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -580,6 +586,7 @@ contains
       deck%ends%base_gap = base_gap
    end subroutine read_ends
 
+   !> Read &load.
    subroutine read_load(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -632,6 +639,7 @@ contains
       deck%load%table = table
    end subroutine read_load
 
+   !> Read &initial.
    subroutine read_initial(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -667,6 +675,7 @@ contains
       deck%init%strain_rate = strain_rate
    end subroutine read_initial
 
+   !> Read &strength_field.
    subroutine read_strength_field(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -706,6 +715,7 @@ contains
       deck%field%seed = seed
    end subroutine read_strength_field
 
+   !> Read &sweep (with --sweep only).
    subroutine read_sweep(u, deck, err)
       integer, intent(in) :: u             !! open unit of the deck
       type(deck_t), intent(inout) :: deck   !! the deck
@@ -979,6 +989,7 @@ contains
    end subroutine need_choice
 
 
+   !> Check &run's values.
    subroutine validate_run(run, err)
       type(run_cfg), intent(inout) :: run   !! &run values
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
@@ -1048,6 +1059,7 @@ contains
          if (allocated(err)) return
       end do
    contains
+      !> profile_times must not decrease: check entry k against entry k - 1.
       subroutine need_order(k)
          integer, intent(in) :: k
          if (run%profile_times(k) < run%profile_times(k - 1)) call make_error(err, &
@@ -1056,6 +1068,7 @@ contains
       end subroutine need_order
    end subroutine validate_run
 
+   !> Check &mesh's values.
    subroutine validate_mesh(mesh, nseg, err)
       type(mesh_cfg), intent(in) :: mesh   !! &mesh values
       integer, intent(in) :: nseg
@@ -1078,6 +1091,7 @@ contains
       call need_choice(err, 'mesh', 'fit', mesh%fit, [character(len=8) :: 'strict', 'stretch'])
    end subroutine validate_mesh
 
+   !> Check &segments' values and fill the defaults of the segments given.
    subroutine validate_segments(seg, err)
       type(segments_cfg), intent(inout) :: seg
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
@@ -1139,6 +1153,7 @@ contains
          if (allocated(err)) return
       end do
    contains
+      !> A value given for a segment beyond n is an error.
       subroutine beyond_n(name, x)
          character(len=*), intent(in) :: name   !! variable name
          real(wp), intent(in) :: x
@@ -1148,6 +1163,7 @@ contains
       end subroutine beyond_n
    end subroutine validate_segments
 
+   !> Check &ends' values.
    subroutine validate_ends(ends, err)
       type(ends_cfg), intent(in) :: ends
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
@@ -1163,6 +1179,7 @@ contains
       end if
    end subroutine validate_ends
 
+   !> Check &load's values against the ends.
    subroutine validate_load(load, ends, err)
       type(load_cfg), intent(in) :: load   !! &load values
       type(ends_cfg), intent(in) :: ends
@@ -1240,6 +1257,7 @@ contains
          '(&segments strength), and there is none')
    end subroutine validate_field
 
+   !> Check &initial's values.
    subroutine validate_initial(deck, err)
       type(deck_t), intent(in) :: deck     !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
@@ -1358,6 +1376,7 @@ contains
          call item('sweep', 'bins', itoa(deck%sweep%bins), '')
       end if
    contains
+      !> Append one echoed value.
       subroutine item(g, name, value, unit)
          character(len=*), intent(in) :: g   !! group name
          character(len=*), intent(in) :: name   !! variable name
@@ -1447,6 +1466,7 @@ contains
       end associate
    end subroutine write_echo
 
+   !> s padded with blanks to at least n characters.
    pure function pad(s, n) result(r)
       character(len=*), intent(in) :: s
       integer, intent(in) :: n
@@ -1454,12 +1474,14 @@ contains
       r = s
    end function pad
 
+   !> s in single quotes (a quote inside doubled).
    pure function quote(s) result(r)
       character(len=*), intent(in) :: s
       character(len=:), allocatable :: r
       r = '''' // trim(s) // ''''
    end function quote
 
+   !> A real as echoed: its value, or '(not set)' when not given.
    function opt(x) result(r)
       real(wp), intent(in) :: x
       character(len=:), allocatable :: r
@@ -1470,6 +1492,7 @@ contains
       end if
    end function opt
 
+   !> A list of reals as echoed.
    function rlist(x) result(r)
       real(wp), intent(in) :: x(:)
       character(len=:), allocatable :: r

@@ -152,12 +152,14 @@ contains
       call check(h5, hdferr, 'h5oopen_f ' // path)
    end subroutine open_obj
 
+   !> Close a group or dataset opened by open_obj.
    subroutine close_obj(obj)
       integer(hid_t), intent(in) :: obj        !! a group or dataset opened by open_obj
       integer :: hdferr
       call h5oclose_f(obj, hdferr)
    end subroutine close_obj
 
+   !> A string attribute of the object at path.
    subroutine attr_string(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
@@ -188,6 +190,7 @@ contains
       call close_obj(obj)
    end subroutine attr_string
 
+   !> A real attribute of the object at path.
    subroutine attr_real(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
@@ -213,6 +216,7 @@ contains
       call close_obj(obj)
    end subroutine attr_real
 
+   !> An integer attribute of the object at path.
    subroutine attr_int(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
@@ -261,6 +265,7 @@ contains
       call attr_string(h5, path, 'units', units)
    end subroutine write_real_1d
 
+   !> A 1-D integer dataset with its units attribute.
    subroutine write_int_1d(h5, path, values, units)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
@@ -375,6 +380,7 @@ contains
       if (h5%tables(handle)%nbuf == buffer_rows) call write_table(h5, handle)
    end subroutine h5_append
 
+   !> Write the buffered rows of table handle to its datasets.
    subroutine write_table(h5, handle)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer, intent(in) :: handle        !! table handle (h5_table)
@@ -434,6 +440,7 @@ contains
       end do
    end subroutine h5_xt
 
+   !> Append one x-t row (time, u, v, stress of every half node).
    subroutine h5_append_xt(h5, t, u, v, s)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       real(wp), intent(in) :: t                !! [s]
@@ -447,6 +454,7 @@ contains
       if (h5%xt%nbuf == size(h5%xt%tbuf)) call write_xt(h5)
    end subroutine h5_append_xt
 
+   !> Write the buffered x-t rows.
    subroutine write_xt(h5)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer(hid_t) :: fspace, mspace
@@ -500,6 +508,7 @@ contains
       call check(h5, hdferr, 'h5fflush_f')
    end subroutine h5_flush
 
+   !> Write what is buffered and close the file (errors stay in h5%error).
    subroutine h5_close(h5)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer :: k, j, hdferr
@@ -670,6 +679,7 @@ contains
       call check(h5, hdferr, 'h5aopen_f ' // path // ':' // name)
    end subroutine open_attr
 
+   !> Close an attribute and its object.
    subroutine close_attr(obj, attr)
       integer(hid_t), intent(in) :: obj    !! an open group or dataset
       integer(hid_t), intent(in) :: attr
@@ -678,6 +688,7 @@ contains
       if (obj >= 0) call h5oclose_f(obj, hdferr)
    end subroutine close_attr
 
+   !> Read a real attribute of the object at path.
    subroutine get_attr_real(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
@@ -694,6 +705,7 @@ contains
       call close_attr(obj, attr)
    end subroutine get_attr_real
 
+   !> Read an integer attribute of the object at path.
    subroutine get_attr_int(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)

@@ -169,6 +169,7 @@ contains
       call text_sizes(out, out%head)
       if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err)
    contains
+      !> Open PREFIX.ext for writing (unit u).
       subroutine open_one(ext, u)
          character(len=*), intent(in) :: ext
          integer, intent(out) :: u         !! open formatted unit
@@ -181,6 +182,7 @@ contains
             call make_error(err, '--output: cannot write ''' // prefix // ext // ''': ' // trim(msg))
          end if
       end subroutine open_one
+      !> The header lines every text file starts with.
       subroutine header(u, what)
          integer, intent(in) :: u          !! open formatted unit
          character(len=*), intent(in) :: what
@@ -300,6 +302,7 @@ contains
       u = units(k)
    end function text_unit
 
+   !> Set the unit of text file k.
    subroutine set_text_unit(out, k, u)
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k             !! text file (text_extensions)

@@ -358,6 +358,7 @@ contains
                     c /= achar(13)) .or. iachar(c) == 127
    end function is_control
 
+   !> Whether c starts a name.
    pure logical function is_letter(c)
       character, intent(in) :: c
       is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
@@ -379,6 +380,7 @@ contains
       word = lower(text(j0:j-1))
    end subroutine read_word
 
+   !> The group names, comma-separated.
    pure function join_groups(names) result(s)
       character(len=*), intent(in) :: names(:)
       character(len=:), allocatable :: s

@@ -237,6 +237,7 @@ contains
       d = st%dua(i) - (st%s_old(i) + mesh%ma(i) * g) / mesh%ma(i) * mesh%dt**2
    end function du_before_a
 
+   !> Trial increment of the lower half of split node i over the step before.
    pure real(wp) function du_before_b(mesh, st, g, i) result(d)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
@@ -820,6 +821,7 @@ contains
       st%ledger%e_lost_wave = st%ledger%e_lost_wave + work
    end subroutine book_shift_work
 
+   !> Node i was joined at t^{n+1}: its section is not tested for breaking this step.
    pure subroutine skip_next(st, i)
       type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: i             !! split node

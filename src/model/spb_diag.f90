@@ -66,6 +66,7 @@ module spb_diag
 
 contains
 
+   !> The energy terms of the state in the scheme's own measure, and its momentum.
    pure function energies(mesh, st, g) result(e)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state

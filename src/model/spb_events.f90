@@ -37,6 +37,7 @@ module spb_events
 
 contains
 
+   !> Append an event to the list (grown by doubling).
    pure subroutine push_event(list, ev)
       type(event_list_t), intent(inout) :: list
       type(event_t), intent(in) :: ev

@@ -98,6 +98,7 @@ contains
       end select
    end function load_integral
 
+   !> Integral of the power-law load over [a, b] [Pa s].
    pure real(wp) function power_integral(load, a, b) result(q)
       type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: a, b
