@@ -164,7 +164,9 @@ contains
    pure logical function joins_at_n(mesh, st, g, timing, policy, i, i_top, i_bot, tol) result(at_n)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g, i_top, i_bot
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(in) :: i             !! split node
@@ -184,7 +186,9 @@ contains
    pure subroutine event_region(mesh, st, g, timing, policy, rules, i, r_top, r_bot, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g, i_top, i_bot
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(in) :: rules         !! event rules (events_*)
@@ -250,7 +254,9 @@ contains
    pure subroutine collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot, tol)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g, i_top, i_bot
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
@@ -656,7 +662,8 @@ contains
    pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top, tol)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g, i_top
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)

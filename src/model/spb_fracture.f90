@@ -213,7 +213,9 @@ contains
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: cand(:)           !! sections whose S^{n+1/2} < -R - eps
-      real(wp), intent(in) :: i_top, i_bot, eps
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), intent(in) :: eps          !! round-off guard [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp) :: du_a(size(cand)), du_b(size(cand)), s_brk(size(cand)), sig
       real(wp), allocatable :: f(:), gw(:)
@@ -325,7 +327,8 @@ contains
       real(wp), intent(in) :: eps          !! round-off guard [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       integer, intent(in) :: rules         !! event rules (events_*)
-      real(wp), intent(in) :: i_top, i_bot
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp) :: s_base, d_a, e0, de, e_wave0
       real(wp), allocatable :: f(:), gw(:)
       integer :: n, j, k

@@ -75,7 +75,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       integer, intent(in) :: step
-      real(wp), intent(out) :: i_top, i_bot
+      real(wp), intent(out) :: i_top       !! load integral on the top face over the step [Pa s]
+      real(wp), intent(out) :: i_bot       !! load integral on the bottom face over the step [Pa s]
       real(wp) :: q
       i_top = 0.0_wp
       i_bot = 0.0_wp

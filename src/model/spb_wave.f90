@@ -48,7 +48,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g        !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: i_top, i_bot
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       type(wave_t) :: w
       real(wp) :: e, jp, jr, ja, total
       integer :: c, top, bot
@@ -77,7 +78,9 @@ contains
    pure real(wp) function region_wave(mesh, st, g, i_top, i_bot, top, bot) result(e_sum)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g, i_top, i_bot
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp) :: e, jp, jr, ja
