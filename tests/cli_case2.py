@@ -120,14 +120,20 @@ def check_run(check, exe, deck_dir, work, rule, policy):
               f"{name}: reaction within [0, {REACTION_BOUND / P0:.0f} p0]")
 
 
-def window_means(t, r, width):
-    """Mean of r over consecutive windows of the given width [s], from t = 0."""
+def means_to(t, r, width, t_max):
+    """Means of r over consecutive windows [k width, (k+1) width) that end by t_max."""
     sums, counts = {}, {}
     for tk, rk in zip(t, r):
         k = int(tk / width)
-        sums[k] = sums.get(k, 0.0) + rk
-        counts[k] = counts.get(k, 0) + 1
-    return [sums[k] / counts[k] for k in sorted(sums) if (k + 1) * width <= T_END + 1e-12]
+        if (k + 1) * width <= t_max + 1e-12:
+            sums[k] = sums.get(k, 0.0) + rk
+            counts[k] = counts.get(k, 0) + 1
+    return [sums[k] / counts[k] for k in sorted(sums)]
+
+
+def window_means(t, r, width):
+    """Mean of r over consecutive windows of the given width [s], from t = 0 to T_END."""
+    return means_to(t, r, width, T_END)
 
 
 def distance(a, b):
@@ -190,16 +196,6 @@ def run_deck(check, exe, work, name, text):
     check(r.returncode == 0, f"{name}: exit {r.returncode} {r.stderr.strip()}")
     h = history(os.path.join(work, name))
     return h["t"], h["reaction_bottom"]
-
-
-def means_to(t, r, width, t_max):
-    sums, counts = {}, {}
-    for tk, rk in zip(t, r):
-        k = int(tk / width)
-        if (k + 1) * width <= t_max + 1e-12:
-            sums[k] = sums.get(k, 0.0) + rk
-            counts[k] = counts.get(k, 0) + 1
-    return [sums[k] / counts[k] for k in sorted(sums)]
 
 
 def check_order(check, exe, deck_dir, work):
