@@ -33,7 +33,26 @@ module spb_output
       character(len=24) :: name = ''
       character(len=8) :: unit = ''
       logical :: whole = .false.
+      integer :: width = 20              !! text field width; a whole number right-aligned
+      logical :: kind = .false.          !! the event kind: its name in the text (the code in HDF5)
    end type column_t
+
+   !> PREFIX.evt and /events: the one list of the event columns, in order.
+   integer, parameter :: n_event_columns = 13
+   type(column_t), parameter :: event_table(n_event_columns) = [ &
+      column_t('t', 's', .false., 20, .false.), &
+      column_t('step', '-', .true., 12, .false.), &
+      column_t('kind', '-', .true., 16, .true.), &
+      column_t('node', '-', .true., 12, .false.), &
+      column_t('x', 'm', .false., 20, .false.), &
+      column_t('stress', 'Pa', .false., 20, .false.), &
+      column_t('dt_bound', 's', .false., 20, .false.), &
+      column_t('dx_bound', 'm', .false., 20, .false.), &
+      column_t('opening', 'm', .false., 20, .false.), &
+      column_t('frag_above', '-', .true., 12, .false.), &
+      column_t('frag_below', '-', .true., 12, .false.), &
+      column_t('stress_bound', 'Pa', .false., 20, .false.), &
+      column_t('shift', 'm', .false., 20, .false.) ]
 
    !> PREFIX.his and /history: the one list of the history columns, in order.
    integer, parameter :: n_history = 31
@@ -72,8 +91,6 @@ module spb_output
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
-   character(len=*), parameter :: event_columns = 't step kind node x stress dt_bound ' &
-      // 'dx_bound opening frag_above frag_below stress_bound shift'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
@@ -158,7 +175,7 @@ contains
          // 'stress error; shift: rigid shift given to one side'
       write(out%evt, '(a)') '# units: t, dt_bound [s]; step, node, frag_* [-]; x, dx_bound, ' &
          // 'opening, shift [m] (x reference); stress, stress_bound [Pa] (compression > 0)'
-      write(out%evt, '(a)') '# ' // event_columns
+      write(out%evt, '(a)') '# ' // event_columns()
       call header(out%frg, 'fragments: one block per profile time')
       write(out%frg, '(a)') '# x_top, x_bottom: current positions x + u of the faces; e_vib: ' &
          // 'kinetic energy about the mean motion + strain energy; birth_t: time of the ' &
@@ -329,7 +346,7 @@ contains
       case (2)
          line = '# x u v stress'
       case (3)
-         line = '# ' // event_columns
+         line = '# ' // event_columns()
       case default
          line = '# ' // fragment_columns
       end select
@@ -407,7 +424,7 @@ contains
       character(len=*), intent(in) :: report(:)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      logical :: whole(n_history)
+      logical :: whole(n_history), whole_evt(n_event_columns)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5')
@@ -438,12 +455,10 @@ contains
       whole = history_table%whole
       call h5_table(out%h5, '/history', names, units, whole, out%h_his)
       call h5_attr(out%h5, '/history', 'columns', history_columns())
-      call split(event_columns, names)
-      units = [character(len=32) :: 's', '-', '-', '-', 'm', 'Pa', 's', 'm', 'm', '-', '-', &
-               'Pa', 'm']
-      call h5_table(out%h5, '/events', names, units, &
-                    names == 'step' .or. names == 'kind' .or. names == 'node' .or. &
-                    names == 'frag_above' .or. names == 'frag_below', out%h_evt)
+      names = event_table%name
+      units = event_table%unit
+      whole_evt = event_table%whole
+      call h5_table(out%h5, '/events', names, units, whole_evt, out%h_evt)
       call h5_attr(out%h5, '/events', 'kind_codes', '1 fracture, 2 collision, 3 separation, ' // &
                    '4 base-collision')
       call h5_group(out%h5, '/fields')
@@ -520,6 +535,12 @@ contains
       line = column_names(history_table)
    end function history_columns
 
+   !> The event columns' names, blank-separated (the column line of PREFIX.evt).
+   pure function event_columns() result(line)
+      character(len=:), allocatable :: line
+      line = column_names(event_table)
+   end function event_columns
+
    !> The names of a table's columns, blank-separated.
    pure function column_names(table) result(line)
       type(column_t), intent(in) :: table(:)
@@ -556,20 +577,10 @@ contains
 
    !> One history row: the values in the order of history_table (whole numbers as float64).
    subroutine write_history_row(out, v)
-      type(outputs_t), intent(inout) :: out   !! the outputs
-      real(wp), intent(in) :: v(n_history)
-      ! written by the fast formatters into one line (the same characters as es20.12e3 and
-      ! i20 edit descriptors, tests/test_format.pf; no run-time formatted I/O per number)
-      character(len=n_history * 21) :: line
-      integer :: k
-      line = ' '
-      do k = 1, n_history
-         if (history_table(k)%whole) then
-            line(21 * k - 19:21 * k) = int_right(nint(v(k)), 20)
-         else
-            line(21 * k - 19:21 * k) = es20_12(v(k))
-         end if
-      end do
+      type(outputs_t), intent(inout) :: out    !! the outputs
+      real(wp), intent(in) :: v(n_history)     !! the row
+      character(len=sum(history_table%width + 1)) :: line
+      call table_line(history_table, v, line)
       write(out%his, '(a)') line
       if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
@@ -578,32 +589,43 @@ contains
    subroutine write_events(out, events)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
-      character(len=237) :: line
+      real(wp) :: v(n_event_columns)
+      character(len=sum(event_table%width + 1)) :: line
       integer :: k
       do k = 1, events%n
          associate (e => events%e(k))
-            ! fmt_evt, by the fast formatters into one line
-            line = ' '
-            line(2:21) = es20_12(e%t)
-            line(23:34) = int_right(e%step, 12)
-            line(36:51) = kind_field(e%kind)
-            line(53:64) = int_right(e%node, 12)
-            line(66:85) = es20_12(e%x)
-            line(87:106) = es20_12(e%stress)
-            line(108:127) = es20_12(e%dt_bound)
-            line(129:148) = es20_12(e%dx_bound)
-            line(150:169) = es20_12(e%opening)
-            line(171:182) = int_right(e%frag_above, 12)
-            line(184:195) = int_right(e%frag_below, 12)
-            line(197:216) = es20_12(e%stress_bound)
-            line(218:237) = es20_12(e%shift)
+            v = [e%t, real(e%step, wp), real(e%kind, wp), real(e%node, wp), e%x, e%stress, &
+                 e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
+                 real(e%frag_below, wp), e%stress_bound, e%shift]
+            call table_line(event_table, v, line)
             write(out%evt, '(a)') line
-            if (out%hdf5) call h5_append(out%h5, out%h_evt, [e%t, real(e%step, wp), &
-               real(e%kind, wp), real(e%node, wp), e%x, e%stress, e%dt_bound, e%dx_bound, &
-               e%opening, real(e%frag_above, wp), real(e%frag_below, wp), e%stress_bound, e%shift])
+            if (out%hdf5) call h5_append(out%h5, out%h_evt, v)
          end associate
       end do
    end subroutine write_events
+
+   !> One text row of a table: each column a blank and its field, by the fast formatters
+   !> (the same characters as es20.12e3 and iW edit descriptors, tests/test_format.pf).
+   pure subroutine table_line(table, v, line)
+      type(column_t), intent(in) :: table(:)   !! the columns
+      real(wp), intent(in) :: v(:)             !! the row's values (whole numbers as float64)
+      character(len=*), intent(out) :: line    !! the row (sum of widths + 1 characters)
+      integer :: k, at
+      line = ' '
+      at = 1
+      do k = 1, size(table)
+         associate (c => table(k))
+            if (c%kind) then
+               line(at + 1:at + c%width) = kind_field(nint(v(k)))
+            else if (c%whole) then
+               line(at + 1:at + c%width) = int_right(nint(v(k)), c%width)
+            else
+               line(at + 1:at + c%width) = es20_12(v(k))
+            end if
+            at = at + c%width + 1
+         end associate
+      end do
+   end subroutine table_line
 
    !> One block of fragments at time t.
    subroutine write_fragments(out, t, dt, list)

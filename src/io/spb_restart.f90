@@ -162,7 +162,7 @@ contains
       call h5_open_read(old, prefix // '.h5' // aside)
       call replay_table(prefix, old, '/history', history_columns(), out, out%h_his, &
                         marks%rows_his, err)
-      call replay_table(prefix, old, '/events', event_columns, out, out%h_evt, marks%rows_evt, &
+      call replay_table(prefix, old, '/events', event_columns(), out, out%h_evt, marks%rows_evt, &
                         err)
       if (marks%rows_xt > 0) call replay_xt(prefix, old, mesh, marks%rows_xt, out, err)
       do k = 1, marks%n_prof
