@@ -609,6 +609,8 @@ contains
    pure subroutine table_line(table, v, line)
       type(column_t), intent(in) :: table(:)   !! the columns
       real(wp), intent(in) :: v(:)             !! the row's values (whole numbers as float64)
+      ! the caller's buffer receives the row
+      ! allow(assumed-size-character-intent)
       character(len=*), intent(out) :: line    !! the row (sum of widths + 1 characters)
       integer :: k, at
       line = ' '
