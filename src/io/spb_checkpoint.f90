@@ -75,6 +75,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       type(run_summary_t) :: run_copy
+      type(output_marks_t) :: marks_copy
       logical :: ok
       integer :: k
       call h5_create(h5, path // '.part')
@@ -109,11 +110,8 @@ contains
          call h5_attr(h5, '/outputs', 'tail' // text_extensions(k), &
                       marks%tail(k)(1:max(0, marks%tail_n(k))))
       end do
-      call h5_attr(h5, '/outputs', 'rows_history', marks%rows_his)
-      call h5_attr(h5, '/outputs', 'rows_events', marks%rows_evt)
-      call h5_attr(h5, '/outputs', 'rows_xt', marks%rows_xt)
-      call h5_attr(h5, '/outputs', 'profiles', marks%n_prof)
-      call h5_attr(h5, '/outputs', 'fragment_blocks', marks%n_frg)
+      marks_copy = marks
+      call count_fields(h5, marks_copy, .true.)
       call h5_close(h5)
       if (allocated(h5%error)) then
          call make_error(err, '&run: checkpoint: ' // h5%error, code=exit_runtime)
@@ -493,12 +491,21 @@ contains
             return
          end if
       end do
-      call h5_get_attr(h5, '/outputs', 'rows_history', marks%rows_his)
-      call h5_get_attr(h5, '/outputs', 'rows_events', marks%rows_evt)
-      call h5_get_attr(h5, '/outputs', 'rows_xt', marks%rows_xt)
-      call h5_get_attr(h5, '/outputs', 'profiles', marks%n_prof)
-      call h5_get_attr(h5, '/outputs', 'fragment_blocks', marks%n_frg)
+      call count_fields(h5, marks, .false.)
    end function read_marks
+
+   !> The one list of the outputs' row and block counts a checkpoint keeps (attributes of
+   !> /outputs), written or read back.
+   subroutine count_fields(h5, marks, writing)
+      type(h5file_t), intent(inout) :: h5      !! the HDF5 file
+      type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
+      logical, intent(in) :: writing           !! write (else read back)
+      call field(h5, writing, '/outputs', 'rows_history', marks%rows_his)
+      call field(h5, writing, '/outputs', 'rows_events', marks%rows_evt)
+      call field(h5, writing, '/outputs', 'rows_xt', marks%rows_xt)
+      call field(h5, writing, '/outputs', 'profiles', marks%n_prof)
+      call field(h5, writing, '/outputs', 'fragment_blocks', marks%n_frg)
+   end subroutine count_fields
 
 
    !> The deck values a restart must not change: 'group name = value' lines of the echo,
