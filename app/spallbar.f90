@@ -9,7 +9,7 @@ program spallbar
    use spb_kinds, only: wp, version, path_len
    use spb_error, only: spb_error_t, make_error, exit_input
    use spb_strings, only: itoa
-   use spb_deck, only: deck_t, read_deck
+   use spb_deck, only: deck_t, read_deck, write_deck_help
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, checkpoint_t
    use spb_checkpoint, only: read_checkpoint
    use spb_output, only: write_mesh_summary
@@ -120,7 +120,8 @@ contains
          '[--restart CHECKPOINT.h5]'
       write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
          'PREFIX] [--quiet]   (PREFIX.sweep, PREFIX_sweep.h5; ' // par_kind // ')'
-      write(output_unit, '(a)') '       spallbar --version | --help'
+      write(output_unit, '(a)') '       spallbar --version | --help | --deck-help   (--deck-help: ' // &
+         'every deck variable, its default, unit and meaning)'
       write(output_unit, '(a)') 'Reads the namelist deck, writes PREFIX.his, PREFIX.prf, ' // &
          'PREFIX.evt (PREFIX defaults to the deck path without .nml).'
       write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
@@ -153,6 +154,9 @@ contains
             call sys_exit(0)
          case ('--version')
             write(output_unit, '(a)') 'spallbar ' // version
+            call sys_exit(0)
+         case ('--deck-help')
+            call write_deck_help(output_unit)
             call sys_exit(0)
          case ('--quiet', '-q')
             q = .true.

@@ -56,7 +56,7 @@ def main(argv):
             if ORDER.index(ul) > ORDER.index(layer):
                 print(f"{os.path.relpath(path, root)} ({layer}) uses {mod} ({ul}): a layer above")
                 bad += 1
-            if layer == "model" and mod == "spb_deck":
+            if layer == "model" and mod.startswith("spb_deck"):
                 print(f"{os.path.relpath(path, root)}: a model module uses the deck module")
                 bad += 1
     print(f"{len(uses)} files, {edges} uses of spb_ modules, {bad} violations")

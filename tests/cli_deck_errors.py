@@ -5,6 +5,7 @@ stderr naming the group and variable, and no output file written or touched.
 usage: cli_deck_errors.py SPALLBAR WORKDIR
 """
 import os
+import re
 import shutil
 import sys
 
@@ -35,7 +36,52 @@ BAD = [
      "spallbar: &load: table = 'nope.txt': cannot open"),
     ("binary", "&run t_end = 1 \x01\x02 /\n", "spallbar: &run: line 1: character code 1"),
     ("wrong_type", GOOD.replace("cells = 10", "cells = 'ten'"), "spallbar: &mesh: cells: cannot read the value 'ten'"),
+    # the one reader (issue 18) reads each assignment by itself: a word where a value should
+    # be is refused (gfortran's whole-group read kept the default and exited 0)
+    ("name_as_value", GOOD.replace("title = 'cli'", "title = 'cli', timing = timing"),
+     "spallbar: &run: timing: cannot read the value 'timing'"),
+    ("word_after_value", GOOD.replace("t_end = 1.0e-5,", "t_end = 1.0e-5 gravity,"),
+     "spallbar: &run: t_end: cannot read the value '1.0e-5 gravity'"),
+    ("component", GOOD.replace("title = 'cli'", "title = 'cli', t_end%x = 1"),
+     "spallbar: &run: t_end%x: unknown variable in this group"),
+    ("stray_word", GOOD.replace("&mesh cells = 10", "&mesh ten cells = 10"),
+     "spallbar: &mesh: cannot read the value 'ten'"),
 ]
+
+
+def deck_help_matches_doc(exe, work, check):
+    """spallbar --deck-help (the variable table of spb_deck_params) and doc/deck.md list the
+    same variables group by group, and the doc names every value a keyword accepts."""
+    r = run(exe, ["--deck-help"], work)
+    check(r.returncode == 0, f"--deck-help: exit {r.returncode}")
+    listed, group = {}, None
+    for line in r.stdout.splitlines():
+        if line.startswith("&"):
+            group = line[1:].strip()
+        elif line.startswith("   ") and group:
+            name, rest = line.strip().split("=", 1)
+            listed[(group, name.strip())] = re.findall(r"'([a-z-]+)'", rest.split("(", 1)[-1]) \
+                if "|" in rest else []
+    doc = open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "doc",
+                            "deck.md"), encoding="utf-8").read()
+    rows, group = {}, None
+    for line in doc.splitlines():
+        m = re.match(r"## &(\w+)", line)
+        if m:
+            group = m.group(1)
+        m = re.match(r"\| `(\w+)(?:\(j\))?` \|", line)
+        if m and group:
+            rows[(group, m.group(1))] = line
+    check(len(listed) > 40, f"--deck-help lists {len(listed)} variables")
+    for key, choices in listed.items():
+        check(key in rows, f"--deck-help lists &{key[0]} {key[1]}, doc/deck.md has no row for it")
+        for c in choices:
+            check(key not in rows or f"'{c}'" in rows[key],
+                  f"doc/deck.md: &{key[0]} {key[1]} does not name the choice '{c}'")
+    for key in rows:
+        check(key in listed, f"doc/deck.md documents &{key[0]} {key[1]}, which no deck reads")
+    print(f"ok   --deck-help and doc/deck.md: {len(listed)} variables, "
+          f"{sum(len(c) for c in listed.values())} choices")
 
 
 def main():
@@ -73,6 +119,7 @@ def main():
         check(expect in r.stderr and len(r.stderr.splitlines()) == 1, f"{args}: stderr {r.stderr!r}")
     r = run(exe, ["--help"], work)
     check(r.returncode == 0 and "usage" in r.stdout, "--help")
+    deck_help_matches_doc(exe, work, check)
 
     # a good deck runs, writes the three files, and --output chooses the prefix
     with open(os.path.join(work, "good.nml"), "w") as f:
@@ -88,6 +135,15 @@ def main():
         check(os.path.exists(os.path.join(work, "out", "run1" + ext)), f"good deck wrote {ext}")
     r = run(exe, ["good.nml"], work)
     check(r.returncode == 0 and os.path.exists(os.path.join(work, "good.his")), "default prefix")
+
+    # a group's name inside a string is text: &mesh is read from the group, not the title
+    with open(os.path.join(work, "title.nml"), "w") as f:
+        f.write(GOOD.replace("title = 'cli'", "title = 'see &mesh cells = 3 /'"))
+    r = run(exe, ["title.nml", "--quiet"], work)
+    his = open(os.path.join(work, "title.his")).read() if r.returncode == 0 else ""
+    check(re.search(r"cells += 10 +! input", his) is not None,
+          f"&mesh inside a string: exit {r.returncode}, echo of cells: "
+          f"{re.findall(r'cells += .*', his)}")
 
     return check.finish()
 

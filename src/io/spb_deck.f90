@@ -1,16 +1,24 @@
-!> The namelist deck (INTERFACE.md): types with defaults, reading, validation, echo.
+!> The namelist deck (INTERFACE.md): reading, validation, the problem it describes, echo.
 !>
-!> Reading never stops the program: every problem comes back as one error naming the
-!> group and the variable. Real inputs are tested for being finite before any comparison
-!> (a NaN compared under -ffpe-trap=invalid would trap).
+!> The variables themselves (name, default, unit, meaning, echo) are listed once, in
+!> spb_deck_params; this module reads a deck group by group through that list and checks
+!> the values against each other. Reading never stops the program: every problem comes
+!> back as one error naming the group and the variable. Real inputs are tested for being
+!> finite before any comparison (a NaN compared under -ffpe-trap=invalid would trap).
 module spb_deck
-   use, intrinsic :: iso_fortran_env, only: iostat_end
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len, max_sweep_values, &
-      max_realizations
+   use spb_kinds, only: wp, max_segments, max_profiles, max_sweep_values, max_realizations, &
+      name_len
    use spb_error, only: spb_error_t, make_error
-   use spb_strings, only: itoa, rtoa, lower, ltoa
-   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text
+   use spb_strings, only: itoa, rtoa, lower
+   use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text, &
+      group_preamble
+   use spb_deck_types, only: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, &
+      deck_record_t, echo_item_t, known_groups, is_set, timing_words, shift_words, &
+      events_words, model_words, fit_words, top_words, bottom_words, interface_words, &
+      kind_words, face_words, state_words, field_words, distribution_words
+   use spb_deck_params, only: param_pass_t, deck_params, pass_read, pass_echo, pass_find, &
+      pass_set, pass_doc
    use spb_sys, only: fp_traps_off, fp_traps_restore
    use spb_mesh, only: mesh_fault_t, max_cells, max_steps, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
@@ -19,131 +27,10 @@ module spb_deck
       timing_delay, timing_min, shift_above, shift_fragment, events_admissible, events_paper
    implicit none
    private
-   public :: deck_t
-   public :: read_deck, validate_deck, write_echo, known_groups, set_deck_value, &
-      problem_from_deck, deck_record_t, deck_record, mesh_fault_message
+   public :: deck_t, deck_record_t, known_groups
+   public :: read_deck, validate_deck, write_echo, set_deck_value, problem_from_deck, &
+      deck_record, mesh_fault_message, write_deck_help
 
-   real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
-
-   character(len=16), parameter :: known_groups(8) = [character(len=16) :: 'run', 'mesh', &
-      'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep']
-
-   !> One echoed deck value (write_echo, and the attributes of PREFIX.h5).
-   type :: echo_item_t
-      character(len=:), allocatable :: group, name, value, unit
-      logical :: given = .false.                        !! set in the deck (else default)
-   end type echo_item_t
-
-   type :: run_cfg
-      character(len=path_len) :: title = ''             !! echoed in every output header
-      real(wp) :: t_end = unset                         !! end time [s], required
-      real(wp) :: gravity = 0.0_wp                      !! acceleration along +x [m/s^2]
-      character(len=name_len) :: timing = 'accelerate'  !! collision timing rule
-      character(len=name_len) :: shift = 'above'        !! collision shift policy
-      character(len=name_len) :: events = 'admissible' !! event rules: 'admissible' (they never
-                                                        !! create wave energy) | 'paper' (literal)
-      real(wp) :: eps_rel = 1.0e-9_wp                   !! round-off guard of the fracture test [-]
-      integer :: history_every = 1                      !! steps between history rows
-      integer :: field_every = 0                        !! steps between x-t field rows in
-                                                        !! PREFIX.h5 (0: none)
-      real(wp) :: profile_times(max_profiles) = unset   !! profile snapshot times [s]
-      integer :: n_profiles = 0                         !! how many profile_times were given
-      logical :: hdf5 = .false.                         !! also write PREFIX.h5
-      character(len=name_len) :: model = 'half-mass'    !! 'half-mass' | 'full-mass' (naive)
-      real(wp) :: energy_guard = 0.5_wp                 !! stop (exit 3) when mechanical energy
-                                                        !! exceeds initial + work by this share
-      character(len=path_len) :: checkpoint = ''        !! restart file written at t_end ('': none)
-      integer :: checkpoint_every = 0                   !! and every so many steps (0: at the end)
-   end type run_cfg
-
-   type :: mesh_cfg
-      integer :: cells = 0                              !! cells in the reference segment
-      integer :: ref_segment = 1                        !! segment that sets dt from cells
-      real(wp) :: dt = 0.0_wp                           !! time step [s] when > 0
-      character(len=name_len) :: fit = 'strict'         !! 'strict' | 'stretch'
-   end type mesh_cfg
-
-   type :: segments_cfg
-      integer :: n = 1                                  !! number of segments
-      real(wp) :: length(max_segments) = unset          !! [m]
-      real(wp) :: young(max_segments) = unset           !! [Pa]
-      real(wp) :: density(max_segments) = unset         !! [kg/m^3]
-      real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
-      character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
-      real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]
-      real(wp) :: gap(max_segments) = unset             !! initial gap at a dry interface [m]
-   end type segments_cfg
-
-   type :: ends_cfg
-      character(len=name_len) :: top = 'free'          !! 'free' | 'fixed' | 'transmit'
-      character(len=name_len) :: bottom = 'free'       !! 'free' | 'fixed' | 'base' | 'transmit'
-      real(wp) :: base_gap = 0.0_wp                    !! gap to the base [m]
-   end type ends_cfg
-
-   type :: load_cfg
-      character(len=name_len) :: kind = 'none'         !! 'none' | 'power' | 'exponential' | 'table'
-      character(len=name_len) :: face = 'top'          !! 'top' | 'bottom'
-      real(wp) :: p0 = unset                           !! pressure scale [Pa]; required by
-                                                       !! 'power' and 'exponential'
-      real(wp) :: t_k = unset                          !! decay time [s]
-      real(wp) :: exponent = 0.0_wp                    !! power-law exponent [-]
-      real(wp) :: t_cut = unset                        !! p = 0 after t_cut [s]
-      character(len=path_len) :: table = ''            !! two-column file t [s], p [Pa]
-   end type load_cfg
-
-   type :: initial_cfg
-      character(len=name_len) :: state = 'unstressed'  !! 'unstressed' | 'static'
-      real(wp) :: strain_rate = 0.0_wp                 !! uniform stretching: v += rate (x - x_c),
-                                                       !! x_c the centre of mass [1/s]
-   end type initial_cfg
-
-   !> &strength_field: random strength per cell (issue 8).
-   type :: strength_field_cfg
-      character(len=name_len) :: kind = 'uniform'      !! 'uniform' (segment strengths) | 'weibull'
-      real(wp) :: modulus = unset                      !! Weibull modulus m [-]
-      real(wp) :: scale = unset                        !! Weibull scale [Pa]
-      integer :: seed = 1                              !! generator seed (spb_random)
-   end type strength_field_cfg
-
-   !> &sweep (only read with --sweep): Monte-Carlo realizations of the strength field, a
-   !> parameter sweep over values of one deck variable, or both (every value x every
-   !> realization).
-   type :: sweep_cfg
-      integer :: realizations = 0                      !! per value; 0: the deck's own field
-      integer :: seed = 1                              !! realization i: realization_seed(seed, i)
-      character(len=name_len) :: vary = ''             !! deck variable, e.g. 'p0', 'velocity(1)'
-      real(wp) :: values(max_sweep_values) = unset     !! its values
-      integer :: n_values = 0                          !! how many values were given
-      character(len=name_len) :: distribution = 'static'  !! 'static' | 'dynamic' over ranks
-      integer :: bins = 50                             !! fragment-length histogram bins
-   end type sweep_cfg
-
-   !> What the outputs and the checkpoints say of a deck (and need of it): where it came
-   !> from, its title, every value as echoed, and the settings that shape the files.
-   type :: deck_record_t
-      character(len=:), allocatable :: path           !! the deck file
-      character(len=:), allocatable :: title          !! &run title
-      character(len=:), allocatable :: table          !! &load table ('' : none)
-      type(echo_item_t), allocatable :: items(:)      !! every value, given or default
-      logical :: hdf5 = .false.                       !! &run hdf5
-      integer :: field_every = 0                      !! &run field_every [steps]
-      real(wp) :: t_end = 0.0_wp                      !! &run t_end [s]
-      real(wp), allocatable :: profile_times(:)       !! &run profile_times given [s]
-   end type deck_record_t
-
-   type :: deck_t
-      character(len=path_len) :: path = '(built in memory)'   !! where the deck came from
-      type(run_cfg) :: run
-      type(mesh_cfg) :: mesh
-      type(segments_cfg) :: seg
-      type(ends_cfg) :: ends
-      type(load_cfg) :: load
-      type(initial_cfg) :: init
-      type(strength_field_cfg) :: field
-      type(sweep_cfg) :: sweep
-      logical :: is_sweep = .false.   !! read for --sweep: &sweep is required and echoed
-      type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
-   end type deck_t
 
 contains
 
@@ -173,20 +60,13 @@ contains
       prob%dt = deck%mesh%dt
       prob%stretch = deck%mesh%fit == 'stretch'
       prob%t_end = deck%run%t_end
-      prob%top = end_of(deck%ends%top)
-      prob%bottom = end_of(deck%ends%bottom)
+      prob%top = code_of(top_words, deck%ends%top, [end_free, end_fixed, end_transmit])
+      prob%bottom = code_of(bottom_words, deck%ends%bottom, [end_free, end_fixed, end_base, &
+                            end_transmit])
       prob%base_gap = deck%ends%base_gap
-      select case (deck%load%kind)
-      case ('power')
-         prob%load_kind = load_power
-      case ('exponential')
-         prob%load_kind = load_exponential
-      case ('table')
-         prob%load_kind = load_table
-      case default
-         prob%load_kind = load_none
-      end select
-      prob%load_face = merge(face_bottom, face_top, deck%load%face == 'bottom')
+      prob%load_kind = code_of(kind_words, deck%load%kind, [load_none, load_power, &
+                               load_exponential, load_table])
+      prob%load_face = code_of(face_words, deck%load%face, [face_top, face_bottom])
       if (is_set(deck%load%p0)) prob%p0 = deck%load%p0
       prob%has_t_k = is_set(deck%load%t_k)
       if (prob%has_t_k) prob%t_k = deck%load%t_k
@@ -201,40 +81,20 @@ contains
       prob%seed = deck%field%seed
       prob%gravity = deck%run%gravity
       prob%full_mass = deck%run%model == 'full-mass'
-      select case (deck%run%timing)
-      case ('delay')
-         prob%timing = timing_delay
-      case ('min')
-         prob%timing = timing_min
-      case default
-         prob%timing = timing_accelerate
-      end select
-      prob%shift = merge(shift_fragment, shift_above, deck%run%shift == 'fragment')
-      prob%events = merge(events_paper, events_admissible, deck%run%events == 'paper')
+      prob%timing = code_of(timing_words, deck%run%timing, [timing_accelerate, timing_delay, &
+                            timing_min])
+      prob%shift = code_of(shift_words, deck%run%shift, [shift_above, shift_fragment])
+      prob%events = code_of(events_words, deck%run%events, [events_admissible, events_paper])
       prob%eps_rel = deck%run%eps_rel
    contains
-      !> The end code of an end keyword.
-      integer function end_of(word)
-         character(len=*), intent(in) :: word
-         select case (word)
-         case ('fixed')
-            end_of = end_fixed
-         case ('transmit')
-            end_of = end_transmit
-         case ('base')
-            end_of = end_base
-         case default
-            end_of = end_free
-         end select
-      end function end_of
+      !> The code of a keyword: codes(k) for words(k) (codes(1), the default, if none).
+      integer function code_of(words, word, codes)
+         character(len=*), intent(in) :: words(:)   !! the keyword's values
+         character(len=*), intent(in) :: word       !! the value given
+         integer, intent(in) :: codes(:)            !! their codes, in the same order
+         code_of = codes(max(1, findloc(words, word, 1)))
+      end function code_of
    end function problem_from_deck
-
-   !> Whether a real was given (not the "not given" marker).
-   logical elemental function is_set(x)
-      real(wp), intent(in) :: x
-      is_set = .true.
-      if (ieee_is_finite(x)) is_set = x > 0.5_wp * unset
-   end function is_set
 
    !> Read and validate a deck file.
    subroutine read_deck(path, deck, err, sweep)
@@ -242,8 +102,7 @@ contains
       type(deck_t), intent(out) :: deck    !! the deck
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       logical, intent(in), optional :: sweep     !! a sweep deck (--sweep): &sweep required
-      integer :: u, ios
-      character(len=256) :: msg
+      integer :: g, k
       logical :: traps(3)
 
       call scan_deck(path, known_groups, deck%scan, err)
@@ -264,95 +123,68 @@ contains
                          // 'or vary and values)')
          return
       end if
-      open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call make_error(err, 'deck: cannot open ''' // trim(path) // ''': ' // trim(msg))
-         return
-      end if
+      ! reading and validation compare values the user gave, NaN and Inf among them, before
+      ! they reject them: the traps stay off until both are done
       call fp_traps_off(traps)
-      call read_run(u, deck, err)
-      if (.not. allocated(err)) call read_mesh(u, deck, err)
-      if (.not. allocated(err)) call read_segments(u, deck, err)
-      if (.not. allocated(err)) call read_ends(u, deck, err)
-      if (.not. allocated(err)) call read_load(u, deck, err)
-      if (.not. allocated(err)) call read_initial(u, deck, err)
-      if (.not. allocated(err)) call read_strength_field(u, deck, err)
-      if (.not. allocated(err) .and. deck%is_sweep) call read_sweep(u, deck, err)
-      close(u)
-      ! validation compares values the user gave, NaN and Inf among them, before it rejects
-      ! them: the traps stay off until it is done
-      if (.not. allocated(err)) call validate_deck(deck, err)
+      do g = 1, size(known_groups)
+         call read_group(deck, trim(known_groups(g)), err)
+         if (allocated(err)) exit
+      end do
+      if (.not. allocated(err)) then
+         deck%sweep%n_values = 0
+         do k = 1, max_sweep_values
+            if (.not. is_set(deck%sweep%values(k))) exit
+            deck%sweep%n_values = k
+         end do
+         call validate_deck(deck, err)
+      end if
       if (.not. allocated(err) .and. deck%is_sweep) call validate_sweep(deck, err)
       call fp_traps_restore(traps)
    end subroutine read_deck
 
-   !> A keyword value longer than any keyword is an error here (the deck keeps name_len
-   !> characters, and a cut value could look like a valid one).
-   subroutine check_word(err, group, var, value)
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+   !> Read one group: its assignments in the deck's order, each by the one call in
+   !> deck_params that answers to its name; the first that does not read is the error.
+   subroutine read_group(deck, group, err)
+      type(deck_t), intent(inout) :: deck   !! the deck
       character(len=*), intent(in) :: group   !! group name
-      character(len=*), intent(in) :: var   !! variable name
-      character(len=*), intent(in) :: value   !! its value text
-      if (allocated(err)) return
-      if (len_trim(value) > name_len) call make_error(err, '&' // group // ': ' // var // &
-         ': ''' // value(1:20) // '...'' is longer than any choice (' // itoa(name_len) // &
-         ' characters at most)')
-   end subroutine check_word
-
-   !> The error for the one assignment (record, '&group var = value /') that does not read.
-   subroutine blame(err, group, var, record, msg)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=*), intent(in) :: group   !! group name
-      character(len=*), intent(in) :: var   !! variable name
-      character(len=*), intent(in) :: record
-      character(len=*), intent(in) :: msg
-      character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
-      character(len=:), allocatable :: value, name
+      type(param_pass_t) :: pass
+      character(len=:), allocatable :: record, var
       integer :: k
-      k = index(msg, nomatch)
-      if (k > 0) then
-         ! the reader could not match a name: the variable itself, or a word in its value
-         name = lower(trim(adjustl(msg(k + len(nomatch):))))
-         k = scan(name, '(')
-         if (k > 1) name = name(:k - 1)
-         if (name == var .or. name == '''' // var // '''') then
+      do k = 1, size(deck%scan%keys)
+         record = assignment_text(deck%scan, group, k, var)
+         if (len(record) == 0) cycle
+         pass = param_pass_t(mode=pass_read, group=group, name=var, record=record)
+         call deck_params(deck, pass)
+         if (allocated(pass%err)) then
+            call move_alloc(pass%err, err)
+            return
+         end if
+         if (.not. pass%found) then
             call make_error(err, '&' // group // ': ' // var // ': unknown variable in this group')
             return
          end if
-      end if
-      k = index(record, '=')
-      value = record(k + 1:len(record) - 2)
-      do k = 1, len(value)
-         if (iachar(value(k:k)) < 32) value(k:k) = ' '
       end do
-      value = trim(adjustl(value))
-      if (len(value) > 0) then
-         if (value(len(value):) == ',') value = trim(value(:len(value) - 1))
-      end if
-      if (len(value) > 40) value = value(1:37) // '...'
-      if (len(value) > 0) then
-         if (value(1:1) /= '''' .and. value(1:1) /= '"') value = '''' // value // ''''
-      end if
-      call make_error(err, '&' // group // ': ' // var // ': cannot read the value ' // &
-                      value // ' (wrong type, unquoted text, or more values than it holds?)')
-   end subroutine blame
+      call read_preamble(deck%scan, group, err)
+   end subroutine read_group
 
-   !> Turn a namelist read status into an error naming the group (and the variable).
-   subroutine read_status(deck, group, ios, msg, err)
-      type(deck_t), intent(in) :: deck     !! the deck
+   !> What stands in a group before its first assignment must read as nothing (only blanks,
+   !> comments, separators): a stray word or number there is an error naming it.
+   subroutine read_preamble(deck_scan, group, err)
+      type(deck_scan_t), intent(in) :: deck_scan   !! the prescan of the deck
       character(len=*), intent(in) :: group   !! group name
-      character(len=*), intent(in) :: msg
-      integer, intent(in) :: ios
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), parameter :: nomatch = 'Cannot match namelist object name '
-      character(len=:), allocatable :: name
-      integer :: k
-      if (ios == 0 .or. allocated(err)) return
-      if (ios == iostat_end) then
-         if (has_group(deck%scan, group)) call make_error(err, '&' // group // &
-            ': the group could not be read to its end (unbalanced quotes or a missing ''/''?)')
-         return
-      end if
+      character(len=:), allocatable :: text, name
+      character(len=256) :: msg
+      integer :: ios, k
+      real(wp) :: spb_none
+      namelist /spb_value/ spb_none
+      text = group_preamble(deck_scan, group)
+      if (len_trim(text) == 0) return
+      text = '&spb_value ' // text // ' /'
+      read(text, nml=spb_value, iostat=ios, iomsg=msg)
+      if (ios == 0) return
       k = index(msg, nomatch)
       if (k > 0) then
          name = lower(trim(adjustl(msg(k + len(nomatch):))))
@@ -363,405 +195,12 @@ contains
          end if
          k = scan(name, '(')
          if (k > 1) name = name(:k-1)
-         if (has_var(deck%scan, group, name)) then
-            call make_error(err, '&' // group // ': ' // name // ': unknown variable in this group')
-         else
-            call make_error(err, '&' // group // ': cannot read the value ''' // name // &
-                            ''' (wrong type, unquoted text or too many values?)')
-         end if
+         call make_error(err, '&' // group // ': cannot read the value ''' // name // &
+                         ''' (wrong type, unquoted text or too many values?)')
       else
          call make_error(err, '&' // group // ': cannot read the group: ' // trim(msg))
       end if
-   end subroutine read_status
-
-   !> Read &run (defaults kept for what the deck leaves out).
-   subroutine read_run(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=path_len) :: title
-      real(wp) :: t_end, gravity, eps_rel, profile_times(max_profiles)
-      character(len=path_len) :: timing, shift, model, events
-      integer :: history_every, field_every, ios
-      logical :: hdf5
-      real(wp) :: energy_guard
-      character(len=path_len) :: checkpoint
-      integer :: checkpoint_every
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      namelist /run/ title, t_end, gravity, timing, shift, eps_rel, history_every, &
-         profile_times, hdf5, model, energy_guard, field_every, checkpoint, checkpoint_every, &
-         events
-      title = deck%run%title
-      checkpoint = deck%run%checkpoint
-      checkpoint_every = deck%run%checkpoint_every
-      t_end = deck%run%t_end
-      gravity = deck%run%gravity
-      timing = deck%run%timing
-      shift = deck%run%shift
-      events = deck%run%events
-      eps_rel = deck%run%eps_rel
-      history_every = deck%run%history_every
-      field_every = deck%run%field_every
-      profile_times = deck%run%profile_times
-      hdf5 = deck%run%hdf5
-      model = deck%run%model
-      energy_guard = deck%run%energy_guard
-      rewind(u)
-      read(u, nml=run, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'run', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=run, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'run', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'run', ios, msg, err)
-      call check_word(err, 'run', 'timing', timing)
-      call check_word(err, 'run', 'shift', shift)
-      call check_word(err, 'run', 'events', events)
-      call check_word(err, 'run', 'model', model)
-      if (allocated(err)) return
-      if (len_trim(title) == len(title)) then
-         call make_error(err, '&run: title: longer than ' // itoa(len(title) - 1) // ' characters')
-         return
-      end if
-      if (len_trim(checkpoint) == len(checkpoint)) then
-         call make_error(err, '&run: checkpoint: longer than ' // itoa(len(checkpoint) - 1) // &
-                         ' characters')
-         return
-      end if
-      deck%run%title = title
-      deck%run%checkpoint = checkpoint
-      deck%run%checkpoint_every = checkpoint_every
-      deck%run%t_end = t_end
-      deck%run%gravity = gravity
-      deck%run%timing = lower(timing)
-      deck%run%shift = lower(shift)
-      deck%run%events = lower(events)
-      deck%run%eps_rel = eps_rel
-      deck%run%history_every = history_every
-      deck%run%field_every = field_every
-      deck%run%profile_times = profile_times
-      deck%run%hdf5 = hdf5
-      deck%run%model = lower(model)
-      deck%run%energy_guard = energy_guard
-   end subroutine read_run
-
-   !> Read &mesh.
-   subroutine read_mesh(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      integer :: cells, ref_segment, ios
-      real(wp) :: dt
-      character(len=path_len) :: fit
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      namelist /mesh/ cells, ref_segment, dt, fit
-      cells = deck%mesh%cells
-      ref_segment = deck%mesh%ref_segment
-      dt = deck%mesh%dt
-      fit = deck%mesh%fit
-      rewind(u)
-      read(u, nml=mesh, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'mesh', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=mesh, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'mesh', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'mesh', ios, msg, err)
-      call check_word(err, 'mesh', 'fit', fit)
-      if (allocated(err)) return
-      deck%mesh%cells = cells
-      deck%mesh%ref_segment = ref_segment
-      deck%mesh%dt = dt
-      deck%mesh%fit = lower(fit)
-   end subroutine read_mesh
-
-   !> Read &segments.
-   subroutine read_segments(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      integer :: n, ios, j
-      real(wp), dimension(max_segments) :: length, young, density, strength, velocity, gap
-      character(len=path_len) :: interface(max_segments)
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      namelist /segments/ n, length, young, density, strength, interface, velocity, gap
-      n = deck%seg%n
-      length = deck%seg%length
-      young = deck%seg%young
-      density = deck%seg%density
-      strength = deck%seg%strength
-      interface = deck%seg%interface
-      velocity = deck%seg%velocity
-      gap = deck%seg%gap
-      rewind(u)
-      read(u, nml=segments, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'segments', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=segments, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'segments', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'segments', ios, msg, err)
-      do j = 1, max_segments
-         call check_word(err, 'segments', 'interface(' // itoa(j) // ')', interface(j))
-      end do
-      if (allocated(err)) return
-      deck%seg%n = n
-      deck%seg%length = length
-      deck%seg%young = young
-      deck%seg%density = density
-      deck%seg%strength = strength
-      do j = 1, max_segments
-         deck%seg%interface(j) = lower(interface(j))
-      end do
-      deck%seg%velocity = velocity
-      deck%seg%gap = gap
-   end subroutine read_segments
-
-   !> Read &ends.
-   subroutine read_ends(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=path_len) :: top, bottom
-      real(wp) :: base_gap
-      integer :: ios
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      namelist /ends/ top, bottom, base_gap
-      top = deck%ends%top
-      bottom = deck%ends%bottom
-      base_gap = deck%ends%base_gap
-      rewind(u)
-      read(u, nml=ends, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'ends', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=ends, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'ends', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'ends', ios, msg, err)
-      call check_word(err, 'ends', 'top', top)
-      call check_word(err, 'ends', 'bottom', bottom)
-      if (allocated(err)) return
-      deck%ends%top = lower(top)
-      deck%ends%bottom = lower(bottom)
-      deck%ends%base_gap = base_gap
-   end subroutine read_ends
-
-   !> Read &load.
-   subroutine read_load(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=path_len) :: kind, face
-      real(wp) :: p0, t_k, exponent, t_cut
-      character(len=path_len) :: table
-      integer :: ios
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      namelist /load/ kind, face, p0, t_k, exponent, t_cut, table
-      kind = deck%load%kind
-      face = deck%load%face
-      p0 = deck%load%p0
-      t_k = deck%load%t_k
-      exponent = deck%load%exponent
-      t_cut = deck%load%t_cut
-      table = deck%load%table
-      rewind(u)
-      read(u, nml=load, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'load', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=load, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'load', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'load', ios, msg, err)
-      call check_word(err, 'load', 'kind', kind)
-      call check_word(err, 'load', 'face', face)
-      if (allocated(err)) return
-      deck%load%kind = lower(kind)
-      deck%load%face = lower(face)
-      deck%load%p0 = p0
-      deck%load%t_k = t_k
-      deck%load%exponent = exponent
-      deck%load%t_cut = t_cut
-      if (len_trim(table) == len(table)) then
-         call make_error(err, '&load: table: the path is longer than ' // itoa(len(table) - 1) &
-                         // ' characters')
-         return
-      end if
-      deck%load%table = table
-   end subroutine read_load
-
-   !> Read &initial.
-   subroutine read_initial(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=path_len) :: state
-      integer :: ios
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      real(wp) :: strain_rate
-      namelist /initial/ state, strain_rate
-      state = deck%init%state
-      strain_rate = deck%init%strain_rate
-      rewind(u)
-      read(u, nml=initial, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'initial', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=initial, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'initial', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'initial', ios, msg, err)
-      call check_word(err, 'initial', 'state', state)
-      if (allocated(err)) return
-      deck%init%state = lower(state)
-      deck%init%strain_rate = strain_rate
-   end subroutine read_initial
-
-   !> Read &strength_field.
-   subroutine read_strength_field(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=path_len) :: kind
-      real(wp) :: modulus, scale
-      integer :: seed, ios
-      character(len=256) :: msg
-      character(len=256) :: msg2
-      character(len=:), allocatable :: record, var
-      integer :: k, ios2
-      namelist /strength_field/ kind, modulus, scale, seed
-      kind = deck%field%kind
-      modulus = deck%field%modulus
-      scale = deck%field%scale
-      seed = deck%field%seed
-      rewind(u)
-      read(u, nml=strength_field, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'strength_field', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=strength_field, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'strength_field', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'strength_field', ios, msg, err)
-      call check_word(err, 'strength_field', 'kind', kind)
-      if (allocated(err)) return
-      deck%field%kind = lower(kind)
-      deck%field%modulus = modulus
-      deck%field%scale = scale
-      deck%field%seed = seed
-   end subroutine read_strength_field
-
-   !> Read &sweep (with --sweep only).
-   subroutine read_sweep(u, deck, err)
-      integer, intent(in) :: u             !! open unit of the deck
-      type(deck_t), intent(inout) :: deck   !! the deck
-      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=path_len) :: vary, distribution
-      real(wp) :: values(max_sweep_values)
-      integer :: realizations, seed, bins, ios, k, ios2
-      character(len=256) :: msg, msg2
-      character(len=:), allocatable :: record, var
-      namelist /sweep/ realizations, seed, vary, values, distribution, bins
-      realizations = deck%sweep%realizations
-      seed = deck%sweep%seed
-      vary = deck%sweep%vary
-      values = deck%sweep%values
-      distribution = deck%sweep%distribution
-      bins = deck%sweep%bins
-      rewind(u)
-      read(u, nml=sweep, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         ! find the assignment that fails by reading them one at a time
-         do k = 1, size(deck%scan%keys)
-            record = assignment_text(deck%scan, 'sweep', k, var)
-            if (len(record) == 0) cycle
-            read(record, nml=sweep, iostat=ios2, iomsg=msg2)
-            if (ios2 /= 0) then
-               call blame(err, 'sweep', var, record, msg2)
-               exit
-            end if
-         end do
-      end if
-      call read_status(deck, 'sweep', ios, msg, err)
-      call check_word(err, 'sweep', 'vary', vary)
-      call check_word(err, 'sweep', 'distribution', distribution)
-      if (allocated(err)) return
-      deck%sweep%realizations = realizations
-      deck%sweep%seed = seed
-      deck%sweep%vary = lower(vary)
-      deck%sweep%values = values
-      deck%sweep%distribution = lower(distribution)
-      deck%sweep%bins = bins
-      deck%sweep%n_values = 0
-      do k = 1, max_sweep_values
-         if (.not. is_set(values(k))) exit
-         deck%sweep%n_values = k
-      end do
-   end subroutine read_sweep
+   end subroutine read_preamble
 
    !> &sweep: what to vary and how often; every case's deck must itself be valid.
    subroutine validate_sweep(deck, err)
@@ -779,8 +218,8 @@ contains
             call make_error(err, '&sweep: bins must be 1 .. 100000, got ' // itoa(sw%bins))
             return
          end if
-         call need_choice(err, 'sweep', 'distribution', sw%distribution, [character(len=8) :: &
-                          'static', 'dynamic'])
+         call need_choice(err, 'sweep', 'distribution', sw%distribution, &
+                          distribution_words)
          if (allocated(err)) return
          if (len_trim(deck%run%checkpoint) > 0) then
             call make_error(err, '&run: checkpoint = ''' // trim(deck%run%checkpoint) // &
@@ -835,13 +274,15 @@ contains
       end associate
    end subroutine validate_sweep
 
-   !> Set the deck variable a sweep varies: name as in the deck, 'p0' or 'velocity(2)'.
+   !> Set the deck variable a sweep varies: name as in the deck, 'p0' or 'velocity(2)'
+   !> (the reals deck_params marks sweep=.true.).
    subroutine set_deck_value(deck, name, value, err)
       type(deck_t), intent(inout) :: deck   !! the deck
       character(len=*), intent(in) :: name   !! variable name
       real(wp), intent(in) :: value        !! the value to set
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: base
+      type(param_pass_t) :: pass
       integer :: j, p, ios
       base = trim(name)
       j = 0
@@ -859,61 +300,21 @@ contains
          end if
          base = base(:p - 1)
       end if
-      select case (base)
-      case ('velocity', 'strength', 'young', 'density', 'length', 'gap')
-         if (j == 0) then
-            call make_error(err, '&sweep: vary = ''' // base // ''' needs a segment index, ' // &
-                            'e.g. ''' // base // '(1)''')
-            return
-         end if
-      case default
-         if (j /= 0) then
-            call make_error(err, '&sweep: vary = ''' // trim(name) // ''': ' // base // &
-                            ' takes no index')
-            return
-         end if
-      end select
-      select case (base)
-      case ('velocity')
-         deck%seg%velocity(j) = value
-      case ('strength')
-         deck%seg%strength(j) = value
-      case ('young')
-         deck%seg%young(j) = value
-      case ('density')
-         deck%seg%density(j) = value
-      case ('length')
-         deck%seg%length(j) = value
-      case ('gap')
-         deck%seg%gap(j) = value
-      case ('p0')
-         deck%load%p0 = value
-      case ('t_k')
-         deck%load%t_k = value
-      case ('t_cut')
-         deck%load%t_cut = value
-      case ('exponent')
-         deck%load%exponent = value
-      case ('gravity')
-         deck%run%gravity = value
-      case ('t_end')
-         deck%run%t_end = value
-      case ('eps_rel')
-         deck%run%eps_rel = value
-      case ('base_gap')
-         deck%ends%base_gap = value
-      case ('modulus')
-         deck%field%modulus = value
-      case ('scale')
-         deck%field%scale = value
-      case ('strain_rate')
-         deck%init%strain_rate = value
-      case default
+      pass = param_pass_t(mode=pass_find, name=base)
+      call deck_params(deck, pass)
+      if (pass%indexed .and. j == 0) then
+         call make_error(err, '&sweep: vary = ''' // base // ''' needs a segment index, ' // &
+                         'e.g. ''' // base // '(1)''')
+      else if (.not. pass%indexed .and. j /= 0) then
+         call make_error(err, '&sweep: vary = ''' // trim(name) // ''': ' // base // &
+                         ' takes no index')
+      else if (.not. pass%found) then
          call make_error(err, '&sweep: vary = ''' // trim(name) // ''' is not a variable a ' &
-            // 'sweep can vary (p0, t_k, t_cut, exponent, gravity, t_end, eps_rel, base_gap, ' &
-            // 'modulus, scale, strain_rate, velocity(j), strength(j), young(j), density(j), ' &
-            // 'length(j), gap(j))')
-      end select
+                         // 'sweep can vary (' // pass%sweepable // ')')
+      else
+         pass = param_pass_t(mode=pass_set, name=base, index=j, value=value)
+         call deck_params(deck, pass)
+      end if
    end subroutine set_deck_value
 
    ! ---------------------------------------------------------------- validation
@@ -996,12 +397,10 @@ contains
       integer :: k
       call need_positive(err, 'run', 't_end', run%t_end)
       call need_finite(err, 'run', 'gravity', run%gravity)
-      call need_choice(err, 'run', 'timing', run%timing, [character(len=10) :: 'accelerate', &
-                       'delay', 'min'])
-      call need_choice(err, 'run', 'shift', run%shift, [character(len=8) :: 'above', 'fragment'])
-      call need_choice(err, 'run', 'events', run%events, [character(len=10) :: 'admissible', &
-                       'paper'])
-      call need_choice(err, 'run', 'model', run%model, [character(len=9) :: 'half-mass', 'full-mass'])
+      call need_choice(err, 'run', 'timing', run%timing, timing_words)
+      call need_choice(err, 'run', 'shift', run%shift, shift_words)
+      call need_choice(err, 'run', 'events', run%events, events_words)
+      call need_choice(err, 'run', 'model', run%model, model_words)
       call need_finite(err, 'run', 'eps_rel', run%eps_rel)
       if (allocated(err)) return
       if (run%eps_rel < 0.0_wp .or. run%eps_rel > 1.0e-3_wp) then
@@ -1088,7 +487,7 @@ contains
          call make_error(err, '&mesh: ref_segment must be in 1..' // itoa(nseg) // ', got ' // &
                          itoa(mesh%ref_segment))
       end if
-      call need_choice(err, 'mesh', 'fit', mesh%fit, [character(len=8) :: 'strict', 'stretch'])
+      call need_choice(err, 'mesh', 'fit', mesh%fit, fit_words)
    end subroutine validate_mesh
 
    !> Check &segments' values and fill the defaults of the segments given.
@@ -1122,7 +521,7 @@ contains
             if (j < seg%n) then
                if (len_trim(seg%interface(j)) == 0) seg%interface(j) = 'bonded'
                call need_choice(err, 'segments', 'interface' // sj, seg%interface(j), &
-                                [character(len=8) :: 'bonded', 'dry'])
+                                interface_words)
                if (is_set(seg%gap(j))) then
                   call need_positive(err, 'segments', 'gap' // sj, seg%gap(j), zero_ok=.true.)
                   if (.not. allocated(err) .and. seg%gap(j) > 0.0_wp .and. &
@@ -1167,9 +566,8 @@ contains
    subroutine validate_ends(ends, err)
       type(ends_cfg), intent(in) :: ends
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      call need_choice(err, 'ends', 'top', ends%top, [character(len=8) :: 'free', 'fixed', 'transmit'])
-      call need_choice(err, 'ends', 'bottom', ends%bottom, [character(len=8) :: 'free', 'fixed', &
-                       'base', 'transmit'])
+      call need_choice(err, 'ends', 'top', ends%top, top_words)
+      call need_choice(err, 'ends', 'bottom', ends%bottom, bottom_words)
       call need_finite(err, 'ends', 'base_gap', ends%base_gap)
       if (allocated(err)) return
       if (ends%base_gap < 0.0_wp) then
@@ -1185,9 +583,8 @@ contains
       type(ends_cfg), intent(in) :: ends
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=name_len) :: face_end
-      call need_choice(err, 'load', 'kind', load%kind, [character(len=11) :: 'none', 'power', &
-                       'exponential', 'table'])
-      call need_choice(err, 'load', 'face', load%face, [character(len=8) :: 'top', 'bottom'])
+      call need_choice(err, 'load', 'kind', load%kind, kind_words)
+      call need_choice(err, 'load', 'face', load%face, face_words)
       if (allocated(err) .or. load%kind == 'none') return
       if (load%face == 'top') then
          face_end = ends%top
@@ -1246,8 +643,7 @@ contains
    subroutine validate_field(deck, err)
       type(deck_t), intent(in) :: deck     !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      call need_choice(err, 'strength_field', 'kind', deck%field%kind, [character(len=8) :: &
-                       'uniform', 'weibull'])
+      call need_choice(err, 'strength_field', 'kind', deck%field%kind, field_words)
       if (allocated(err) .or. deck%field%kind /= 'weibull') return
       call need_positive(err, 'strength_field', 'modulus', deck%field%modulus)
       call need_positive(err, 'strength_field', 'scale', deck%field%scale)
@@ -1266,8 +662,7 @@ contains
                          // '(the full-mass model breaks springs, not nodes)')
          return
       end if
-      call need_choice(err, 'initial', 'state', deck%init%state, [character(len=10) :: &
-                       'unstressed', 'static'])
+      call need_choice(err, 'initial', 'state', deck%init%state, state_words)
       call need_finite(err, 'initial', 'strain_rate', deck%init%strain_rate)
       if (allocated(err)) return
       if (abs(deck%init%strain_rate) > 0.0_wp .and. (deck%ends%top == 'fixed' .or. &
@@ -1301,89 +696,16 @@ contains
    subroutine deck_items(deck, items)
       type(deck_t), intent(in) :: deck     !! the deck
       type(echo_item_t), allocatable, intent(out) :: items(:)   !! the deck values as echoed
-      integer :: j, n
-      character(len=:), allocatable :: v
-      allocate(items(0))
-      call item('run', 'title', quote(deck%run%title), '')
-      call item('run', 't_end', rtoa(deck%run%t_end), 's')
-      call item('run', 'gravity', rtoa(deck%run%gravity), 'm/s^2')
-      call item('run', 'timing', quote(deck%run%timing), '')
-      call item('run', 'shift', quote(deck%run%shift), '')
-      call item('run', 'events', quote(deck%run%events), '')
-      call item('run', 'eps_rel', rtoa(deck%run%eps_rel), '-')
-      call item('run', 'history_every', itoa(deck%run%history_every), 'steps')
-      v = ''
-      do j = 1, deck%run%n_profiles
-         if (j > 1) v = v // ', '
-         v = v // rtoa(deck%run%profile_times(j))
+      type(deck_t) :: copy
+      type(param_pass_t) :: pass
+      integer :: k
+      copy = deck      ! the echo pass leaves its deck as it is; deck_params takes it inout
+      pass%mode = pass_echo
+      call deck_params(copy, pass)
+      call move_alloc(pass%items, items)
+      do k = 1, size(items)
+         items(k)%given = has_var(deck%scan, items(k)%group, items(k)%name)
       end do
-      call item('run', 'profile_times', v, 's')
-      call item('run', 'hdf5', ltoa(deck%run%hdf5), '')
-      call item('run', 'field_every', itoa(deck%run%field_every), 'steps (0: none)')
-      call item('run', 'model', quote(deck%run%model), '')
-      call item('run', 'energy_guard', rtoa(deck%run%energy_guard), '- (0: off)')
-      call item('run', 'checkpoint', quote(deck%run%checkpoint), '(restart file; '''': none)')
-      call item('run', 'checkpoint_every', itoa(deck%run%checkpoint_every), 'steps (0: at t_end)')
-
-      call item('mesh', 'cells', itoa(deck%mesh%cells), '')
-      call item('mesh', 'ref_segment', itoa(deck%mesh%ref_segment), '')
-      call item('mesh', 'dt', rtoa(deck%mesh%dt), 's')
-      call item('mesh', 'fit', quote(deck%mesh%fit), '')
-
-      n = deck%seg%n
-      call item('segments', 'n', itoa(n), '')
-      call item('segments', 'length', rlist(deck%seg%length(1:n)), 'm')
-      call item('segments', 'young', rlist(deck%seg%young(1:n)), 'Pa')
-      call item('segments', 'density', rlist(deck%seg%density(1:n)), 'kg/m^3')
-      call item('segments', 'strength', rlist(deck%seg%strength(1:n)), 'Pa (< 0: unbreakable)')
-      v = ''
-      do j = 1, n - 1
-         if (j > 1) v = v // ', '
-         v = v // quote(deck%seg%interface(j))
-      end do
-      call item('segments', 'interface', v, '')
-      call item('segments', 'velocity', rlist(deck%seg%velocity(1:n)), 'm/s')
-      call item('segments', 'gap', rlist(deck%seg%gap(1:n-1)), 'm')
-
-      call item('ends', 'top', quote(deck%ends%top), '')
-      call item('ends', 'bottom', quote(deck%ends%bottom), '')
-      call item('ends', 'base_gap', rtoa(deck%ends%base_gap), 'm')
-
-      call item('load', 'kind', quote(deck%load%kind), '')
-      call item('load', 'face', quote(deck%load%face), '')
-      call item('load', 'p0', opt(deck%load%p0), 'Pa')
-      call item('load', 't_k', opt(deck%load%t_k), 's')
-      call item('load', 'exponent', rtoa(deck%load%exponent), '-')
-      call item('load', 't_cut', opt(deck%load%t_cut), 's')
-      call item('load', 'table', quote(deck%load%table), '')
-
-      call item('initial', 'state', quote(deck%init%state), '')
-      call item('initial', 'strain_rate', rtoa(deck%init%strain_rate), '1/s')
-      call item('strength_field', 'kind', quote(deck%field%kind), '')
-      call item('strength_field', 'modulus', opt(deck%field%modulus), '-')
-      call item('strength_field', 'scale', opt(deck%field%scale), 'Pa')
-      call item('strength_field', 'seed', itoa(deck%field%seed), '')
-      if (deck%is_sweep) then
-         call item('sweep', 'realizations', itoa(deck%sweep%realizations), '')
-         call item('sweep', 'seed', itoa(deck%sweep%seed), '')
-         call item('sweep', 'vary', quote(deck%sweep%vary), '')
-         if (deck%sweep%n_values > 0) then
-            call item('sweep', 'values', rlist(deck%sweep%values(1:deck%sweep%n_values)), '')
-         else
-            call item('sweep', 'values', '(none)', '')
-         end if
-         call item('sweep', 'distribution', quote(deck%sweep%distribution), '')
-         call item('sweep', 'bins', itoa(deck%sweep%bins), '')
-      end if
-   contains
-      !> Append one echoed value.
-      subroutine item(g, name, value, unit)
-         character(len=*), intent(in) :: g   !! group name
-         character(len=*), intent(in) :: name   !! variable name
-         character(len=*), intent(in) :: value   !! its value text
-         character(len=*), intent(in) :: unit
-         items = [items, echo_item_t(g, name, value, unit, has_var(deck%scan, g, name))]
-      end subroutine item
    end subroutine deck_items
 
    !> A mesh fault (spb_mesh) in the deck's terms: the one-line message of the bad input.
@@ -1438,6 +760,35 @@ contains
       rec%profile_times(:) = deck%run%profile_times(1:deck%run%n_profiles)
    end function deck_record
 
+   !> Every deck variable (spallbar --deck-help): group by group, its default as the echo
+   !> shows it, its unit, what it means and, for a keyword, the values it accepts.
+   subroutine write_deck_help(u)
+      integer, intent(in) :: u   !! open formatted unit
+      type(deck_t) :: defaults
+      type(param_pass_t) :: pass
+      character(len=:), allocatable :: unit
+      integer :: k
+      pass%mode = pass_doc
+      call deck_params(defaults, pass)
+      write(u, '(a)') 'Deck variables: name = default [unit] meaning (doc/deck.md has the ' // &
+         'rules that relate them)'
+      do k = 1, size(pass%items)
+         associate (it => pass%items(k))
+            if (k == 1) then
+               write(u, '(a)') '&' // it%group
+            else if (it%group /= pass%items(k - 1)%group) then
+               write(u, '(a)') '/'
+               write(u, '(a)') '&' // it%group
+            end if
+            unit = ''
+            if (len(it%unit) > 0) unit = '[' // it%unit // ']'
+            write(u, '(a)') '   ' // pad(it%name, 16) // ' = ' // pad(it%value, 14) // ' ' // &
+               pad(unit, 9) // ' ' // it%doc
+         end associate
+      end do
+      write(u, '(a)') '/'
+   end subroutine write_deck_help
+
    !> Write every deck value, defaults included, as namelist text behind prefix.
    subroutine write_echo(u, rec, prefix)
       integer, intent(in) :: u                    !! open formatted unit
@@ -1468,39 +819,9 @@ contains
 
    !> s padded with blanks to at least n characters.
    pure function pad(s, n) result(r)
-      character(len=*), intent(in) :: s
-      integer, intent(in) :: n
+      character(len=*), intent(in) :: s   !! text
+      integer, intent(in) :: n            !! width
       character(len=max(len(s), n)) :: r
       r = s
    end function pad
-
-   !> s in single quotes (a quote inside doubled).
-   pure function quote(s) result(r)
-      character(len=*), intent(in) :: s
-      character(len=:), allocatable :: r
-      r = '''' // trim(s) // ''''
-   end function quote
-
-   !> A real as echoed: its value, or '(not set)' when not given.
-   function opt(x) result(r)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: r
-      if (is_set(x)) then
-         r = rtoa(x)
-      else
-         r = '(not set)'
-      end if
-   end function opt
-
-   !> A list of reals as echoed.
-   function rlist(x) result(r)
-      real(wp), intent(in) :: x(:)
-      character(len=:), allocatable :: r
-      integer :: k
-      r = ''
-      do k = 1, size(x)
-         if (k > 1) r = r // ', '
-         r = r // rtoa(x(k))
-      end do
-   end function rlist
 end module spb_deck

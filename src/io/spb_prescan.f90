@@ -9,7 +9,7 @@ module spb_prescan
    use spb_kinds, only: path_len
    implicit none
    private
-   public :: deck_scan_t, scan_deck, has_group, has_var, assignment_text
+   public :: deck_scan_t, scan_deck, has_group, has_var, assignment_text, group_preamble
 
    integer, parameter :: key_len = 64
 
@@ -29,6 +29,8 @@ module spb_prescan
       character(len=key_len), allocatable :: groups(:)   !! group names in order of appearance
       character(len=key_len), allocatable :: keys(:)     !! 'group:variable' for every assignment
       integer, allocatable :: first(:), last(:)          !! each assignment's text in `text`
+      integer, allocatable :: group_first(:)             !! each group's text after its name
+      integer, allocatable :: group_last(:)              !! ... up to its '/' (excluded)
       character(len=:), allocatable :: text              !! the deck
    end type deck_scan_t
 
@@ -75,7 +77,8 @@ contains
       type(lexer_t) :: lx
       character :: c
 
-      allocate(scan%groups(0), scan%keys(0), lx%whole(0), scan%first(0), scan%last(0))
+      allocate(scan%groups(0), scan%keys(0), lx%whole(0), scan%first(0), scan%last(0), &
+               scan%group_first(0), scan%group_last(0))
       scan%text = text
       lx%n = len(text)
       lx%group = ''
@@ -98,6 +101,7 @@ contains
             end if
             lx%in_group = .false.
             call close_assignment(scan, lx%i - 1)
+            scan%group_last = [scan%group_last, lx%i - 1]
             lx%i = lx%i + 1
          else if (is_letter(c)) then
             call name_or_assignment(lx, text, scan, err)
@@ -218,6 +222,7 @@ contains
          end if
          lx%in_group = .false.
          call close_assignment(scan, lx%i - 1)
+         scan%group_last = [scan%group_last, lx%i - 1]
       else
          if (lx%in_group) then
             call make_error(err, '&' // lx%group // ': not terminated by ''/'' before &' // word &
@@ -235,6 +240,7 @@ contains
             return
          end if
          scan%groups = [character(len=key_len) :: scan%groups, word]
+         scan%group_first = [scan%group_first, j]
          lx%group = word
          lx%group_line = lx%line
          lx%in_group = .true.
@@ -333,6 +339,27 @@ contains
       record = '&' // group // ' ' // scan%text(scan%first(k):max(scan%first(k), scan%last(k))) &
                // ' /'
    end function assignment_text
+
+   !> The text of a group before its first assignment ('' when none): what a namelist read
+   !> of the group would meet before any variable.
+   function group_preamble(scan, group) result(text)
+      type(deck_scan_t), intent(in) :: scan   !! the prescan of the deck
+      character(len=*), intent(in) :: group   !! group name
+      character(len=:), allocatable :: text
+      integer :: g, k, last
+      text = ''
+      if (.not. allocated(scan%groups)) return
+      g = findloc(scan%groups, group, 1)
+      if (g == 0 .or. g > size(scan%group_last)) return
+      last = scan%group_last(g)
+      do k = 1, size(scan%keys)
+         if (scan%first(k) > scan%group_first(g) .and. scan%first(k) <= last) then
+            last = scan%first(k) - 1
+            exit
+         end if
+      end do
+      text = scan%text(scan%group_first(g):last)
+   end function group_preamble
 
    !> True when the group appears in the deck.
    logical function has_group(scan, group)

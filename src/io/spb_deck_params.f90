@@ -1,0 +1,451 @@
+!> Every deck variable in one place: the get_param pattern of MOM6's MOM_file_parser.
+!>
+!> deck_params holds one call per variable: its group, its name, the component of deck_t
+!> that holds it (whose initial value is its default), its unit and its meaning, and, for
+!> a keyword, the values it accepts. A pass over that list does one job:
+!>
+!> * pass_read: read one assignment of the deck into its component (the one reader; a
+!>   variable no call answers is unknown);
+!> * pass_echo: every value as the outputs' headers echo it;
+!> * pass_find, pass_set: the reals a sweep may vary, and setting one of them;
+!> * pass_doc: every variable with its default, unit, choices and meaning.
+!>
+!> Adding a deck variable is a component in spb_deck_types and one call here; checks that
+!> relate it to other variables go to spb_deck's validation.
+module spb_deck_params
+   use spb_kinds, only: wp, path_len
+   use spb_error, only: spb_error_t, make_error
+   use spb_strings, only: itoa, rtoa, ltoa, lower
+   use spb_deck_types, only: deck_t, sweep_cfg, echo_item_t, is_set, timing_words, &
+      shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
+      interface_words, kind_words, face_words, state_words, field_words, distribution_words
+   implicit none
+   private
+   public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc
+
+   integer, parameter :: pass_read = 1   !! read the assignment pass%record
+   integer, parameter :: pass_echo = 2   !! list every value as echoed
+   integer, parameter :: pass_find = 3   !! is pass%name a real a sweep may vary?
+   integer, parameter :: pass_set = 4    !! set that real (element pass%index) to pass%value
+   integer, parameter :: pass_doc = 5    !! list every variable with its meaning
+
+   !> One pass over the deck's variables: what it asks, and what it found.
+   type :: param_pass_t
+      integer :: mode = pass_echo                        !! pass_read .. pass_doc
+      character(len=:), allocatable :: group             !! read: the assignment's group
+      character(len=:), allocatable :: name              !! read, find, set: the variable
+      character(len=:), allocatable :: record            !! read: '&group name... = value /'
+      integer :: index = 0                               !! set: element (0: a scalar)
+      real(wp) :: value = 0.0_wp                         !! set: the value
+      logical :: found = .false.                         !! read, find, set: a call answered
+      logical :: indexed = .false.                       !! find: the variable is an array
+      character(len=:), allocatable :: sweepable         !! find: every name a sweep may vary
+      type(spb_error_t), allocatable :: err              !! read: the assignment does not read
+      type(echo_item_t), allocatable :: items(:)         !! echo, doc: one per variable
+   end type param_pass_t
+
+contains
+
+   !> The deck's variables, group by group, in the order the echo lists them: name, unit
+   !> as echoed, meaning, and the component (r: real, i: integer, l: logical, t: text, ra:
+   !> reals, ta: keywords) whose initial value in spb_deck_types is the default.
+   subroutine deck_params(deck, pass)
+      type(deck_t), intent(inout) :: deck        !! the deck (read, set: changed)
+      type(param_pass_t), intent(inout) :: pass  !! what this pass does
+      integer :: n
+      n = deck%seg%n
+      associate (p => pass, r => deck%run)
+         call param(p, 'run', 'title', '', 'echoed in every output header', t=r%title)
+         call param(p, 'run', 't_end', 's', 'end time (required)', r=r%t_end, sweep=.true.)
+         call param(p, 'run', 'gravity', 'm/s^2', 'acceleration along +x (downwards)', &
+                    r=r%gravity, sweep=.true.)
+         call param(p, 'run', 'timing', '', 'collision timing rule', t=r%timing, &
+                    choices=timing_words)
+         call param(p, 'run', 'shift', '', 'collision shift policy', t=r%shift, &
+                    choices=shift_words)
+         call param(p, 'run', 'events', '', 'event rules: ''admissible'' never create wave ' &
+                    // 'energy, ''paper'' are the paper''s own', t=r%events, choices=events_words)
+         call param(p, 'run', 'eps_rel', '-', 'round-off guard of the fracture test and ' &
+                    // 'the contact tolerance', r=r%eps_rel, sweep=.true.)
+         call param(p, 'run', 'history_every', 'steps', 'steps between history rows', &
+                    i=r%history_every)
+         call param(p, 'run', 'profile_times', 's', 'profile snapshot times, increasing, ' &
+                    // 'up to t_end', ra=r%profile_times, count=r%n_profiles)
+         call param(p, 'run', 'hdf5', '', 'also write PREFIX.h5', l=r%hdf5)
+         call param(p, 'run', 'field_every', 'steps (0: none)', 'steps between x-t field ' &
+                    // 'rows in PREFIX.h5', i=r%field_every)
+         call param(p, 'run', 'model', '', 'lumped-mass model (''full-mass'': the naive one, ' &
+                    // 'for comparison)', t=r%model, choices=model_words)
+         call param(p, 'run', 'energy_guard', '- (0: off)', 'stop (exit 3) when the wave ' &
+                    // 'energy exceeds initial energy + work by this share', r=r%energy_guard)
+         call param(p, 'run', 'checkpoint', '(restart file; '''': none)', 'restart file ' &
+                    // 'written at t_end', t=r%checkpoint)
+         call param(p, 'run', 'checkpoint_every', 'steps (0: at t_end)', 'also write the ' &
+                    // 'checkpoint every so many steps', i=r%checkpoint_every)
+      end associate
+      associate (p => pass, m => deck%mesh)
+         call param(p, 'mesh', 'cells', '', 'cells in segment ref_segment (or dt)', i=m%cells)
+         call param(p, 'mesh', 'ref_segment', '', 'the segment whose cells set dt', &
+                    i=m%ref_segment)
+         call param(p, 'mesh', 'dt', 's', 'time step when > 0 (or cells)', r=m%dt)
+         call param(p, 'mesh', 'fit', '', 'segment lengths that are not whole cells: an ' &
+                    // 'error, or stretched', t=m%fit, choices=fit_words)
+      end associate
+      associate (p => pass, s => deck%seg)
+         call param(p, 'segments', 'n', '', 'number of segments, top to bottom', i=s%n)
+         call param(p, 'segments', 'length', 'm', 'segment lengths (required)', ra=s%length, &
+                    count=n, sweep=.true.)
+         call param(p, 'segments', 'young', 'Pa', 'Young''s moduli (required)', ra=s%young, &
+                    count=n, sweep=.true.)
+         call param(p, 'segments', 'density', 'kg/m^3', 'densities (required)', &
+                    ra=s%density, count=n, sweep=.true.)
+         call param(p, 'segments', 'strength', 'Pa (< 0: unbreakable)', 'tensile ' &
+                    // 'strengths (default -1)', ra=s%strength, count=n, sweep=.true.)
+         call param(p, 'segments', 'interface', '', 'interface j between segments j and ' &
+                    // 'j+1 (default ''bonded'')', ta=s%interface, count=n - 1, &
+                    choices=interface_words)
+         call param(p, 'segments', 'velocity', 'm/s', 'initial rigid velocities (default 0)', &
+                    ra=s%velocity, count=n, sweep=.true.)
+         call param(p, 'segments', 'gap', 'm', 'initial gap at dry interface j (default 0)', &
+                    ra=s%gap, count=n - 1, sweep=.true.)
+      end associate
+      associate (p => pass, e => deck%ends)
+         call param(p, 'ends', 'top', '', 'the top end', t=e%top, choices=top_words)
+         call param(p, 'ends', 'bottom', '', 'the bottom end', t=e%bottom, choices=bottom_words)
+         call param(p, 'ends', 'base_gap', 'm', 'gap between the bottom and the rigid base', &
+                    r=e%base_gap, sweep=.true.)
+      end associate
+      associate (p => pass, l => deck%load)
+         call param(p, 'load', 'kind', '', 'pressure history on the loaded face', t=l%kind, &
+                    choices=kind_words)
+         call param(p, 'load', 'face', '', 'the loaded face', t=l%face, choices=face_words)
+         call param(p, 'load', 'p0', 'Pa', 'pressure scale (power, exponential)', r=l%p0, &
+                    sweep=.true.)
+         call param(p, 'load', 't_k', 's', 'duration (power) or decay time (exponential)', &
+                    r=l%t_k, sweep=.true.)
+         call param(p, 'load', 'exponent', '-', 'power-law exponent', r=l%exponent, &
+                    sweep=.true.)
+         call param(p, 'load', 't_cut', 's', 'p = 0 after t_cut', r=l%t_cut, sweep=.true.)
+         call param(p, 'load', 'table', '', 'file of two columns t [s], p [Pa]', t=l%table)
+      end associate
+      associate (p => pass, i => deck%init)
+         call param(p, 'initial', 'state', '', 'initial stresses', t=i%state, &
+                    choices=state_words)
+         call param(p, 'initial', 'strain_rate', '1/s', 'uniform stretching about the centre ' &
+                    // 'of mass', r=i%strain_rate, sweep=.true.)
+      end associate
+      associate (p => pass, f => deck%field)
+         call param(p, 'strength_field', 'kind', '', 'strength per cell', t=f%kind, &
+                    choices=field_words)
+         call param(p, 'strength_field', 'modulus', '-', 'Weibull modulus m', r=f%modulus, &
+                    sweep=.true.)
+         call param(p, 'strength_field', 'scale', 'Pa', 'Weibull scale', r=f%scale, &
+                    sweep=.true.)
+         call param(p, 'strength_field', 'seed', '', 'generator seed', i=f%seed)
+      end associate
+      if (deck%is_sweep .or. pass%mode == pass_doc) call sweep_params(deck%sweep, pass)
+   end subroutine deck_params
+
+   !> &sweep's variables (a sweep deck only: read with --sweep).
+   subroutine sweep_params(sw, p)
+      type(sweep_cfg), intent(inout) :: sw    !! &sweep values
+      type(param_pass_t), intent(inout) :: p  !! what this pass does
+      call param(p, 'sweep', 'realizations', '', 'strength-field realizations per value ' &
+                 // '(0: the deck''s own field)', i=sw%realizations)
+      call param(p, 'sweep', 'seed', '', 'realization i draws with realization_seed(seed, i)', &
+                 i=sw%seed)
+      call param(p, 'sweep', 'vary', '', 'the deck variable to vary, e.g. ''p0'', ' &
+                 // '''velocity(1)''', t=sw%vary)
+      call param(p, 'sweep', 'values', '', 'its values', ra=sw%values, count=sw%n_values, &
+                 empty='(none)')
+      call param(p, 'sweep', 'distribution', '', 'cases over MPI ranks', t=sw%distribution, &
+                 choices=distribution_words)
+      call param(p, 'sweep', 'bins', '', 'fragment-length histogram bins', i=sw%bins)
+   end subroutine sweep_params
+
+   !> One deck variable: the one call that reads, echoes, sets (a sweep) and documents it.
+   !> Exactly one of r, i, l, t, ra, ta is given: its component of deck_t.
+   subroutine param(p, group, name, unit, doc, r, i, l, t, ra, ta, count, choices, sweep, &
+                    empty)
+      type(param_pass_t), intent(inout) :: p   !! what this pass does
+      character(len=*), intent(in) :: group    !! group name
+      character(len=*), intent(in) :: name     !! variable name
+      character(len=*), intent(in) :: unit     !! unit as echoed
+      character(len=*), intent(in) :: doc      !! what it means
+      real(wp), intent(inout), optional :: r   !! a real
+      integer, intent(inout), optional :: i    !! an integer
+      logical, intent(inout), optional :: l    !! a logical
+      ! allow(assumed-size-character-intent)
+      character(len=*), intent(inout), optional :: t      !! a text (name_len or path_len)
+      real(wp), intent(inout), optional :: ra(:)          !! reals
+      ! allow(assumed-size-character-intent)
+      character(len=*), intent(inout), optional :: ta(:)  !! keywords
+      integer, intent(in), optional :: count   !! elements echoed: ra or ta(1:count)
+      character(len=*), intent(in), optional :: choices(:)   !! a keyword's values
+      logical, intent(in), optional :: sweep   !! a sweep may vary it (r, or ra by element)
+      character(len=*), intent(in), optional :: empty   !! echoed for count = 0 (else '')
+      logical :: sweepable
+      select case (p%mode)
+      case (pass_read)
+         if (p%group /= group .or. p%name /= name) return
+         p%found = .true.
+         call read_value(p, present(choices), r, i, l, t, ra, ta)
+      case (pass_find, pass_set)
+         sweepable = .false.
+         if (present(sweep)) sweepable = sweep
+         if (.not. sweepable) return
+         if (present(r)) call sweep_target(p, name, .false., r)
+         if (present(ra)) call sweep_target(p, name, .true., ra(max(1, p%index)))
+      case default
+         call add_item(p, group, name, echo_text(r, i, l, t, ra, ta, count, empty), unit, &
+                       doc // choice_list(choices))
+      end select
+   end subroutine param
+
+   !> A text as read (the slot holds path_len characters), before it goes into its
+   !> component of len characters: a keyword longer than any keyword, or a text that fills
+   !> the slot, is an error (a cut value could look like a valid one).
+   subroutine check_length(p, text, len, keyword, k)
+      type(param_pass_t), intent(inout) :: p   !! the read pass
+      character(len=*), intent(in) :: text     !! as read
+      integer, intent(in) :: len               !! characters its component holds
+      logical, intent(in) :: keyword           !! a keyword (else free text)
+      integer, intent(in), optional :: k       !! the element of an array
+      character(len=:), allocatable :: var
+      if (allocated(p%err)) return
+      var = p%name
+      if (present(k)) var = var // '(' // itoa(k) // ')'
+      if (keyword .and. len_trim(text) > len) then
+         call make_error(p%err, '&' // p%group // ': ' // var // ': ''' // text(1:20) // &
+                         '...'' is longer than any choice (' // itoa(len) // ' characters at most)')
+      else if (len_trim(text) >= len) then
+         call make_error(p%err, '&' // p%group // ': ' // var // ': longer than ' // &
+                         itoa(len - 1) // ' characters')
+      end if
+   end subroutine check_length
+
+   !> A value as the echo shows it: a real or '(not set)', an integer, a logical, a quoted
+   !> text, or the first count elements of an array separated by ', ' (empty when none).
+   function echo_text(r, i, l, t, ra, ta, count, empty) result(text)
+      real(wp), intent(in), optional :: r      !! a real
+      integer, intent(in), optional :: i       !! an integer
+      logical, intent(in), optional :: l       !! a logical
+      character(len=*), intent(in), optional :: t       !! a text
+      real(wp), intent(in), optional :: ra(:)           !! reals
+      character(len=*), intent(in), optional :: ta(:)   !! keywords
+      integer, intent(in), optional :: count   !! elements shown
+      character(len=*), intent(in), optional :: empty   !! shown when count = 0
+      character(len=:), allocatable :: text
+      integer :: k
+      text = ''
+      if (present(r)) text = opt(r)
+      if (present(i)) text = itoa(i)
+      if (present(l)) text = ltoa(l)
+      if (present(t)) text = quote(t)
+      if (.not. present(count)) return
+      do k = 1, count
+         if (k > 1) text = text // ', '
+         if (present(ra)) text = text // opt(ra(k))
+         if (present(ta)) text = text // quote(ta(k))
+      end do
+      if (count < 1 .and. present(empty)) text = empty
+   end function echo_text
+
+   ! ------------------------------------------------------------------- the reader
+
+   !> The one namelist read of the deck: one assignment, its value read by gfortran's
+   !> namelist rules (subscripts, repeat counts, null values, quotes as in any namelist)
+   !> into the slot of its type, which starts from the current value (the one of r .. ta
+   !> given). A value that does not read becomes p%err and leaves the variable as it was.
+   subroutine read_value(p, keyword, r, i, l, t, ra, ta)
+      type(param_pass_t), intent(inout) :: p   !! the read pass (its record)
+      logical, intent(in) :: keyword           !! t, ta: keywords (kept lower-case)
+      real(wp), intent(inout), optional :: r   !! a real
+      integer, intent(inout), optional :: i    !! an integer
+      logical, intent(inout), optional :: l    !! a logical
+      ! allow(assumed-size-character-intent)
+      character(len=*), intent(inout), optional :: t      !! a text
+      real(wp), intent(inout), optional :: ra(:)          !! reals
+      ! allow(assumed-size-character-intent)
+      character(len=*), intent(inout), optional :: ta(:)  !! keywords
+      real(wp) :: spb_real
+      integer :: spb_integer
+      logical :: spb_logical
+      character(len=path_len) :: spb_text
+      real(wp), allocatable :: spb_reals(:)
+      character(len=path_len), allocatable :: spb_texts(:)
+      namelist /spb_value/ spb_real, spb_integer, spb_logical, spb_text, spb_reals, spb_texts
+      character(len=:), allocatable :: record, slot
+      character(len=256) :: msg
+      integer :: ios, k
+      spb_real = 0.0_wp
+      spb_integer = 0
+      spb_logical = .false.
+      spb_text = ''
+      if (present(ra)) then
+         allocate(spb_reals, source=ra)
+      else
+         allocate(spb_reals(0))
+      end if
+      if (present(ta)) then
+         allocate(spb_texts(size(ta)))
+         spb_texts(:) = ta
+      else
+         allocate(spb_texts(0))
+      end if
+      if (present(r)) spb_real = r
+      if (present(i)) spb_integer = i
+      if (present(l)) spb_logical = l
+      if (present(t)) spb_text = t
+      slot = slot_name(present(r), present(i), present(l), present(t), present(ra))
+      record = slot_record(p%record, p%group, p%name, slot)
+      read(record, nml=spb_value, iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         call blame(p%err, p%group, p%name, p%record)
+         return
+      end if
+      if (present(t)) call check_length(p, spb_text, len(t), keyword)
+      do k = 1, size(spb_texts)
+         call check_length(p, spb_texts(k), len(ta), keyword, k)
+      end do
+      if (allocated(p%err)) return
+      if (keyword) spb_text = lower(spb_text)
+      do k = 1, size(spb_texts)
+         spb_texts(k) = lower(spb_texts(k))
+      end do
+      if (present(r)) r = spb_real
+      if (present(i)) i = spb_integer
+      if (present(l)) l = spb_logical
+      if (present(t)) t = spb_text
+      if (present(ra)) ra(:) = spb_reals
+      if (present(ta)) ta(:) = spb_texts
+   end subroutine read_value
+
+   !> The namelist slot of read_value for a variable of the type given (else keywords).
+   pure function slot_name(r, i, l, t, ra) result(slot)
+      logical, intent(in) :: r    !! a real
+      logical, intent(in) :: i    !! an integer
+      logical, intent(in) :: l    !! a logical
+      logical, intent(in) :: t    !! a text
+      logical, intent(in) :: ra   !! reals
+      character(len=:), allocatable :: slot
+      slot = 'spb_texts'
+      if (r) slot = 'spb_real'
+      if (i) slot = 'spb_integer'
+      if (l) slot = 'spb_logical'
+      if (t) slot = 'spb_text'
+      if (ra) slot = 'spb_reals'
+   end function slot_name
+
+   !> The assignment record with its variable renamed to the slot of its type:
+   !> '&group Name(2) = 5 /' becomes '&spb_value spb_reals(2) = 5 /'.
+   function slot_record(record, group, name, slot) result(text)
+      character(len=*), intent(in) :: record   !! '&group name... = value /'
+      character(len=*), intent(in) :: group    !! group name
+      character(len=*), intent(in) :: name     !! the variable as the deck names it
+      character(len=*), intent(in) :: slot     !! the slot's name
+      character(len=:), allocatable :: text
+      text = '&spb_value ' // trim(slot) // record(len(group) + 3 + len(name):)
+   end function slot_record
+
+   !> The error for an assignment (record, '&group var = value /') whose value does not
+   !> read: the value as written, cut to 40 characters.
+   subroutine blame(err, group, var, record)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! receives the error
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: var     !! variable name
+      character(len=*), intent(in) :: record  !! the assignment
+      character(len=:), allocatable :: value
+      integer :: k
+      k = index(record, '=')
+      value = record(k + 1:len(record) - 2)
+      do k = 1, len(value)
+         if (iachar(value(k:k)) < 32) value(k:k) = ' '
+      end do
+      value = trim(adjustl(value))
+      if (len(value) > 0) then
+         if (value(len(value):) == ',') value = trim(value(:len(value) - 1))
+      end if
+      if (len(value) > 40) value = value(1:37) // '...'
+      if (len(value) > 0) then
+         if (value(1:1) /= '''' .and. value(1:1) /= '"') value = '''' // value // ''''
+      end if
+      call make_error(err, '&' // group // ': ' // var // ': cannot read the value ' // &
+                      value // ' (wrong type, unquoted text, or more values than it holds?)')
+   end subroutine blame
+
+
+   ! ------------------------------------------------------------- sweeps, echo, doc
+
+   !> Find and set pass over a real a sweep may vary (an array: by element): a find pass
+   !> collects every such name and tells whether pass%name is one; a set pass sets it.
+   subroutine sweep_target(p, name, indexed, x)
+      type(param_pass_t), intent(inout) :: p   !! a find or set pass
+      character(len=*), intent(in) :: name     !! variable name
+      logical, intent(in) :: indexed           !! an array (swept by element)
+      real(wp), intent(inout) :: x             !! the real (the element pass%index)
+      if (p%mode == pass_find) then
+         if (.not. allocated(p%sweepable)) p%sweepable = ''
+         if (len(p%sweepable) > 0) p%sweepable = p%sweepable // ', '
+         p%sweepable = p%sweepable // name // trim(merge('(j)', '   ', indexed))
+      end if
+      if (p%name /= name) return
+      p%found = .true.
+      p%indexed = indexed
+      if (p%mode == pass_set) x = p%value
+   end subroutine sweep_target
+
+   !> Append one variable to an echo or doc pass.
+   subroutine add_item(p, group, name, value, unit, doc)
+      type(param_pass_t), intent(inout) :: p   !! an echo or doc pass
+      character(len=*), intent(in) :: group    !! group name
+      character(len=*), intent(in) :: name     !! variable name
+      character(len=*), intent(in) :: value    !! its value as echoed
+      character(len=*), intent(in) :: unit     !! unit as echoed
+      character(len=*), intent(in) :: doc      !! what it means
+      type(echo_item_t) :: item
+      if (.not. allocated(p%items)) allocate(p%items(0))
+      item%group = group
+      item%name = name
+      item%value = value
+      item%unit = unit
+      if (p%mode == pass_doc) item%doc = doc
+      p%items = [p%items, item]
+   end subroutine add_item
+
+   !> ' (''a'' | ''b'')' for a keyword's documentation ('' without choices).
+   function choice_list(choices) result(s)
+      character(len=*), intent(in), optional :: choices(:)   !! a keyword's values
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      if (.not. present(choices)) return
+      do k = 1, size(choices)
+         if (k == 1) then
+            s = s // ' ('
+         else
+            s = s // ' | '
+         end if
+         s = s // '''' // trim(choices(k)) // ''''
+      end do
+      s = s // ')'
+   end function choice_list
+
+   !> s in single quotes.
+   pure function quote(s) result(r)
+      character(len=*), intent(in) :: s   !! a string value
+      character(len=:), allocatable :: r
+      r = '''' // trim(s) // ''''
+   end function quote
+
+   !> A real as echoed: its value, or '(not set)' when not given.
+   function opt(x) result(r)
+      real(wp), intent(in) :: x   !! a deck real
+      character(len=:), allocatable :: r
+      if (is_set(x)) then
+         r = rtoa(x)
+      else
+         r = '(not set)'
+      end if
+   end function opt
+end module spb_deck_params
