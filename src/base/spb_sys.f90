@@ -1,12 +1,15 @@
 !> The few operating-system services Fortran 2008 lacks, through C interoperability.
 module spb_sys
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc
+   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_char, c_null_char, c_funptr, &
+      c_funloc, c_ptr, c_associated
+   use, intrinsic :: iso_fortran_env, only: int64, output_unit, error_unit
    use, intrinsic :: ieee_exceptions, only: ieee_flag_type, ieee_overflow, ieee_invalid, &
       ieee_divide_by_zero, ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag
    implicit none
    private
    public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
    public :: fp_traps_off, fp_traps_restore, heap_for_large_arrays
+   public :: sys_file_size, sys_lock, sys_real_path, sys_is_directory
 
    type(ieee_flag_type), parameter :: read_traps(3) = [ieee_overflow, ieee_invalid, &
       ieee_divide_by_zero]
@@ -18,12 +21,12 @@ module spb_sys
    integer(c_int), volatile :: caught = 0_c_int
 
    interface
-      !> C exit(3): ends the process from a signal handler's context.
-      subroutine c_exit(status) bind(c, name='exit')
+      !> C _exit(2): ends the process at once, without exit handlers.
+      subroutine c_exit_now(status) bind(c, name='_exit')
          import :: c_int
          implicit none
          integer(c_int), value :: status
-      end subroutine c_exit
+      end subroutine c_exit_now
       !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
          import :: c_int
@@ -47,6 +50,66 @@ module spb_sys
          integer(c_int), value :: param, value
          integer(c_int) :: r
       end function c_mallopt
+      !> C fopen(3).
+      function c_fopen(path, mode) bind(c, name='fopen') result(f)
+         import :: c_char, c_ptr
+         implicit none
+         ! C strings (char *), NUL-terminated by the caller
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: path(*), mode(*)
+         type(c_ptr) :: f
+      end function c_fopen
+      !> C fseek(3).
+      function c_fseek(f, offset, whence) bind(c, name='fseek') result(r)
+         import :: c_ptr, c_long, c_int
+         implicit none
+         type(c_ptr), value :: f
+         integer(c_long), value :: offset
+         integer(c_int), value :: whence
+         integer(c_int) :: r
+      end function c_fseek
+      !> C ftell(3).
+      function c_ftell(f) bind(c, name='ftell') result(r)
+         import :: c_ptr, c_long
+         implicit none
+         type(c_ptr), value :: f
+         integer(c_long) :: r
+      end function c_ftell
+      !> C fclose(3).
+      function c_fclose(f) bind(c, name='fclose') result(r)
+         import :: c_ptr, c_int
+         implicit none
+         type(c_ptr), value :: f
+         integer(c_int) :: r
+      end function c_fclose
+      !> C creat(2): open (create, empty) a file for writing.
+      function c_creat(path, mode) bind(c, name='creat') result(fd)
+         import :: c_char, c_int
+         implicit none
+         ! C string (char *), NUL-terminated by the caller
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: mode
+         integer(c_int) :: fd
+      end function c_creat
+      !> C flock(2).
+      function c_flock(fd, operation) bind(c, name='flock') result(r)
+         import :: c_int
+         implicit none
+         integer(c_int), value :: fd, operation
+         integer(c_int) :: r
+      end function c_flock
+      !> C realpath(3) into a caller's buffer of PATH_MAX characters.
+      function c_realpath(path, resolved) bind(c, name='realpath') result(r)
+         import :: c_char, c_ptr
+         implicit none
+         ! C strings (char *): the path NUL-terminated, the buffer PATH_MAX long
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: path(*)
+         ! allow(assumed-size, assumed-size-character-intent)
+         character(kind=c_char), intent(inout) :: resolved(*)
+         type(c_ptr) :: r
+      end function c_realpath
       !> C signal(2): install a handler.
       function c_signal(signum, handler) bind(c, name='signal') result(previous)
          import :: c_int, c_funptr
@@ -70,10 +133,15 @@ contains
       rc = c_mallopt(-3_c_int, 33554432_c_int)
    end subroutine heap_for_large_arrays
 
-   !> Terminate with an exit status and no runtime banner (error stop prints one).
+   !> Terminate with an exit status and no runtime banner (error stop prints one). Every
+   !> output is closed by then; standard output and error are flushed, and the process
+   !> ends without the exit handlers of the libraries (_exit(2)): HDF5 1.10's handler
+   !> crashes (SIGSEGV) on a file whose close failed, e.g. on a full disk.
    subroutine sys_exit(status)
       integer, intent(in) :: status   !! process exit status
-      call c_exit(int(status, c_int))
+      flush(output_unit)
+      flush(error_unit)
+      call c_exit_now(int(status, c_int))
    end subroutine sys_exit
 
    !> True when standard error is a terminal (progress lines go there only then).
@@ -88,6 +156,65 @@ contains
       logical, intent(out) :: ok            !! true on success
       ok = c_rename(old // c_null_char, new // c_null_char) == 0_c_int
    end subroutine sys_rename
+
+   !> The size of a file as the operating system has it (-1: it cannot be opened). For a
+   !> file this program writes, the bytes that reached the disk: gfortran's own view of
+   !> an open unit (inquire size=) counts what a full disk silently refused.
+   function sys_file_size(path) result(bytes)
+      character(len=*), intent(in) :: path   !! the file
+      integer(int64) :: bytes
+      type(c_ptr) :: f
+      integer(c_int) :: rc
+      bytes = -1
+      f = c_fopen(path // c_null_char, 'rb' // c_null_char)
+      if (.not. c_associated(f)) return
+      if (c_fseek(f, 0_c_long, 2_c_int) == 0_c_int) bytes = int(c_ftell(f), int64)
+      rc = c_fclose(f)
+   end function sys_file_size
+
+   !> Take an exclusive lock on path (created empty if missing) for the life of the process
+   !> (flock(2), LOCK_EX | LOCK_NB). state: 0 held, 1 the file cannot be made, 2 another
+   !> process holds it. The file stays; removing it would let two later runs both lock.
+   subroutine sys_lock(path, state)
+      character(len=*), intent(in) :: path   !! the lock file
+      integer, intent(out) :: state          !! 0 held, 1 cannot be made, 2 held elsewhere
+      integer(c_int) :: fd
+      fd = c_creat(path // c_null_char, int(o'644', c_int))
+      state = 1
+      if (fd < 0_c_int) return
+      state = 2
+      if (c_flock(fd, 6_c_int) == 0_c_int) state = 0
+   end subroutine sys_lock
+
+   !> The absolute path with links and '..' resolved (realpath(3)) of a file that may not
+   !> exist yet: its folder resolved, its name kept; path itself when the folder is missing.
+   function sys_real_path(path) result(real_path)
+      character(len=*), intent(in) :: path   !! a file
+      character(len=:), allocatable :: real_path
+      character(kind=c_char, len=4096) :: buffer
+      character(len=:), allocatable :: folder, name
+      integer :: k
+      type(c_ptr) :: r
+      k = index(path, '/', back=.true.)
+      folder = '.'
+      if (k == 1) folder = '/'
+      if (k > 1) folder = path(:k - 1)
+      name = path(k + 1:)
+      real_path = path
+      buffer = ''
+      r = c_realpath(folder // c_null_char, buffer)
+      if (.not. c_associated(r)) return
+      k = index(buffer, c_null_char)
+      if (k <= 1) return
+      real_path = buffer(:k - 1) // '/' // name
+      if (buffer(:k - 1) == '/') real_path = '/' // name
+   end function sys_real_path
+
+   !> Whether path names a folder.
+   logical function sys_is_directory(path)
+      character(len=*), intent(in) :: path   !! a path
+      inquire(file=path // '/.', exist=sys_is_directory)
+   end function sys_is_directory
 
    !> Hold off floating-point traps (the debug build's -ffpe-trap) while text is read: a
    !> value like 1e999 reads as +Inf, which validation then rejects with a message, instead

@@ -13,6 +13,8 @@
 !> Adding a deck variable is a component in spb_deck_types and one call here; checks that
 !> relate it to other variables go to spb_deck's validation.
 module spb_deck_params
+   use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, ltoa, lower
@@ -22,6 +24,9 @@ module spb_deck_params
    implicit none
    private
    public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc
+
+   real(wp), parameter :: tiny_real = 1.0e-60_wp   !! smallest magnitude of a deck real (or 0)
+   real(wp), parameter :: huge_real = 1.0e60_wp    !! largest magnitude of a deck real
 
    integer, parameter :: pass_read = 1   !! read the assignment pass%record
    integer, parameter :: pass_echo = 2   !! list every value as echoed
@@ -308,6 +313,8 @@ contains
       do k = 1, size(spb_texts)
          call check_length(p, spb_texts(k), len(ta), keyword, k)
       end do
+      if (present(r) .or. present(ra)) call check_reals(p, record, spb_real, spb_reals, &
+                                                         present(ra))
       if (allocated(p%err)) return
       if (keyword) spb_text = lower(spb_text)
       do k = 1, size(spb_texts)
@@ -320,6 +327,76 @@ contains
       if (present(ra)) ra(:) = spb_reals
       if (present(ta)) ta(:) = spb_texts
    end subroutine read_value
+
+   !> The reals an assignment gave (read: as read_value read them): each must be finite and
+   !> 0 or between tiny_real and huge_real in magnitude, so that no derived quantity (a
+   !> wave speed, a cell count, an energy: products of up to five deck values) overflows or
+   !> underflows, and no value is taken for the "not given" marker. Which elements the
+   !> assignment gave is found by reading it again into a slot filled otherwise: an element
+   !> the record sets reads the same bits both times.
+   subroutine check_reals(p, record, r, ra, array)
+      type(param_pass_t), intent(inout) :: p   !! the read pass
+      character(len=*), intent(in) :: record   !! the assignment, renamed to its slot
+      real(wp), intent(in) :: r                !! a scalar as read
+      real(wp), intent(in) :: ra(:)            !! an array as read
+      logical, intent(in) :: array             !! ra is the variable (else r)
+      real(wp) :: spb_real
+      integer :: spb_integer
+      logical :: spb_logical
+      character(len=path_len) :: spb_text
+      real(wp), allocatable :: spb_reals(:)
+      character(len=path_len), allocatable :: spb_texts(:)
+      namelist /spb_value/ spb_real, spb_integer, spb_logical, spb_text, spb_reals, spb_texts
+      integer :: ios, k
+      spb_real = other_than(r)
+      spb_integer = 0
+      spb_logical = .false.
+      spb_text = ''
+      allocate(spb_reals(size(ra)), spb_texts(0))
+      do k = 1, size(ra)
+         spb_reals(k) = other_than(ra(k))
+      end do
+      read(record, nml=spb_value, iostat=ios)
+      if (ios /= 0) return   ! read once already: cannot happen
+      if (.not. array) then
+         if (same_bits(r, spb_real)) call check_real(p, p%name, r)
+         return
+      end if
+      do k = 1, size(ra)
+         if (same_bits(ra(k), spb_reals(k))) call check_real(p, p%name // '(' // itoa(k) &
+                                                              // ')', ra(k))
+      end do
+   end subroutine check_reals
+
+   !> One real a deck gave: finite, and 0 or tiny_real <= |x| <= huge_real.
+   subroutine check_real(p, name, x)
+      type(param_pass_t), intent(inout) :: p   !! the read pass
+      character(len=*), intent(in) :: name     !! the variable (with its element)
+      real(wp), intent(in) :: x                !! the value given
+      if (allocated(p%err)) return
+      if (.not. ieee_is_finite(x)) then
+         call make_error(p%err, '&' // p%group // ': ' // name // ' must be a finite number, ' &
+                         // 'got ' // rtoa(x))
+      else if ((abs(x) > 0.0_wp .and. abs(x) < tiny_real) .or. abs(x) > huge_real) then
+         call make_error(p%err, '&' // p%group // ': ' // name // ' = ' // rtoa(x) // &
+                         ' is out of range: a deck real is 0 or between 1e-60 and 1e60 in ' // &
+                         'magnitude')
+      end if
+   end subroutine check_real
+
+   !> A real whose bits differ from x's.
+   pure real(wp) function other_than(x)
+      real(wp), intent(in) :: x   !! a value
+      other_than = 1.0_wp
+      if (same_bits(x, 1.0_wp)) other_than = 2.0_wp
+   end function other_than
+
+   !> Whether a and b have the same bits (NaN included).
+   pure logical function same_bits(a, b)
+      real(wp), intent(in) :: a   !! a value
+      real(wp), intent(in) :: b   !! another
+      same_bits = transfer(a, 0_int64) == transfer(b, 0_int64)
+   end function same_bits
 
    !> The namelist slot of read_value for a variable of the type given (else keywords).
    pure function slot_name(r, i, l, t, ra) result(slot)

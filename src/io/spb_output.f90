@@ -12,7 +12,7 @@ module spb_output
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
       h5_table_rows, h5_xt_rows, h5_read_size
-   use spb_sys, only: sys_rename
+   use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
    use spb_events, only: event_list_t, event_kind_names
@@ -22,7 +22,8 @@ module spb_output
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
-   public :: output_marks_t, mark_outputs, text_extensions, tail_len
+   public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
+      check_written
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
       block_name, split
@@ -232,10 +233,122 @@ contains
       end do
    end subroutine write_mesh_summary
 
-   !> Close every file; a failure of the HDF5 file (its first error) comes back in err.
+   !> Before any output is created or truncated: hold PREFIX.lock (a second run on the same
+   !> PREFIX is refused), check that every file of the run can be written without touching
+   !> it, and that the checkpoint ('' : none) is none of the run's other files nor the deck.
+   subroutine claim_outputs(prefix, rec, checkpoint, err)
+      character(len=*), intent(in) :: prefix       !! output path prefix
+      type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
+      character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
+      character(len=len(prefix) + 5) :: files(6)
+      character(len=:), allocatable :: ck
+      integer :: k, n, state
+      if (sys_is_directory(prefix)) then
+         call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
+                         'such as ''' // prefix // '/run''')
+         return
+      end if
+      do k = 1, 4
+         files(k) = prefix // text_extensions(k)
+      end do
+      files(5) = prefix // '.h5'
+      files(6) = prefix // '.lock'
+      n = merge(5, 4, rec%hdf5)
+      do k = 1, n
+         call check_writable('--output', trim(files(k)), err)
+         if (allocated(err)) return
+      end do
+      call sys_lock(trim(files(6)), state)
+      if (state == 1) then
+         call make_error(err, '--output: cannot make the lock file ''' // trim(files(6)) // '''')
+         return
+      else if (state /= 0) then
+         call make_error(err, '--output: ''' // prefix // ''' is in use by another ' // &
+            'spallbar run (' // trim(files(6)) // ' is locked); wait for it or give ' // &
+            'another --output')
+         return
+      end if
+      if (len(checkpoint) == 0) return
+      ck = sys_real_path(checkpoint)
+      do k = 1, 6
+         if (k == 5 .and. .not. rec%hdf5) cycle
+         if (ck == sys_real_path(trim(files(k)))) then
+            call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is an ' // &
+               'output of this run (''' // trim(files(k)) // '''); give the checkpoint a ' // &
+               'file of its own')
+            return
+         end if
+      end do
+      if (ck == sys_real_path(rec%path)) then
+         call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is the deck ' // &
+                         'itself; give the checkpoint a file of its own')
+      else if (sys_is_directory(checkpoint)) then
+         call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is a folder; ' // &
+                         'give a file such as ''' // checkpoint // '/run.h5''')
+      end if
+   end subroutine claim_outputs
+
+   !> Error unless path can be written: an existing file is opened for appending and closed
+   !> untouched, a missing one is created and removed again.
+   subroutine check_writable(what, path, err)
+      character(len=*), intent(in) :: what   !! who names it ('--output', '&run: checkpoint')
+      character(len=*), intent(in) :: path   !! the file
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      logical :: exists
+      integer :: u, ios
+      character(len=256) :: msg
+      if (sys_is_directory(path)) then
+         call make_error(err, what // ': cannot write ''' // path // ''': it is a folder')
+         return
+      end if
+      inquire(file=path, exist=exists)
+      if (exists) then
+         open(newunit=u, file=path, status='old', action='write', position='append', &
+              iostat=ios, iomsg=msg)
+         if (ios == 0) close(u)
+      else
+         open(newunit=u, file=path, status='new', action='write', iostat=ios, iomsg=msg)
+         if (ios == 0) close(u, status='delete')
+      end if
+      if (ios /= 0) call make_error(err, what // ': cannot write ''' // path // ''': ' // &
+                                    trim(msg))
+   end subroutine check_writable
+
+   !> Whether every byte written to the text files reached them: gfortran reports no error
+   !> when a disk is full, so the size the system has is compared with what was written
+   !> (after a flush). A shortfall is err (exit 3), naming the file and the bytes.
+   subroutine check_written(out, err)
+      type(outputs_t), intent(in) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer(int64) :: wrote, have
+      integer :: k, u
+      if (allocated(err)) return
+      do k = 1, 4
+         u = text_unit(out, k)
+         if (u == no_unit) cycle
+         flush(u)
+         inquire(unit=u, size=wrote)
+         have = sys_file_size(out%prefix // text_extensions(k))
+         if (have < wrote) then
+            call make_error(err, 'run: cannot write ''' // out%prefix // text_extensions(k) // &
+               ''': ' // itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached ' // &
+               'the disk (full, or over quota?); the outputs end there', code=exit_runtime)
+            return
+         end if
+      end do
+      if (out%hdf5) then
+         if (allocated(out%h5%error)) call make_error(err, out%h5%error, code=exit_runtime)
+      end if
+   end subroutine check_written
+
+   !> Close every file; a file that did not receive all it was written, or a failure of the
+   !> HDF5 file (its first error), comes back in err.
    subroutine close_outputs(out, err)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out), optional :: err
+      type(spb_error_t), allocatable :: short
+      call check_written(out, short)
       if (out%his /= no_unit) close(out%his)
       if (out%prf /= no_unit) close(out%prf)
       if (out%evt /= no_unit) close(out%evt)
@@ -250,6 +363,7 @@ contains
          if (allocated(out%h5%error) .and. present(err)) call make_error(err, out%h5%error, &
                                                                          code=exit_runtime)
       end if
+      if (allocated(short) .and. present(err)) call move_alloc(short, err)
    end subroutine close_outputs
 
    !> Push what is written so far to disk (text and HDF5): a killed run reads up to here.
@@ -472,7 +586,8 @@ contains
       end if
       call h5_group(out%h5, '/fragments')
       call h5_flush(out%h5)
-      if (allocated(out%h5%error)) call make_error(err, '--output: ' // out%h5%error)
+      if (allocated(out%h5%error)) call make_error(err, '--output: ' // out%h5%error, &
+                                                   code=exit_runtime)
    end subroutine open_h5
 
    !> Reference position of every half-node row (the .prf layout).

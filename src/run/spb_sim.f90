@@ -22,7 +22,8 @@ module spb_sim
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
-      write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs
+      write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
+      claim_outputs, check_written
    use spb_restart, only: resume_outputs
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
@@ -221,6 +222,8 @@ contains
       type(checkpoint_t), intent(in), optional :: resume
       associate (opt => sim%opt)
          run%ck_on = run%to_files .and. len(opt%checkpoint) > 0
+         if (run%to_files) call claim_outputs(prefix, sim%record, opt%checkpoint, err)
+         if (allocated(err)) return
          if (run%ck_on) call check_checkpoint_path(opt%checkpoint, err)
          if (allocated(err)) return
          if (present(resume)) then
@@ -357,6 +360,8 @@ contains
          if (real(c_now - run%c_last, wp) > 0.5_wp * real(run%rate, wp)) then
             run%c_last = c_now
             if (run%to_files) call flush_outputs(run%out)
+            if (run%to_files) call check_written(run%out, err)
+            if (allocated(err)) return
             if (run%progress) call show_progress(sim, n, real(c_now - run%c0, wp) / &
                                                  real(run%rate, wp))
          end if
@@ -391,6 +396,8 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(output_marks_t) :: marks
       call mark_outputs(run%out, marks)
+      call check_written(run%out, err)
+      if (allocated(err)) return
       summary%checkpoints = summary%checkpoints + 1
       summary%steps = sim%st%step
       call write_checkpoint(sim%opt%checkpoint, sim%record, sim%mesh, sim%load, &

@@ -8,11 +8,11 @@
 !> end, and its row does not depend on which rank or how many there are: the table is the
 !> same for any number of ranks and either distribution.
 module spb_sweep
-   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
-   use spb_sys, only: stop_signal, sys_rename
+   use spb_sys, only: stop_signal, sys_rename, sys_file_size
    use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo, deck_record
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t
@@ -363,6 +363,7 @@ contains
       character(len=24) :: cell
       character(len=:), allocatable :: line
       integer :: u, ios, c, k
+      integer(int64) :: wrote, have
       logical :: ok
       character(len=256) :: msg
       open(newunit=u, file=prefix // '.sweep.part', status='replace', action='write', &
@@ -398,7 +399,18 @@ contains
          end do
          write(u, '(a)') line
       end do
+      ! gfortran reports no error on a full disk: compare what reached it before renaming
+      flush(u)
+      inquire(unit=u, size=wrote)
+      have = sys_file_size(prefix // '.sweep.part')
       close(u, iostat=ios)
+      if (have < wrote) then
+         call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // &
+            itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached the disk ' // &
+            '(full, or over quota?); the cut table is left as ' // prefix // '.sweep.part', &
+            code=exit_runtime)
+         return
+      end if
       call sys_rename(prefix // '.sweep.part', prefix // '.sweep', ok)
       if (ios /= 0 .or. .not. ok) call make_error(err, code=exit_runtime, message= &
          '--output: cannot write ''' // prefix // &

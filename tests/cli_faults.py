@@ -1,0 +1,239 @@
+#!/usr/bin/env python3
+"""Faults around a run (issue 19): no exit 0 with outputs that are not the full run, nothing
+lost, nothing half made.
+
+  * a full disk (a 64 KiB tmpfs; skipped with a message where mounting is not allowed):
+    a run, a sweep and a run on a disk full from the start exit 3 (or 2 when not even
+    an empty output can be made) with one line naming the file; a sweep never renames a
+    cut table;
+  * an output that is a folder: exit 2, one line, no other output created or truncated;
+  * two runs on the same PREFIX at once: the second exits 2 at once and touches nothing,
+    the first finishes with exit 0 and outputs identical to a run alone;
+  * a checkpoint that is the deck, an output of the run or a folder: exit 2, deck intact;
+  * deck reals that the "not given" marker would swallow, or whose products overflow:
+    exit 2 naming the variable.
+
+usage: cli_faults.py SPALLBAR WORKDIR
+"""
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+from clitools import Checks, run
+
+SLOW = """&run t_end = 4.0e-3, title = 'faults' /
+&mesh cells = 4000 /
+&segments n = 1, length = 1.0, young = 1e9, density = 1000 /
+&load kind = 'power', p0 = 1e6, t_k = 1e-4 /
+"""
+
+SMALL = """&run t_end = 2.0e-4, title = 'small', profile_times = 1e-4, 2e-4 /
+&mesh cells = 200 /
+&segments n = 2, length = 0.1, 0.1, young = 2*1e9, density = 2*1000, strength = 1e5, -1 /
+&load kind = 'power', p0 = 1e6, t_k = 1e-4 /
+"""
+
+SWEEP = SMALL + """&sweep vary = 'p0', values = 1e6, 2e6, 3e6, 4e6, 5e6, 6e6, 7e6, 8e6 /
+"""
+
+
+def one_line(r):
+    return r.stderr.strip().splitlines()
+
+
+def full_disk(exe, work, check):
+    mnt = os.path.join(work, "full")
+    os.makedirs(mnt)
+    m = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", mnt],
+                       capture_output=True, text=True)
+    if m.returncode != 0:
+        print(f"skip full disk: cannot mount a tmpfs here ({m.stderr.strip()})")
+        return
+    try:
+        with open(os.path.join(mnt, "big.nml"), "w") as f:
+            f.write(SMALL.replace("t_end = 2.0e-4", "t_end = 2.0e-3"))
+        r = run(exe, ["big.nml", "--quiet"], mnt)
+        lines = one_line(r)
+        check(r.returncode == 3, f"full disk during the run: exit {r.returncode}, expected 3")
+        check(len(lines) == 1 and "big.his" in lines[0] and "reached the disk" in lines[0],
+              f"full disk during the run: stderr {r.stderr!r}")
+        print(f"ok   full disk during the run: exit {r.returncode}: {lines[0] if lines else ''}")
+        for f in os.listdir(mnt):
+            if f != "big.nml":
+                os.remove(os.path.join(mnt, f))
+
+        with open(os.path.join(mnt, "sw.nml"), "w") as f:
+            f.write(SWEEP)
+        with open(os.path.join(mnt, "filler"), "wb") as f:
+            f.write(b"\0" * 40 * 1024)
+        r = run(exe, ["--sweep", "sw.nml", "--quiet"], mnt)
+        lines = one_line(r)
+        check(r.returncode == 3, f"full disk, sweep: exit {r.returncode}, expected 3")
+        check(len(lines) == 1 and "sw" in lines[0] and ("reached the disk" in lines[0] or
+                                                        "HDF5" in lines[0]),
+              f"full disk, sweep: {r.stderr!r}")
+        table = os.path.join(mnt, "sw.sweep")
+        rows = [l for l in open(table) if not l.startswith("#")] if os.path.exists(table) else []
+        check(not os.path.exists(table) or len(rows) == 8,
+              f"a cut sweep table was renamed ({len(rows)} of 8 rows)")
+        print(f"ok   full disk, sweep: exit {r.returncode}: {lines[0] if lines else ''}")
+
+        # HDF5 output and a checkpoint on a full disk: the message, then exit 3 (HDF5 1.10
+        # crashed in its exit handler after a failed close)
+        os.remove(os.path.join(mnt, "filler"))
+        for f in os.listdir(mnt):
+            if f.startswith("sw"):
+                os.remove(os.path.join(mnt, f))
+        for name, extra in (("h5", "hdf5 = .true., field_every = 1"),
+                            ("ck", "checkpoint = 'ck.h5', checkpoint_every = 10")):
+            with open(os.path.join(mnt, name + ".nml"), "w") as f:
+                f.write(SMALL.replace("t_end = 2.0e-4", "t_end = 2.0e-3, " + extra))
+            r = run(exe, [name + ".nml", "--quiet"], mnt)
+            lines = one_line(r)
+            check(r.returncode == 3 and len(lines) == 1,
+                  f"full disk, {name}: exit {r.returncode}, {r.stderr!r}")
+            print(f"ok   full disk, {name}: exit {r.returncode}: {lines[0] if lines else ''}")
+            for f in os.listdir(mnt):
+                if f.startswith(name + ".") and f != name + ".nml":
+                    os.remove(os.path.join(mnt, f))
+
+        # the disk full before the run starts
+        with open(os.path.join(mnt, "filler2"), "wb") as f:
+            try:
+                f.write(b"\0" * 64 * 1024)
+            except OSError:
+                pass
+        r = run(exe, ["big.nml", "--quiet"], mnt)
+        lines = one_line(r)
+        check(r.returncode in (2, 3), f"disk full from the start: exit {r.returncode}")
+        check(len(lines) == 1 and ("reached the disk" in lines[0] or "cannot" in lines[0]),
+              f"disk full from the start: {r.stderr!r}")
+        print(f"ok   disk full from the start: exit {r.returncode}: {lines[0] if lines else ''}")
+    finally:
+        subprocess.run(["umount", mnt], capture_output=True)
+
+
+def output_is_folder(exe, work, check):
+    d = os.path.join(work, "folder")
+    os.makedirs(os.path.join(d, "run.prf"))
+    with open(os.path.join(d, "run.nml"), "w") as f:
+        f.write(SMALL)
+    with open(os.path.join(d, "run.his"), "w") as f:
+        f.write("old result\n")
+    r = run(exe, ["run.nml", "--quiet"], d)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "run.prf" in lines[0] and "folder" in lines[0],
+          f"output is a folder: exit {r.returncode}, {r.stderr!r}")
+    check(open(os.path.join(d, "run.his")).read() == "old result\n",
+          "output is a folder: an existing output was truncated")
+    for ext in (".evt", ".frg"):
+        check(not os.path.exists(os.path.join(d, "run" + ext)), f"output is a folder: made {ext}")
+    print(f"ok   output is a folder: {lines[0] if lines else ''}")
+
+    r = run(exe, ["run.nml", "--quiet", "--output", "."], d)
+    check(r.returncode == 2 and "is a folder" in r.stderr, f"--output . : {r.returncode} {r.stderr!r}")
+
+
+def concurrent(exe, work, check):
+    d = os.path.join(work, "twice")
+    os.makedirs(d)
+    with open(os.path.join(d, "slow.nml"), "w") as f:
+        f.write(SLOW)
+    alone = os.path.join(work, "alone")
+    os.makedirs(alone)
+    shutil.copy(os.path.join(d, "slow.nml"), alone)
+    r = run(exe, ["slow.nml", "--quiet"], alone)
+    check(r.returncode == 0, f"slow deck alone: exit {r.returncode} {r.stderr!r}")
+    first = subprocess.Popen([exe, "slow.nml", "--quiet"], cwd=d, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+    # wait until the first run holds its lock and has made its outputs
+    for _ in range(200):
+        if os.path.exists(os.path.join(d, "slow.his")):
+            break
+        time.sleep(0.01)
+    r = run(exe, ["slow.nml", "--quiet"], d)
+    out, err = first.communicate()
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "in use by another spallbar run" in lines[0],
+          f"second run on the same PREFIX: exit {r.returncode}, {r.stderr!r}")
+    check(first.returncode == 0, f"first run: exit {first.returncode} {err!r}")
+    for ext in (".his", ".prf", ".evt", ".frg"):
+        a = open(os.path.join(alone, "slow" + ext)).read()
+        b = open(os.path.join(d, "slow" + ext)).read()
+        check(a == b, f"concurrent runs: slow{ext} differs from a run alone")
+    print(f"ok   second run on the same PREFIX: {lines[0] if lines else ''}")
+
+
+def checkpoint_paths(exe, work, check):
+    d = os.path.join(work, "ckpaths")
+    os.makedirs(d)
+    for name, value, expect in (("deck", "ck.nml", "is the deck itself"),
+                                ("output", "ck.his", "is an output of this run"),
+                                ("output_h5", "./sub/../ck.evt", "is an output of this run"),
+                                ("folder", ".", "is a folder")):
+        text = SMALL.replace("title = 'small'", f"title = 'small', checkpoint = '{value}'")
+        with open(os.path.join(d, "ck.nml"), "w") as f:
+            f.write(text)
+        os.makedirs(os.path.join(d, "sub"), exist_ok=True)
+        r = run(exe, ["ck.nml", "--quiet"], d)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0],
+              f"checkpoint = {value!r}: exit {r.returncode}, {r.stderr!r}")
+        check(open(os.path.join(d, "ck.nml")).read() == text, f"checkpoint = {value!r}: deck changed")
+        check(not os.path.exists(os.path.join(d, "ck.his")), f"checkpoint = {value!r}: wrote ck.his")
+        print(f"ok   checkpoint {name}: {lines[0] if lines else ''}")
+
+
+def deck_reals(exe, work, check):
+    d = os.path.join(work, "reals")
+    os.makedirs(d)
+    cases = [
+        ("t_cut", "t_k = 1e-4", "t_k = 1e-4, t_cut = -1e308", "&load: t_cut = -1e308"),
+        ("t_k", "t_k = 1e-4", "t_k = -1e308", "&load: t_k = -1e308"),
+        ("gap", "strength = 1e5, -1", "strength = 1e5, -1, interface = 'dry', gap = -1e308",
+         "&segments: gap(1) = -1e308"),
+        ("profile", "profile_times = 1e-4, 2e-4", "profile_times = -1e308",
+         "&run: profile_times(1) = -1e308"),
+        ("velocity", "strength = 1e5, -1", "strength = 1e5, -1, velocity = -1e308",
+         "&segments: velocity(1) = -1e308"),
+        ("velocity_huge", "strength = 1e5, -1",
+         "strength = 1e5, -1, velocity = 2*-1.7976931348623157e308", "&segments: velocity(1)"),
+        ("dt", "cells = 200", "dt = 1e308", "&mesh: dt = 1e308"),
+        ("young_denormal", "young = 2*1e9", "young = 1e-310, 1e9", "&segments: young(1)"),
+        ("modulus_tiny", "t_k = 1e-4 /", "t_k = 1e-4 /\n&strength_field kind = 'weibull', "
+         "modulus = 1e-300, scale = 1e6 /", "&strength_field: modulus = 1e-300"),
+        ("p0_nan_unused", "kind = 'power', p0 = 1e6, t_k = 1e-4", "kind = 'none', p0 = NaN",
+         "&load: p0 must be a finite number"),
+        ("modulus_nan_uniform", "t_k = 1e-4 /", "t_k = 1e-4 /\n&strength_field modulus = NaN /",
+         "&strength_field: modulus must be a finite number"),
+    ]
+    for name, old, new, expect in cases:
+        text = SMALL.replace(old, new, 1)
+        check(text != SMALL, f"{name}: the case does not change the deck")
+        with open(os.path.join(d, name + ".nml"), "w") as f:
+            f.write(text)
+        r = run(exe, [name + ".nml", "--quiet"], d)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0],
+              f"{name}: exit {r.returncode}, {r.stderr!r}, expected {expect!r}")
+        check(not os.path.exists(os.path.join(d, name + ".his")), f"{name}: wrote {name}.his")
+        print(f"ok   {name}: {lines[0] if lines else ''}")
+
+
+def main():
+    exe, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    check = Checks()
+    full_disk(exe, work, check)
+    output_is_folder(exe, work, check)
+    concurrent(exe, work, check)
+    checkpoint_paths(exe, work, check)
+    deck_reals(exe, work, check)
+    return check.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
