@@ -222,6 +222,36 @@ def deck_reals(exe, work, check):
         print(f"ok   {name}: {lines[0] if lines else ''}")
 
 
+def load_tables(exe, work, check):
+    """A load table row is two numbers and nothing else: a '/' (which a list-directed read
+    takes for "keep the previous value"), a repeat count, a third word, a row cut at the
+    buffer's length are refused with the line number."""
+    d = os.path.join(work, "tables")
+    os.makedirs(d)
+    deck = SMALL.replace("kind = 'power', p0 = 1e6, t_k = 1e-4", "kind = 'table', table = 't.txt'")
+    long_number = "0." + "0" * 1100 + "1"
+    for name, rows, expect in (
+            ("slash", "0 0\n1e-5 /\n2e-5 0\n", "line 2: expected two numbers"),
+            ("repeat", "0 0\n1e-5 2*1\n", "line 2: expected two numbers"),
+            ("third_word", "0 0\n1e-5 1e5 junk\n2e-5 0\n", "line 2: expected two numbers"),
+            ("long_line", f"0 0\n{long_number} 5\n2 0\n", "line 2: longer than 1024"),
+            ("huge", "0 0\n1e-5 1e61\n", "line 2: values must be 0 or between"),
+            ("nan", "0 0\n1e-5 nan\n", "line 2: expected two numbers")):
+        with open(os.path.join(d, "t.txt"), "w") as f:
+            f.write(rows)
+        with open(os.path.join(d, name + ".nml"), "w") as f:
+            f.write(deck)
+        r = run(exe, [name + ".nml", "--quiet"], d)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0],
+              f"table {name}: exit {r.returncode}, {r.stderr!r}, expected {expect!r}")
+        print(f"ok   table {name}: {lines[0] if lines else ''}")
+    with open(os.path.join(d, "t.txt"), "w") as f:
+        f.write("0 0\n1.5D-5, +2.e4\n3e-5\t0\n")
+    r = run(exe, ["slash.nml", "--quiet"], d)
+    check(r.returncode == 0, f"table with d exponent, comma and tab: exit {r.returncode} {r.stderr!r}")
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
@@ -232,6 +262,7 @@ def main():
     concurrent(exe, work, check)
     checkpoint_paths(exe, work, check)
     deck_reals(exe, work, check)
+    load_tables(exe, work, check)
     return check.finish()
 
 
