@@ -252,6 +252,64 @@ def load_tables(exe, work, check):
     check(r.returncode == 0, f"table with d exponent, comma and tab: exit {r.returncode} {r.stderr!r}")
 
 
+def tampered_checkpoints(exe, work, check):
+    """A checkpoint whose state, summary or counts were changed after it was written (one
+    bit flipped, a count made negative, an array's bound moved) is refused with exit 2; the
+    untouched one restarts. Needs h5py (the project venv)."""
+    try:
+        import h5py
+        import numpy as np
+    except ImportError:
+        print("skip tampered checkpoints: no h5py")
+        return
+    d = os.path.join(work, "tamper")
+    os.makedirs(d)
+    full = SMALL.replace("t_end = 2.0e-4", "t_end = 4.0e-4")
+    short = SMALL.replace("title = 'small'", "title = 'small', checkpoint = 'ck.h5'")
+    with open(os.path.join(d, "full.nml"), "w") as f:
+        f.write(full)
+    with open(os.path.join(d, "short.nml"), "w") as f:
+        f.write(short)
+    r = run(exe, ["short.nml", "--output", "run", "--quiet"], d)
+    check(r.returncode == 0, f"checkpointed run: exit {r.returncode} {r.stderr!r}")
+    shutil.copy(os.path.join(d, "ck.h5"), os.path.join(d, "good.h5"))
+
+    def flip_bit(f):
+        a = f["state/ua"][...]
+        a.view(np.int64)[len(a) // 2] ^= 1 << 20
+        f["state/ua"][...] = a
+
+    def negative_split(f):
+        f["state"].attrs["n_split"] = np.int32(-5)
+
+    def negative_rows(f):
+        f["outputs"].attrs["rows_history"] = np.int32(-3)
+
+    def moved_bound(f):
+        f["state"].attrs["s:lbound"] = np.int32(7)
+
+    def huge_count(f):
+        f["outputs"].attrs["rows_events"] = np.int32(1000000000)
+
+    for name, damage in (("bit", flip_bit), ("n_split", negative_split),
+                         ("rows", negative_rows), ("lbound", moved_bound),
+                         ("rows_events", huge_count)):
+        for ext in (".his", ".prf", ".evt", ".frg"):
+            shutil.copy(os.path.join(d, "run" + ext), os.path.join(d, "t_" + name + ext))
+        path = os.path.join(d, name + ".h5")
+        shutil.copy(os.path.join(d, "good.h5"), path)
+        with h5py.File(path, "r+") as f:
+            damage(f)
+        r = run(exe, ["full.nml", "--output", "t_" + name, "--restart", name + ".h5", "--quiet"], d)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and ("damaged" in lines[0] or
+                                                        "cannot be read" in lines[0]),
+              f"tampered checkpoint ({name}): exit {r.returncode}, {r.stderr!r}")
+        print(f"ok   tampered checkpoint {name}: {lines[0] if lines else ''}")
+    r = run(exe, ["full.nml", "--output", "run", "--restart", "good.h5", "--quiet"], d)
+    check(r.returncode == 0, f"untouched checkpoint restarts: exit {r.returncode} {r.stderr!r}")
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
@@ -263,6 +321,7 @@ def main():
     checkpoint_paths(exe, work, check)
     deck_reals(exe, work, check)
     load_tables(exe, work, check)
+    tampered_checkpoints(exe, work, check)
     return check.finish()
 
 

@@ -195,8 +195,8 @@ def main():
         same_outputs(check, f"{name} extended", work, name + "_U", name + "_R")
         # the checkpoint at t_end is the same whichever way the run got there
         with h5py.File(os.path.join(work, name + "_end.ck.h5"), "r") as ck:
-            check(ck.attrs["format"].decode() == "spallbar checkpoint 1" if isinstance(
-                ck.attrs["format"], bytes) else ck.attrs["format"] == "spallbar checkpoint 1",
+            check(ck.attrs["format"].decode() == "spallbar checkpoint 2" if isinstance(
+                ck.attrs["format"], bytes) else ck.attrs["format"] == "spallbar checkpoint 2",
                 f"{name}: checkpoint format attribute")
             check("ua" in ck["state"] and "ledger0" in ck["run"].attrs,
                   f"{name}: checkpoint holds /state/ua and /run ledger0")

@@ -27,7 +27,8 @@ module spb_checkpoint
    private
    public :: checkpoint_t, write_checkpoint, read_checkpoint, check_checkpoint_path
 
-   character(len=*), parameter :: format_name = 'spallbar checkpoint 1'
+   character(len=*), parameter :: format_name = 'spallbar checkpoint 2'   !! with /checksum
+   character(len=*), parameter :: format_1 = 'spallbar checkpoint 1'       !! without
    character(len=1), parameter :: nl = achar(10)
 
    !> One entry of a field list (state_fields, summary_fields): written or read back.
@@ -37,6 +38,18 @@ module spb_checkpoint
    interface array_field
       module procedure array_reals, array_ints, array_logicals
    end interface array_field
+
+   !> A checkpoint file being written or read, and the checksum of every value its field
+   !> lists carry (state, run summary, output counts), in the order they carry them: two
+   !> Fletcher sums modulo the prime 4294967291 over the 16-bit pieces of each value (an
+   !> integer as int64, a real's bits). Any one changed bit changes both.
+   type :: ck_file_t
+      type(h5file_t) :: h5                     !! the HDF5 file
+      integer(int64) :: sum1 = 1_int64         !! first Fletcher sum
+      integer(int64) :: sum2 = 0_int64         !! second Fletcher sum
+   end type ck_file_t
+
+   integer(int64), parameter :: fletcher_prime = 4294967291_int64
 
    !> What a restart continues from.
    type :: checkpoint_t
@@ -73,48 +86,49 @@ contains
       type(run_summary_t), intent(in) :: summary   !! the run's summary
       type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      type(h5file_t) :: h5
+      type(ck_file_t) :: cf
       type(run_summary_t) :: run_copy
       type(output_marks_t) :: marks_copy
       logical :: ok
       integer :: k
-      call h5_create(h5, path // '.part')
-      call h5_deck_header(h5, rec)
-      call h5_attr(h5, '/', 'format', format_name)
-      call h5_attr(h5, '/', 'step', st%step)
-      call h5_attr(h5, '/', 't', real(st%step, wp) * mesh%dt)
+      call h5_create(cf%h5, path // '.part')
+      call h5_deck_header(cf%h5, rec)
+      call h5_attr(cf%h5, '/', 'format', format_name)
+      call h5_attr(cf%h5, '/', 'step', st%step)
+      call h5_attr(cf%h5, '/', 't', real(st%step, wp) * mesh%dt)
       ! what identifies the run
-      call h5_group(h5, '/identity')
-      call h5_attr(h5, '/identity', 'program', 'spallbar ' // version)
-      call h5_attr(h5, '/identity', 'deck', deck_identity(rec))
-      call h5_attr(h5, '/identity', 'dt', mesh%dt)
-      call h5_attr(h5, '/identity', 'cells', mesh%n)
-      call h5_attr(h5, '/identity', 'n_profiles', size(rec%profile_times))
-      if (size(rec%profile_times) > 0) call h5_write(h5, '/identity/profile_times', &
+      call h5_group(cf%h5, '/identity')
+      call h5_attr(cf%h5, '/identity', 'program', 'spallbar ' // version)
+      call h5_attr(cf%h5, '/identity', 'deck', deck_identity(rec))
+      call h5_attr(cf%h5, '/identity', 'dt', mesh%dt)
+      call h5_attr(cf%h5, '/identity', 'cells', mesh%n)
+      call h5_attr(cf%h5, '/identity', 'n_profiles', size(rec%profile_times))
+      if (size(rec%profile_times) > 0) call h5_write(cf%h5, '/identity/profile_times', &
          rec%profile_times, 's')
       if (load%kind == load_table) then
-         call h5_write(h5, '/identity/load_t', load%t, 's')
-         call h5_write(h5, '/identity/load_p', load%p, 'Pa')
+         call h5_write(cf%h5, '/identity/load_t', load%t, 's')
+         call h5_write(cf%h5, '/identity/load_p', load%p, 'Pa')
       end if
-      call h5_group(h5, '/state')
-      call state_fields(h5, st, .true.)
+      call h5_group(cf%h5, '/state')
+      call state_fields(cf, st, .true.)
       ! the run's summary
-      call h5_group(h5, '/run')
+      call h5_group(cf%h5, '/run')
       run_copy = summary
-      call summary_fields(h5, run_copy, .true.)
+      call summary_fields(cf, run_copy, .true.)
       ! how far the outputs reach (byte counts as float64: exact below 2^53)
-      call h5_group(h5, '/outputs')
+      call h5_group(cf%h5, '/outputs')
       do k = 1, 4
-         call h5_attr(h5, '/outputs', 'body' // text_extensions(k), real(marks%body(k), wp))
-         call h5_attr(h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
-         call h5_attr(h5, '/outputs', 'tail' // text_extensions(k), &
+         call h5_attr(cf%h5, '/outputs', 'body' // text_extensions(k), real(marks%body(k), wp))
+         call h5_attr(cf%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
+         call h5_attr(cf%h5, '/outputs', 'tail' // text_extensions(k), &
                       marks%tail(k)(1:max(0, marks%tail_n(k))))
       end do
       marks_copy = marks
-      call count_fields(h5, marks_copy, .true.)
-      call h5_close(h5)
-      if (allocated(h5%error)) then
-         call make_error(err, '&run: checkpoint: ' // h5%error, code=exit_runtime)
+      call count_fields(cf, marks_copy, .true.)
+      call h5_attr(cf%h5, '/', 'checksum', checksum_text(cf))
+      call h5_close(cf%h5)
+      if (allocated(cf%h5%error)) then
+         call make_error(err, '&run: checkpoint: ' // cf%h5%error, code=exit_runtime)
          return
       end if
       call sys_rename(path // '.part', path, ok)
@@ -125,190 +139,235 @@ contains
    !> The one list of what the checkpoint keeps of state_t, written (writing) or read back:
    !> arrays as datasets under /state with their lower bound and size as attributes of
    !> /state, scalars as attributes, logicals as 0/1 (float64 bit for bit).
-   subroutine state_fields(h5, st, writing)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine state_fields(ck, st, writing)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(state_t), intent(inout) :: st   !! the state
       logical, intent(in) :: writing       !! write (else read back)
-      call field(h5, writing, '/state', 'n', st%step)   ! names as in 0.1 checkpoints
-      call field(h5, writing, '/state', 'n_breakable', st%n_breakable)
-      call field(h5, writing, '/state', 'n_split', st%n_split)
-      call field(h5, writing, '/state', 'n_frag_ids', st%gen%n_frag_ids)
-      call field(h5, writing, '/state', 'n_cut', st%fm%n_cut)
-      call field(h5, writing, '/state', 'n_skip', st%n_skip)
-      call field(h5, writing, '/state', 's_scale', st%s_scale)
-      call field(h5, writing, '/state', 'strain_cut', st%fm%strain_cut)
-      call field(h5, writing, '/state', 'e_contact', st%ledger%e_contact)
-      call field(h5, writing, '/state', 's_static_top', st%ends%s_static_top)
-      call field(h5, writing, '/state', 's_static_bot', st%ends%s_static_bot)
-      call field(h5, writing, '/state', 'v_far_top', st%ends%v_far_top)
-      call field(h5, writing, '/state', 'v_far_bot', st%ends%v_far_bot)
-      call field(h5, writing, '/state', 'w_in_top', st%ends%w_in_top)
-      call field(h5, writing, '/state', 'w_in_bot', st%ends%w_in_bot)
-      call field(h5, writing, '/state', 'w_load', st%ledger%w_load)
-      call field(h5, writing, '/state', 'w_transmit', st%ledger%w_transmit)
-      call field(h5, writing, '/state', 'e_fracture', st%ledger%e_fracture)
-      call field(h5, writing, '/state', 'e_join', st%ledger%e_join)
-      call field(h5, writing, '/state', 'e_shift', st%ledger%e_shift)
-      call field(h5, writing, '/state', 'p_shift', st%ledger%p_shift)
-      call field(h5, writing, '/state', 'w_wave', st%ledger%w_wave)
-      call field(h5, writing, '/state', 'e_lost_wave', st%ledger%e_lost_wave)
-      call field(h5, writing, '/state', 'i_ends', st%ledger%i_ends)
-      call field(h5, writing, '/state', 'i_support', st%ledger%i_support)
-      call field(h5, writing, '/state', 'u_base', st%ends%u_base)
-      call field(h5, writing, '/state', 'v_land_top', st%ends%v_land_top)
-      call field(h5, writing, '/state', 'v_land_bot', st%ends%v_land_bot)
-      call field(h5, writing, '/state', 'base_contact', st%ends%base_contact)
-      call field(h5, writing, '/state', 'landing_top', st%ends%landing_top)
-      call field(h5, writing, '/state', 'landing_bot', st%ends%landing_bot)
-      call array_field(h5, writing, 'ua', st%ua)
-      call array_field(h5, writing, 'ub', st%ub)
-      call array_field(h5, writing, 'dua', st%dua)
-      call array_field(h5, writing, 'dub', st%dub)
-      call array_field(h5, writing, 's', st%s)
-      call array_field(h5, writing, 's_old', st%s_old)
-      call array_field(h5, writing, 'sec', st%section)
-      call array_field(h5, writing, 'strength', st%strength)
-      call array_field(h5, writing, 'cell_strength', st%cell_strength)
-      call array_field(h5, writing, 'split', st%split)
-      call array_field(h5, writing, 'frag_id', st%gen%frag_id)
-      call array_field(h5, writing, 'frag_parent', st%gen%frag_parent)
-      call array_field(h5, writing, 'frag_birth', st%gen%frag_birth)
-      call array_field(h5, writing, 'cut', st%fm%cut)
-      call array_field(h5, writing, 'skip_test', st%skip_test)
-      call array_field(h5, writing, 'joined', st%joined)
-      call array_field(h5, writing, 'is_cut', st%fm%is_cut)
-      call array_field(h5, writing, 'cracked', st%cracked)
+      call field(ck, writing, '/state', 'n', st%step)   ! names as in 0.1 checkpoints
+      call field(ck, writing, '/state', 'n_breakable', st%n_breakable)
+      call field(ck, writing, '/state', 'n_split', st%n_split)
+      call field(ck, writing, '/state', 'n_frag_ids', st%gen%n_frag_ids)
+      call field(ck, writing, '/state', 'n_cut', st%fm%n_cut)
+      call field(ck, writing, '/state', 'n_skip', st%n_skip)
+      call field(ck, writing, '/state', 's_scale', st%s_scale)
+      call field(ck, writing, '/state', 'strain_cut', st%fm%strain_cut)
+      call field(ck, writing, '/state', 'e_contact', st%ledger%e_contact)
+      call field(ck, writing, '/state', 's_static_top', st%ends%s_static_top)
+      call field(ck, writing, '/state', 's_static_bot', st%ends%s_static_bot)
+      call field(ck, writing, '/state', 'v_far_top', st%ends%v_far_top)
+      call field(ck, writing, '/state', 'v_far_bot', st%ends%v_far_bot)
+      call field(ck, writing, '/state', 'w_in_top', st%ends%w_in_top)
+      call field(ck, writing, '/state', 'w_in_bot', st%ends%w_in_bot)
+      call field(ck, writing, '/state', 'w_load', st%ledger%w_load)
+      call field(ck, writing, '/state', 'w_transmit', st%ledger%w_transmit)
+      call field(ck, writing, '/state', 'e_fracture', st%ledger%e_fracture)
+      call field(ck, writing, '/state', 'e_join', st%ledger%e_join)
+      call field(ck, writing, '/state', 'e_shift', st%ledger%e_shift)
+      call field(ck, writing, '/state', 'p_shift', st%ledger%p_shift)
+      call field(ck, writing, '/state', 'w_wave', st%ledger%w_wave)
+      call field(ck, writing, '/state', 'e_lost_wave', st%ledger%e_lost_wave)
+      call field(ck, writing, '/state', 'i_ends', st%ledger%i_ends)
+      call field(ck, writing, '/state', 'i_support', st%ledger%i_support)
+      call field(ck, writing, '/state', 'u_base', st%ends%u_base)
+      call field(ck, writing, '/state', 'v_land_top', st%ends%v_land_top)
+      call field(ck, writing, '/state', 'v_land_bot', st%ends%v_land_bot)
+      call field(ck, writing, '/state', 'base_contact', st%ends%base_contact)
+      call field(ck, writing, '/state', 'landing_top', st%ends%landing_top)
+      call field(ck, writing, '/state', 'landing_bot', st%ends%landing_bot)
+      call array_field(ck, writing, 'ua', st%ua)
+      call array_field(ck, writing, 'ub', st%ub)
+      call array_field(ck, writing, 'dua', st%dua)
+      call array_field(ck, writing, 'dub', st%dub)
+      call array_field(ck, writing, 's', st%s)
+      call array_field(ck, writing, 's_old', st%s_old)
+      call array_field(ck, writing, 'sec', st%section)
+      call array_field(ck, writing, 'strength', st%strength)
+      call array_field(ck, writing, 'cell_strength', st%cell_strength)
+      call array_field(ck, writing, 'split', st%split)
+      call array_field(ck, writing, 'frag_id', st%gen%frag_id)
+      call array_field(ck, writing, 'frag_parent', st%gen%frag_parent)
+      call array_field(ck, writing, 'frag_birth', st%gen%frag_birth)
+      call array_field(ck, writing, 'cut', st%fm%cut)
+      call array_field(ck, writing, 'skip_test', st%skip_test)
+      call array_field(ck, writing, 'joined', st%joined)
+      call array_field(ck, writing, 'is_cut', st%fm%is_cut)
+      call array_field(ck, writing, 'cracked', st%cracked)
    end subroutine state_fields
 
    !> The one list of what the checkpoint keeps of the run summary (attributes of /run).
-   subroutine summary_fields(h5, summary, writing)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine summary_fields(ck, summary, writing)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
       logical, intent(in) :: writing       !! write (else read back)
       integer :: k
-      call field(h5, writing, '/run', 'steps', summary%steps)
-      call field(h5, writing, '/run', 'events', summary%events)
+      call field(ck, writing, '/run', 'steps', summary%steps)
+      call field(ck, writing, '/run', 'events', summary%events)
       do k = 1, size(summary%n_kind)
-         call field(h5, writing, '/run', 'n_kind_' // itoa(k), summary%n_kind(k))
+         call field(ck, writing, '/run', 'n_kind_' // itoa(k), summary%n_kind(k))
       end do
-      call field(h5, writing, '/run', 'checkpoints', summary%checkpoints)
-      call field(h5, writing, '/run', 'ledger0', summary%ledger0)
-      call field(h5, writing, '/run', 'ledger_drift', summary%ledger_drift)
-      call field(h5, writing, '/run', 'energy_scale', summary%energy_scale)
-      call field(h5, writing, '/run', 'max_excess', summary%max_excess)
-      call field(h5, writing, '/run', 'first_fracture_t', summary%first_fracture_t)
-      call field(h5, writing, '/run', 'max_reaction_bottom', summary%max_reaction_bottom)
-      call field(h5, writing, '/run', 'e_kin_end', summary%e_kin_end)
-      call field(h5, writing, '/run', 'w_ext_end', summary%w_ext_end)
-      call field(h5, writing, '/run', 'e_mech0', summary%e_mech0)
-      call field(h5, writing, '/run', 'guard_scale', summary%guard_scale)
-      call field(h5, writing, '/run', 'ledger_w0', summary%ledger_w0)
-      call field(h5, writing, '/run', 'wave_drift', summary%wave_drift)
-      call field(h5, writing, '/run', 'max_jordan', summary%max_jordan)
-      call field(h5, writing, '/run', 'jordan_scale', summary%jordan_scale)
-      call field(h5, writing, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
+      call field(ck, writing, '/run', 'checkpoints', summary%checkpoints)
+      call field(ck, writing, '/run', 'ledger0', summary%ledger0)
+      call field(ck, writing, '/run', 'ledger_drift', summary%ledger_drift)
+      call field(ck, writing, '/run', 'energy_scale', summary%energy_scale)
+      call field(ck, writing, '/run', 'max_excess', summary%max_excess)
+      call field(ck, writing, '/run', 'first_fracture_t', summary%first_fracture_t)
+      call field(ck, writing, '/run', 'max_reaction_bottom', summary%max_reaction_bottom)
+      call field(ck, writing, '/run', 'e_kin_end', summary%e_kin_end)
+      call field(ck, writing, '/run', 'w_ext_end', summary%w_ext_end)
+      call field(ck, writing, '/run', 'e_mech0', summary%e_mech0)
+      call field(ck, writing, '/run', 'guard_scale', summary%guard_scale)
+      call field(ck, writing, '/run', 'ledger_w0', summary%ledger_w0)
+      call field(ck, writing, '/run', 'wave_drift', summary%wave_drift)
+      call field(ck, writing, '/run', 'max_jordan', summary%max_jordan)
+      call field(ck, writing, '/run', 'jordan_scale', summary%jordan_scale)
+      call field(ck, writing, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
    end subroutine summary_fields
 
    !> A scalar field: an attribute of group, written or read back.
-   subroutine field_int(h5, writing, group, name, v)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine field_int(ck, writing, group, name, v)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: group   !! group path
       character(len=*), intent(in) :: name   !! field name
       integer, intent(inout) :: v          !! the value
       if (writing) then
-         call h5_attr(h5, group, name, v)
+         call h5_attr(ck%h5, group, name, v)
       else
-         call h5_get_attr(h5, group, name, v)
+         call h5_get_attr(ck%h5, group, name, v)
       end if
+      call mix(ck, int(v, int64))
    end subroutine field_int
 
    !> A real scalar field: an attribute of group, written or read back.
-   subroutine field_real(h5, writing, group, name, v)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine field_real(ck, writing, group, name, v)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: group   !! group path
       character(len=*), intent(in) :: name   !! field name
       real(wp), intent(inout) :: v         !! the value
       if (writing) then
-         call h5_attr(h5, group, name, v)
+         call h5_attr(ck%h5, group, name, v)
       else
-         call h5_get_attr(h5, group, name, v)
+         call h5_get_attr(ck%h5, group, name, v)
       end if
+      call mix(ck, transfer(v, 0_int64))
    end subroutine field_real
 
    !> A logical as the integer 0 or 1.
-   subroutine field_logical(h5, writing, group, name, v)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine field_logical(ck, writing, group, name, v)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: group   !! group path
       character(len=*), intent(in) :: name   !! field name
       logical, intent(inout) :: v          !! the value
       integer :: flag
       flag = merge(1, 0, v)
-      call field_int(h5, writing, group, name, flag)
+      call field_int(ck, writing, group, name, flag)
       if (.not. writing) v = flag /= 0
    end subroutine field_logical
 
    !> An array of /state: the dataset /state/NAME with the attributes NAME:lbound and
    !> NAME:size of /state (an unallocated array is not written; read back, a missing or
    !> inconsistent one is an error in h5%error). Integers come back through float64 (HDF5
-   !> converts; exact below 2^53), logicals as 0/1.
-   subroutine array_reals(h5, writing, name, a)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   !> converts; exact below 2^53), logicals as 0/1. raw: not counted in the checksum (the
+   !> integer reader counts the integers).
+   subroutine array_reals(ck, writing, name, a, raw)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: name   !! field name
       real(wp), allocatable, intent(inout) :: a(:)   !! the array
+      logical, intent(in), optional :: raw   !! leave the checksum alone
       real(wp), allocatable :: v(:)
-      integer :: lb, n
+      integer :: lb, n, k
+      logical :: count_it
+      count_it = .true.
+      if (present(raw)) count_it = .not. raw
       if (writing) then
          if (.not. allocated(a)) return
-         call h5_attr(h5, '/state', name // ':lbound', lbound(a, 1))
-         call h5_attr(h5, '/state', name // ':size', size(a))
-         if (size(a) > 0) call h5_write(h5, '/state/' // name, a, '-')
-         return
+         call h5_attr(ck%h5, '/state', name // ':lbound', lbound(a, 1))
+         call h5_attr(ck%h5, '/state', name // ':size', size(a))
+         if (size(a) > 0) call h5_write(ck%h5, '/state/' // name, a, '-')
+      else
+         if (allocated(a)) deallocate(a)
+         n = -1
+         call h5_get_attr(ck%h5, '/state', name // ':lbound', lb)
+         call h5_get_attr(ck%h5, '/state', name // ':size', n)
+         if (allocated(ck%h5%error)) n = -1
+         if (n < 0) return
+         if (lb < 0 .or. lb > 1) then
+            ck%h5%error = '/state/' // name // ' starts at index ' // itoa(lb) // ' (0 or 1)'
+            return
+         end if
+         if (n > 0) call h5_get(ck%h5, '/state/' // name, v)
+         if (.not. allocated(v)) allocate(v(0))
+         if (size(v) /= n) then
+            if (.not. allocated(ck%h5%error)) ck%h5%error = '/state/' // name // ' holds ' // &
+               itoa(size(v)) // ' values, its :size attribute says ' // itoa(n)
+            return
+         end if
+         allocate(a(lb:lb + n - 1), source=v)
       end if
-      if (allocated(a)) deallocate(a)
-      n = -1
-      call h5_get_attr(h5, '/state', name // ':lbound', lb)
-      call h5_get_attr(h5, '/state', name // ':size', n)
-      if (allocated(h5%error)) n = -1
-      if (n < 0) return
-      if (n > 0) call h5_get(h5, '/state/' // name, v)
-      if (.not. allocated(v)) allocate(v(0))
-      if (size(v) /= n) then
-         if (.not. allocated(h5%error)) h5%error = '/state/' // name // ' holds ' // &
-            itoa(size(v)) // ' values, its :size attribute says ' // itoa(n)
-         return
-      end if
-      allocate(a(lb:lb + n - 1), source=v)
+      if (.not. count_it) return
+      call mix(ck, int(lbound(a, 1), int64))
+      call mix(ck, int(size(a), int64))
+      do k = lbound(a, 1), ubound(a, 1)
+         call mix(ck, transfer(a(k), 0_int64))
+      end do
    end subroutine array_reals
 
    !> An integer array of /state (see array_reals).
-   subroutine array_ints(h5, writing, name, a)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine array_ints(ck, writing, name, a)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: name   !! field name
       integer, allocatable, intent(inout) :: a(:)   !! the array
-      integer :: lb, n
+      integer :: lb, n, k
       real(wp), allocatable :: v(:)
       if (writing) then
          if (.not. allocated(a)) return
          lb = lbound(a, 1)
          n = size(a)
-         call h5_attr(h5, '/state', name // ':lbound', lb)
-         call h5_attr(h5, '/state', name // ':size', n)
-         if (n > 0) call h5_write(h5, '/state/' // name, a, '-')
-         return
+         call h5_attr(ck%h5, '/state', name // ':lbound', lb)
+         call h5_attr(ck%h5, '/state', name // ':size', n)
+         if (n > 0) call h5_write(ck%h5, '/state/' // name, a, '-')
+      else
+         if (allocated(a)) deallocate(a)
+         call array_reals(ck, .false., name, v, raw=.true.)
+         if (.not. allocated(v)) return
+         if (any(abs(v) > real(huge(1), wp))) then
+            ck%h5%error = '/state/' // name // ' holds a value beyond the integers'
+            return
+         end if
+         allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
       end if
-      if (allocated(a)) deallocate(a)
-      call array_reals(h5, .false., name, v)
-      if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
+      call mix(ck, int(lbound(a, 1), int64))
+      call mix(ck, int(size(a), int64))
+      do k = lbound(a, 1), ubound(a, 1)
+         call mix(ck, int(a(k), int64))
+      end do
    end subroutine array_ints
 
+   !> Count a value (its 64 bits) in the checksum: its four 16-bit pieces, low first.
+   pure subroutine mix(ck, bits)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
+      integer(int64), intent(in) :: bits     !! the value's bits
+      integer :: k
+      do k = 0, 3
+         ck%sum1 = mod(ck%sum1 + ibits(bits, 16 * k, 16), fletcher_prime)
+         ck%sum2 = mod(ck%sum2 + ck%sum1, fletcher_prime)
+      end do
+   end subroutine mix
+
+   !> The checksum as 16 hexadecimal digits (sum2, then sum1).
+   pure function checksum_text(ck) result(text)
+      type(ck_file_t), intent(in) :: ck   !! the checkpoint file and its checksum
+      character(len=16) :: text
+      write(text, '(z8.8,z8.8)') ck%sum2, ck%sum1
+   end function checksum_text
+
    !> A logical array of /state as 0/1 (see array_reals).
-   subroutine array_logicals(h5, writing, name, a)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   subroutine array_logicals(ck, writing, name, a)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
       character(len=*), intent(in) :: name   !! field name
       logical, allocatable, intent(inout) :: a(:)   !! the array
@@ -316,11 +375,11 @@ contains
       if (writing) then
          if (.not. allocated(a)) return
          allocate(v(lbound(a, 1):ubound(a, 1)), source=merge(1, 0, a))
-         call array_ints(h5, .true., name, v)
+         call array_ints(ck, .true., name, v)
          return
       end if
       if (allocated(a)) deallocate(a)
-      call array_ints(h5, .false., name, v)
+      call array_ints(ck, .false., name, v)
       if (allocated(v)) allocate(a(lbound(v, 1):ubound(v, 1)), source=v /= 0)
    end subroutine array_logicals
 
@@ -333,51 +392,48 @@ contains
       type(load_t), intent(in) :: load     !! the end load
       type(checkpoint_t), intent(out) :: ck   !! the checkpoint read
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      type(h5file_t) :: h5
+      type(ck_file_t) :: cf
       character(len=:), allocatable :: text, why
       real(wp), allocatable :: times(:)
       integer :: i
-      logical :: exists
+      logical :: exists, summed
       inquire(file=path, exist=exists)
       if (.not. exists) then
          call make_error(err, '--restart: ''' // path // ''' does not exist')
          return
       end if
-      call h5_open_read(h5, path)
-      if (allocated(h5%error)) then
+      call h5_open_read(cf%h5, path)
+      if (allocated(cf%h5%error)) then
          call make_error(err, '--restart: ''' // path // ''' is not an HDF5 file (' // &
-                         h5%error // ')')
+                         cf%h5%error // ')')
          return
       end if
-      call h5_get_attr(h5, '/', 'format', text)
-      if (text /= format_name .or. allocated(h5%error)) then
+      call h5_get_attr(cf%h5, '/', 'format', text)
+      summed = text == format_name
+      if ((.not. summed .and. text /= format_1) .or. allocated(cf%h5%error)) then
          call refuse('is not a spallbar checkpoint (no root attribute format = ''' // &
                      format_name // ''')')
          return
       end if
-      call h5_get_attr(h5, '/identity', 'program', text)
+      call h5_get_attr(cf%h5, '/identity', 'program', text)
       if (text /= 'spallbar ' // version) then
          call refuse('was written by ' // text // ', this is spallbar ' // version // &
                      ' (a restart is bit-identical only with the program that wrote it)')
          return
       end if
-      why = identity_problem(h5, rec, mesh, load)
+      why = identity_problem(cf%h5, rec, mesh, load)
       if (len(why) > 0) then
          call refuse(why)
          return
       end if
-      call state_fields(h5, ck%st, .false.)
-      if (allocated(h5%error)) then
-         call refuse('cannot be read: ' // h5%error)
+      call state_fields(cf, ck%st, .false.)
+      if (allocated(cf%h5%error)) then
+         call refuse('cannot be read: ' // cf%h5%error)
          return
       end if
-      if (.not. allocated(ck%st%ua)) then
-         call refuse('has no state')
-         return
-      end if
-      if (lbound(ck%st%ua, 1) /= 0 .or. ubound(ck%st%ua, 1) /= mesh%n) then
-         call refuse('holds a state of ' // itoa(size(ck%st%ua) - 1) // ' cells, the mesh ' // &
-                     'has ' // itoa(mesh%n))
+      why = state_problem(ck%st, mesh%n)
+      if (len(why) > 0) then
+         call refuse(why)
          return
       end if
       if (ck%st%step > mesh%nsteps) then
@@ -387,12 +443,16 @@ contains
          return
       end if
       ! profile times up to the checkpoint are in the outputs already: they must not change
-      call h5_get_attr(h5, '/identity', 'n_profiles', i)
+      call h5_get_attr(cf%h5, '/identity', 'n_profiles', i)
       if (i > 0) then
-         call h5_get(h5, '/identity/profile_times', times)
+         call h5_get(cf%h5, '/identity/profile_times', times)
       end if
       if (.not. allocated(times)) then
          allocate(times(0))
+      end if
+      if (any(.not. (abs(times) <= 1.0e60_wp))) then
+         call refuse('is damaged: /identity/profile_times holds ' // rtoa(maxval(abs(times))))
+         return
       end if
       if (.not. same(pack(times, nint(times / mesh%dt) <= ck%st%step), &
                      pack(rec%profile_times, nint(rec%profile_times / mesh%dt) <= &
@@ -402,25 +462,70 @@ contains
          return
       end if
       ! the run's summary
-      call summary_fields(h5, ck%summary, .false.)
-      why = read_marks(h5, ck%marks)
+      call summary_fields(cf, ck%summary, .false.)
+      why = read_marks(cf, ck%marks)
       if (len(why) > 0) then
          call refuse(why)
          return
       end if
-      if (allocated(h5%error)) then
-         call refuse('cannot be read: ' // h5%error)
+      if (allocated(cf%h5%error)) then
+         call refuse('cannot be read: ' // cf%h5%error)
          return
       end if
-      call h5_close(h5)
+      if (summed) then
+         call h5_get_attr(cf%h5, '/', 'checksum', text)
+         if (text /= checksum_text(cf)) then
+            call refuse('is damaged: the checksum of its state, summary and output counts ' // &
+                        'is ' // checksum_text(cf) // ', it was written as ' // text)
+            return
+         end if
+      end if
+      call h5_close(cf%h5)
    contains
       !> Refuse the checkpoint (exit 2) with the reason, and close it.
       subroutine refuse(why)
          character(len=*), intent(in) :: why
          call make_error(err, '--restart: ''' // path // ''' ' // why, code=exit_input)
-         call h5_close(h5)
+         call h5_close(cf%h5)
       end subroutine refuse
    end subroutine read_checkpoint
+
+   !> Why a state read back cannot be the state of a mesh of n cells ('' when it can): every
+   !> array allocated with the bounds init_state gives it, every count within its list.
+   function state_problem(st, n) result(why)
+      type(state_t), intent(in) :: st   !! the state read back
+      integer, intent(in) :: n          !! cells of the mesh
+      character(len=:), allocatable :: why
+      why = ''
+      if (.not. allocated(st%ua)) then
+         why = 'has no state'
+      else if (lbound(st%ua, 1) /= 0 .or. ubound(st%ua, 1) /= n) then
+         why = 'holds a state of ' // itoa(size(st%ua) - 1) // ' cells, the mesh has ' // itoa(n)
+      else if (.not. (bounds_are(st%ub, 0, n) .and. bounds_are(st%dua, 0, n) .and. &
+               bounds_are(st%dub, 0, n) .and. bounds_are(st%s, 0, n + 1) .and. &
+               bounds_are(st%s_old, 0, n + 1) .and. bounds_are(st%section, 0, n) .and. &
+               bounds_are(st%strength, 0, n) .and. bounds_are(st%cell_strength, 1, n))) then
+         why = 'is damaged: a state array has other bounds than the mesh gives'
+      else if (st%step < 0 .or. st%n_split < 0 .or. st%n_skip < 0 .or. st%fm%n_cut < 0 .or. &
+               st%gen%n_frag_ids < 1 .or. st%n_breakable < 0 .or. st%n_breakable > n) then
+         why = 'is damaged: a count of its state is out of range'
+      else if (.not. (allocated(st%split) .and. allocated(st%skip_test) .and. &
+                      allocated(st%fm%cut))) then
+         why = 'is damaged: a list of its state is missing'
+      else if (st%n_split > min(size(st%split), max(n - 1, 0)) .or. &
+               st%n_skip > size(st%skip_test) .or. st%fm%n_cut > min(size(st%fm%cut), n)) then
+         why = 'is damaged: a count of its state exceeds its list'
+      end if
+   end function state_problem
+
+   !> Whether a is allocated with bounds lo:hi.
+   pure logical function bounds_are(a, lo, hi)
+      real(wp), allocatable, intent(in) :: a(:)   !! a state array
+      integer, intent(in) :: lo                   !! its lower bound
+      integer, intent(in) :: hi                   !! its upper bound
+      bounds_are = allocated(a)
+      if (bounds_are) bounds_are = lbound(a, 1) == lo .and. ubound(a, 1) == hi
+   end function bounds_are
 
    !> Why the checkpoint's identity does not fit this run ('' when it does): the deck, the
    !> mesh, a load table.
@@ -470,8 +575,8 @@ contains
    end function identity_problem
 
    !> The marks of the outputs; why they cannot be used ('' when they can).
-   function read_marks(h5, marks) result(why)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   function read_marks(ck, marks) result(why)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
       character(len=:), allocatable :: why
       character(len=:), allocatable :: text
@@ -479,10 +584,10 @@ contains
       integer :: k
       why = ''
       do k = 1, 4
-         call h5_get_attr(h5, '/outputs', 'body' // text_extensions(k), x)
+         call h5_get_attr(ck%h5, '/outputs', 'body' // text_extensions(k), x)
          marks%body(k) = int(x, kind(marks%body))
-         call h5_get_attr(h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
-         call h5_get_attr(h5, '/outputs', 'tail' // text_extensions(k), text)
+         call h5_get_attr(ck%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
+         call h5_get_attr(ck%h5, '/outputs', 'tail' // text_extensions(k), text)
          ! a string attribute comes back without trailing blanks: pad to its length
          marks%tail(k) = text
          if (marks%tail_n(k) > tail_len) then
@@ -491,20 +596,22 @@ contains
             return
          end if
       end do
-      call count_fields(h5, marks, .false.)
+      call count_fields(ck, marks, .false.)
+      if (min(marks%rows_his, marks%rows_evt, marks%rows_xt, marks%n_prof, marks%n_frg) < 0 &
+          .or. any(marks%body < 0)) why = 'is damaged: a count of its outputs is negative'
    end function read_marks
 
    !> The one list of the outputs' row and block counts a checkpoint keeps (attributes of
    !> /outputs), written or read back.
-   subroutine count_fields(h5, marks, writing)
-      type(h5file_t), intent(inout) :: h5      !! the HDF5 file
+   subroutine count_fields(ck, marks, writing)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
       logical, intent(in) :: writing           !! write (else read back)
-      call field(h5, writing, '/outputs', 'rows_history', marks%rows_his)
-      call field(h5, writing, '/outputs', 'rows_events', marks%rows_evt)
-      call field(h5, writing, '/outputs', 'rows_xt', marks%rows_xt)
-      call field(h5, writing, '/outputs', 'profiles', marks%n_prof)
-      call field(h5, writing, '/outputs', 'fragment_blocks', marks%n_frg)
+      call field(ck, writing, '/outputs', 'rows_history', marks%rows_his)
+      call field(ck, writing, '/outputs', 'rows_events', marks%rows_evt)
+      call field(ck, writing, '/outputs', 'rows_xt', marks%rows_xt)
+      call field(ck, writing, '/outputs', 'profiles', marks%n_prof)
+      call field(ck, writing, '/outputs', 'fragment_blocks', marks%n_frg)
    end subroutine count_fields
 
 
