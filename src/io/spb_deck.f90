@@ -369,6 +369,24 @@ contains
       end if
    end subroutine need_positive
 
+   !> Error unless x is finite and >= 0; note follows "must be >= 0" in the message.
+   subroutine need_nonnegative(err, group, name, x, note)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      character(len=*), intent(in) :: group   !! group name
+      character(len=*), intent(in) :: name   !! variable name
+      real(wp), intent(in) :: x               !! the value
+      character(len=*), intent(in), optional :: note   !! what 0 means, e.g. ' (0: off)'
+      call need_finite(err, group, name, x)
+      if (allocated(err)) return
+      if (x >= 0.0_wp) return
+      if (present(note)) then
+         call make_error(err, '&' // group // ': ' // name // ' must be >= 0' // note // &
+                         ', got ' // rtoa(x))
+      else
+         call make_error(err, '&' // group // ': ' // name // ' must be >= 0, got ' // rtoa(x))
+      end if
+   end subroutine need_nonnegative
+
    !> Error unless value is one of choices.
    subroutine need_choice(err, group, name, value, choices)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
@@ -407,12 +425,8 @@ contains
          call make_error(err, '&run: eps_rel must be in [0, 1e-3], got ' // rtoa(run%eps_rel))
          return
       end if
-      call need_finite(err, 'run', 'energy_guard', run%energy_guard)
+      call need_nonnegative(err, 'run', 'energy_guard', run%energy_guard, ' (0: off)')
       if (allocated(err)) return
-      if (run%energy_guard < 0.0_wp) then
-         call make_error(err, '&run: energy_guard must be >= 0 (0: off), got ' // rtoa(run%energy_guard))
-         return
-      end if
       if (run%history_every < 1) then
          call make_error(err, '&run: history_every must be >= 1, got ' // itoa(run%history_every))
          return
@@ -603,12 +617,8 @@ contains
       end if
       if (load%kind == 'power') then
          call need_finite(err, 'load', 'p0', load%p0)
-         call need_finite(err, 'load', 'exponent', load%exponent)
+         call need_nonnegative(err, 'load', 'exponent', load%exponent)
          if (allocated(err)) return
-         if (load%exponent < 0.0_wp) then
-            call make_error(err, '&load: exponent must be >= 0, got ' // rtoa(load%exponent))
-            return
-         end if
          if (is_set(load%t_k)) then
             call need_positive(err, 'load', 't_k', load%t_k)
          else if (load%exponent > 0.0_wp) then

@@ -49,6 +49,16 @@ module spb_deck_params
       type(echo_item_t), allocatable :: items(:)         !! echo, doc: one per variable
    end type param_pass_t
 
+   !> One value of each type an assignment can give (read_value's namelist slots).
+   type :: slots_t
+      real(wp) :: real = 0.0_wp                               !! a real
+      integer :: integer = 0                                  !! an integer
+      logical :: logical = .false.                            !! a logical
+      character(len=path_len) :: text = ''                    !! a text
+      real(wp), allocatable :: reals(:)                       !! reals
+      character(len=path_len), allocatable :: texts(:)        !! texts
+   end type slots_t
+
 contains
 
    !> The deck's variables, group by group, in the order the echo lists them: name, unit
@@ -273,59 +283,47 @@ contains
       real(wp), intent(inout), optional :: ra(:)          !! reals
       ! allow(assumed-size-character-intent)
       character(len=*), intent(inout), optional :: ta(:)  !! keywords
-      real(wp) :: spb_real
-      integer :: spb_integer
-      logical :: spb_logical
-      character(len=path_len) :: spb_text
-      real(wp), allocatable :: spb_reals(:)
-      character(len=path_len), allocatable :: spb_texts(:)
-      namelist /spb_value/ spb_real, spb_integer, spb_logical, spb_text, spb_reals, spb_texts
-      character(len=:), allocatable :: record, slot
-      character(len=256) :: msg
+      type(slots_t) :: v
+      character(len=:), allocatable :: record
       integer :: ios, k
-      spb_real = 0.0_wp
-      spb_integer = 0
-      spb_logical = .false.
-      spb_text = ''
       if (present(ra)) then
-         allocate(spb_reals, source=ra)
+         allocate(v%reals, source=ra)
       else
-         allocate(spb_reals(0))
+         allocate(v%reals(0))
       end if
       if (present(ta)) then
-         allocate(spb_texts(size(ta)))
-         spb_texts(:) = ta
+         allocate(v%texts(size(ta)))
+         v%texts(:) = ta
       else
-         allocate(spb_texts(0))
+         allocate(v%texts(0))
       end if
-      if (present(r)) spb_real = r
-      if (present(i)) spb_integer = i
-      if (present(l)) spb_logical = l
-      if (present(t)) spb_text = t
-      slot = slot_name(present(r), present(i), present(l), present(t), present(ra))
-      record = slot_record(p%record, p%group, p%name, slot)
-      read(record, nml=spb_value, iostat=ios, iomsg=msg)
+      if (present(r)) v%real = r
+      if (present(i)) v%integer = i
+      if (present(l)) v%logical = l
+      if (present(t)) v%text = t
+      record = slot_record(p%record, p%group, p%name, &
+                           slot_name(present(r), present(i), present(l), present(t), present(ra)))
+      call read_slots(record, v, ios)
       if (ios /= 0) then
          call blame(p%err, p%group, p%name, p%record)
          return
       end if
-      if (present(t)) call check_length(p, spb_text, len(t), keyword)
-      do k = 1, size(spb_texts)
-         call check_length(p, spb_texts(k), len(ta), keyword, k)
+      if (present(t)) call check_length(p, v%text, len(t), keyword)
+      do k = 1, size(v%texts)
+         call check_length(p, v%texts(k), len(ta), keyword, k)
       end do
-      if (present(r) .or. present(ra)) call check_reals(p, record, spb_real, spb_reals, &
-                                                         present(ra))
+      if (present(r) .or. present(ra)) call check_reals(p, record, v%real, v%reals, present(ra))
       if (allocated(p%err)) return
-      if (keyword) spb_text = lower(spb_text)
-      do k = 1, size(spb_texts)
-         spb_texts(k) = lower(spb_texts(k))
+      if (keyword) v%text = lower(v%text)
+      do k = 1, size(v%texts)
+         v%texts(k) = lower(v%texts(k))
       end do
-      if (present(r)) r = spb_real
-      if (present(i)) i = spb_integer
-      if (present(l)) l = spb_logical
-      if (present(t)) t = spb_text
-      if (present(ra)) ra(:) = spb_reals
-      if (present(ta)) ta(:) = spb_texts
+      if (present(r)) r = v%real
+      if (present(i)) i = v%integer
+      if (present(l)) l = v%logical
+      if (present(t)) t = v%text
+      if (present(ra)) ra(:) = v%reals
+      if (present(ta)) ta(:) = v%texts
    end subroutine read_value
 
    !> The reals an assignment gave (read: as read_value read them): each must be finite and
@@ -340,6 +338,31 @@ contains
       real(wp), intent(in) :: r                !! a scalar as read
       real(wp), intent(in) :: ra(:)            !! an array as read
       logical, intent(in) :: array             !! ra is the variable (else r)
+      type(slots_t) :: v
+      integer :: ios, k
+      v%real = other_than(r)
+      allocate(v%reals(size(ra)), v%texts(0))
+      do k = 1, size(ra)
+         v%reals(k) = other_than(ra(k))
+      end do
+      call read_slots(record, v, ios)
+      if (ios /= 0) return   ! read once already: cannot happen
+      if (.not. array) then
+         if (same_bits(r, v%real)) call check_real(p, p%name, r)
+         return
+      end if
+      do k = 1, size(ra)
+         if (same_bits(ra(k), v%reals(k))) call check_real(p, p%name // '(' // itoa(k) &
+                                                              // ')', ra(k))
+      end do
+   end subroutine check_reals
+
+   !> The namelist slots of one assignment, one of each type; the record (renamed by
+   !> slot_record) reads into the one of its variable's type.
+   subroutine read_slots(record, v, ios)
+      character(len=*), intent(in) :: record   !! '&spb_value slot... = value /'
+      type(slots_t), intent(inout) :: v        !! the slots: current values in, as read out
+      integer, intent(out) :: ios              !! the read's status
       real(wp) :: spb_real
       integer :: spb_integer
       logical :: spb_logical
@@ -347,26 +370,20 @@ contains
       real(wp), allocatable :: spb_reals(:)
       character(len=path_len), allocatable :: spb_texts(:)
       namelist /spb_value/ spb_real, spb_integer, spb_logical, spb_text, spb_reals, spb_texts
-      integer :: ios, k
-      spb_real = other_than(r)
-      spb_integer = 0
-      spb_logical = .false.
-      spb_text = ''
-      allocate(spb_reals(size(ra)), spb_texts(0))
-      do k = 1, size(ra)
-         spb_reals(k) = other_than(ra(k))
-      end do
+      spb_real = v%real
+      spb_integer = v%integer
+      spb_logical = v%logical
+      spb_text = v%text
+      spb_reals = v%reals
+      spb_texts = v%texts
       read(record, nml=spb_value, iostat=ios)
-      if (ios /= 0) return   ! read once already: cannot happen
-      if (.not. array) then
-         if (same_bits(r, spb_real)) call check_real(p, p%name, r)
-         return
-      end if
-      do k = 1, size(ra)
-         if (same_bits(ra(k), spb_reals(k))) call check_real(p, p%name // '(' // itoa(k) &
-                                                              // ')', ra(k))
-      end do
-   end subroutine check_reals
+      v%real = spb_real
+      v%integer = spb_integer
+      v%logical = spb_logical
+      v%text = spb_text
+      v%reals = spb_reals
+      v%texts = spb_texts
+   end subroutine read_slots
 
    !> One real a deck gave: finite, and 0 or tiny_real <= |x| <= huge_real.
    subroutine check_real(p, name, x)
