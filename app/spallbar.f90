@@ -74,8 +74,9 @@ program spallbar
 
 contains
 
+   !> Write the error's message to standard error and exit with its code.
    subroutine fail(e)
-      type(spb_error_t), intent(in) :: e
+      type(spb_error_t), intent(in) :: e   !! the error (its code is the exit status)
       write(error_unit, '(a)') 'spallbar: ' // e%message
       flush(error_unit)
       flush(output_unit)
@@ -115,6 +116,7 @@ contains
       call sys_exit(0)
    end subroutine sweep_main
 
+   !> The usage lines of --help, on standard output.
    subroutine usage()
       write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet] ' // &
          '[--restart CHECKPOINT.h5]'
@@ -127,11 +129,16 @@ contains
       write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
    end subroutine usage
 
+   !> Read the command line: the deck, --output, --quiet, --sweep and --restart (--help,
+   !> --version and --deck-help print and exit 0); the prefix defaults to the deck path
+   !> without .nml.
    subroutine parse_command_line(path, pre, q, sw, rst, e)
-      character(len=:), allocatable, intent(out) :: path, pre
+      character(len=:), allocatable, intent(out) :: path   !! the deck path
+      character(len=:), allocatable, intent(out) :: pre    !! output path prefix
       character(len=:), allocatable, intent(out) :: rst   !! --restart FILE ('' none)
-      logical, intent(out) :: q, sw            !! --quiet, --sweep
-      type(spb_error_t), allocatable, intent(out) :: e
+      logical, intent(out) :: q                !! --quiet
+      logical, intent(out) :: sw               !! --sweep
+      type(spb_error_t), allocatable, intent(out) :: e   !! the error (allocated: it failed)
       integer :: k, nargs, lenarg
       character(len=path_len) :: arg
       q = .false.
@@ -205,13 +212,13 @@ contains
    !> The value after the option at argument k into arg (k moves on to it); the error
    !> 'command line: missing' when there is none.
    subroutine option_value(k, nargs, arg, e, missing)
-      integer, intent(inout) :: k
-      integer, intent(in) :: nargs
+      integer, intent(inout) :: k          !! index of the option; moved on to its value
+      integer, intent(in) :: nargs         !! number of command-line arguments
       ! the caller's buffer receives the argument
       ! allow(assumed-size-character-intent)
-      character(len=*), intent(inout) :: arg
-      type(spb_error_t), allocatable, intent(inout) :: e
-      character(len=*), intent(in) :: missing
+      character(len=*), intent(inout) :: arg   !! the option's value
+      type(spb_error_t), allocatable, intent(inout) :: e   !! the error (allocated: it failed)
+      character(len=*), intent(in) :: missing   !! what the error says when there is no value
       if (k >= nargs) then
          call make_error(e, 'command line: ' // missing)
          return

@@ -8,9 +8,9 @@ contains
 
    !> Append value to list(1:n), growing the allocation by doubling; n is incremented.
    pure subroutine append(list, n, value)
-      integer, allocatable, intent(inout) :: list(:)
+      integer, allocatable, intent(inout) :: list(:)   !! the list (grown as needed)
       integer, intent(inout) :: n          !! entries in use
-      integer, intent(in) :: value
+      integer, intent(in) :: value         !! the value to append
       integer, allocatable :: grown(:)
       if (.not. allocated(list)) allocate(list(8), source=0)
       if (n == size(list)) then

@@ -30,7 +30,7 @@ contains
 
    !> A generator started from an integer seed (any value; negative ones are folded).
    pure function rng_seed(seed) result(g)
-      integer, intent(in) :: seed
+      integer, intent(in) :: seed   !! the seed (any value)
       type(rng_t) :: g
       integer(int64) :: x
       real(wp) :: u
@@ -50,7 +50,7 @@ contains
    !> Next number, uniform in (0, 1) (never 0 or 1).
    pure subroutine rng_uniform(g, u)
       type(rng_t), intent(inout) :: g      !! the generator
-      real(wp), intent(out) :: u
+      real(wp), intent(out) :: u           !! the number, in (0, 1)
       integer(int64) :: p1, p2, z
       p1 = modulo(a12 * g%s1(2) - a13n * g%s1(1), m1)
       g%s1 = [g%s1(2), g%s1(3), p1]
@@ -63,7 +63,9 @@ contains
 
    !> A Weibull sample by inversion: scale (-ln(1 - u))^(1/modulus), for u in (0, 1).
    pure elemental real(wp) function weibull(u, modulus, scale) result(x)
-      real(wp), intent(in) :: u, modulus, scale
+      real(wp), intent(in) :: u         !! uniform number in (0, 1)
+      real(wp), intent(in) :: modulus   !! Weibull modulus [-]
+      real(wp), intent(in) :: scale     !! Weibull scale, in the sample's unit (strengths: Pa)
       x = scale * (-log(1.0_wp - u))**(1.0_wp / modulus)
    end function weibull
 
@@ -74,7 +76,8 @@ contains
    !> each further. The .sweep table prints it: any realization re-runs
    !> alone as an ordinary deck with &strength_field seed = that value.
    pure integer function realization_seed(seed, i) result(s)
-      integer, intent(in) :: seed, i
+      integer, intent(in) :: seed   !! base seed of the sweep
+      integer, intent(in) :: i      !! realization (1, 2, ...)
       integer(int64), parameter :: p = 2147483647_int64
       s = int(1_int64 + modulo(modulo(int(seed, int64), p) * 69621_int64 + &
                                int(i, int64) * 48271_int64, p - 1_int64))

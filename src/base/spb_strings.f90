@@ -88,8 +88,9 @@ contains
    contains
       !> Dekker's split of v into a high part vh and a low part vl = v - vh, exactly.
       pure subroutine split(v, vh, vl)
-         real(wp), intent(in) :: v
-         real(wp), intent(out) :: vh, vl
+         real(wp), intent(in) :: v     !! the value to split
+         real(wp), intent(out) :: vh   !! its high part
+         real(wp), intent(out) :: vl   !! its low part, v - vh
          real(wp) :: c
          c = splitter * v
          vh = c - (c - v)
@@ -99,7 +100,8 @@ contains
 
    !> k right-justified in w characters, as the I<w> edit writes it (w <= 20).
    pure function int_right(k, w) result(out)
-      integer, intent(in) :: k, w
+      integer, intent(in) :: k   !! the integer
+      integer, intent(in) :: w   !! field width in characters (<= 20)
       character(len=w) :: out
       integer(int64) :: m
       integer :: j
@@ -117,7 +119,7 @@ contains
 
    !> Integer as text, no blanks.
    pure function itoa_default(k) result(s)
-      integer, intent(in) :: k
+      integer, intent(in) :: k   !! the integer
       character(len=:), allocatable :: s
       character(len=24) :: buf
       write(buf, '(i0)') k
@@ -126,7 +128,7 @@ contains
 
    !> The decimal text of a 64-bit integer.
    pure function itoa_int64(k) result(s)
-      integer(int64), intent(in) :: k
+      integer(int64), intent(in) :: k   !! the integer
       character(len=:), allocatable :: s
       character(len=24) :: buf
       write(buf, '(i0)') k
@@ -135,7 +137,7 @@ contains
 
    !> Logical as Fortran namelist text.
    pure function ltoa(b) result(s)
-      logical, intent(in) :: b
+      logical, intent(in) :: b   !! the logical
       character(len=:), allocatable :: s
       if (b) then
          s = '.true.'

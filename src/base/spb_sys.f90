@@ -25,13 +25,13 @@ module spb_sys
       subroutine c_exit_now(status) bind(c, name='_exit')
          import :: c_int
          implicit none
-         integer(c_int), value :: status
+         integer(c_int), value :: status   !! exit status of the process
       end subroutine c_exit_now
       !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
          import :: c_int
          implicit none
-         integer(c_int), value :: fd
+         integer(c_int), value :: fd   !! file descriptor
          integer(c_int) :: r
       end function c_isatty
       !> C rename(2) on NUL-terminated names.
@@ -40,14 +40,17 @@ module spb_sys
          implicit none
          ! C strings (char *), NUL-terminated by the caller
          ! allow(assumed-size)
-         character(kind=c_char), intent(in) :: old(*), new(*)
+         character(kind=c_char), intent(in) :: old(*)   !! existing path, NUL-terminated
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: new(*)   !! new path, NUL-terminated
          integer(c_int) :: r
       end function c_rename
       !> C mallopt(3).
       function c_mallopt(param, value) bind(c, name='mallopt') result(r)
          import :: c_int
          implicit none
-         integer(c_int), value :: param, value
+         integer(c_int), value :: param   !! the parameter to set (M_*)
+         integer(c_int), value :: value   !! its new value
          integer(c_int) :: r
       end function c_mallopt
       !> C fopen(3).
@@ -56,30 +59,32 @@ module spb_sys
          implicit none
          ! C strings (char *), NUL-terminated by the caller
          ! allow(assumed-size)
-         character(kind=c_char), intent(in) :: path(*), mode(*)
+         character(kind=c_char), intent(in) :: path(*)   !! the file's path, NUL-terminated
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: mode(*)   !! open mode ('rb', ...), NUL-terminated
          type(c_ptr) :: f
       end function c_fopen
       !> C fseek(3).
       function c_fseek(f, offset, whence) bind(c, name='fseek') result(r)
          import :: c_ptr, c_long, c_int
          implicit none
-         type(c_ptr), value :: f
-         integer(c_long), value :: offset
-         integer(c_int), value :: whence
+         type(c_ptr), value :: f               !! the stream (FILE *)
+         integer(c_long), value :: offset      !! offset from whence [bytes]
+         integer(c_int), value :: whence       !! SEEK_SET 0, SEEK_CUR 1, SEEK_END 2
          integer(c_int) :: r
       end function c_fseek
       !> C ftell(3).
       function c_ftell(f) bind(c, name='ftell') result(r)
          import :: c_ptr, c_long
          implicit none
-         type(c_ptr), value :: f
+         type(c_ptr), value :: f   !! the stream (FILE *)
          integer(c_long) :: r
       end function c_ftell
       !> C fclose(3).
       function c_fclose(f) bind(c, name='fclose') result(r)
          import :: c_ptr, c_int
          implicit none
-         type(c_ptr), value :: f
+         type(c_ptr), value :: f   !! the stream (FILE *)
          integer(c_int) :: r
       end function c_fclose
       !> C creat(2): open (create, empty) a file for writing.
@@ -88,15 +93,16 @@ module spb_sys
          implicit none
          ! C string (char *), NUL-terminated by the caller
          ! allow(assumed-size)
-         character(kind=c_char), intent(in) :: path(*)
-         integer(c_int), value :: mode
+         character(kind=c_char), intent(in) :: path(*)   !! the file's path, NUL-terminated
+         integer(c_int), value :: mode   !! permission bits of a new file
          integer(c_int) :: fd
       end function c_creat
       !> C flock(2).
       function c_flock(fd, operation) bind(c, name='flock') result(r)
          import :: c_int
          implicit none
-         integer(c_int), value :: fd, operation
+         integer(c_int), value :: fd          !! file descriptor
+         integer(c_int), value :: operation   !! LOCK_* flags (LOCK_EX | LOCK_NB = 6)
          integer(c_int) :: r
       end function c_flock
       !> C realpath(3) into a caller's buffer of PATH_MAX characters.
@@ -105,17 +111,17 @@ module spb_sys
          implicit none
          ! C strings (char *): the path NUL-terminated, the buffer PATH_MAX long
          ! allow(assumed-size)
-         character(kind=c_char), intent(in) :: path(*)
+         character(kind=c_char), intent(in) :: path(*)   !! the path, NUL-terminated
          ! allow(assumed-size, assumed-size-character-intent)
-         character(kind=c_char), intent(inout) :: resolved(*)
+         character(kind=c_char), intent(inout) :: resolved(*)   !! PATH_MAX buffer for the result
          type(c_ptr) :: r
       end function c_realpath
       !> C signal(2): install a handler.
       function c_signal(signum, handler) bind(c, name='signal') result(previous)
          import :: c_int, c_funptr
          implicit none
-         integer(c_int), value :: signum
-         type(c_funptr), value :: handler
+         integer(c_int), value :: signum     !! the signal number
+         type(c_funptr), value :: handler    !! the handler (c_funloc of a bind(c) procedure)
          type(c_funptr) :: previous
       end function c_signal
    end interface
@@ -227,7 +233,7 @@ contains
 
    !> Clear what reading raised and restore the halting modes fp_traps_off saved.
    subroutine fp_traps_restore(saved)
-      logical, intent(in) :: saved(3)
+      logical, intent(in) :: saved(3)   !! the halting modes fp_traps_off saved
       call ieee_set_flag(read_traps, .false.)
       call ieee_set_halting_mode(read_traps, saved)
    end subroutine fp_traps_restore
@@ -247,7 +253,7 @@ contains
 
    !> The handler of SIGTERM/SIGINT: remembers the signal (the run stops at the next step).
    subroutine on_signal(signum) bind(c)
-      integer(c_int), value :: signum
+      integer(c_int), value :: signum   !! the signal number
       caught = signum
    end subroutine on_signal
 end module spb_sys

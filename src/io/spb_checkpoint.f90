@@ -484,7 +484,7 @@ contains
    contains
       !> Refuse the checkpoint (exit 2) with the reason, and close it.
       subroutine refuse(why)
-         character(len=*), intent(in) :: why
+         character(len=*), intent(in) :: why   !! the reason, after the checkpoint's path
          call make_error(err, '--restart: ''' // path // ''' ' // why, code=exit_input)
          call h5_close(cf%h5)
       end subroutine refuse
@@ -640,8 +640,8 @@ contains
 
    !> The first line of a that differs from b, for a message.
    function first_difference(a, b) result(msg)
-      character(len=*), intent(in) :: a    !! the array
-      character(len=*), intent(in) :: b
+      character(len=*), intent(in) :: a    !! one text, lines ended by nl (the checkpoint's)
+      character(len=*), intent(in) :: b    !! the other text (this run's)
       character(len=:), allocatable :: msg
       integer :: i, ia, ib
       i = 1
@@ -666,8 +666,8 @@ contains
 
    !> Two arrays equal bit for bit (and in size).
    pure logical function same(a, b)
-      real(wp), intent(in) :: a(:)         !! the array
-      real(wp), intent(in) :: b(:)
+      real(wp), intent(in) :: a(:)         !! one array
+      real(wp), intent(in) :: b(:)         !! the other array
       same = size(a) == size(b)
       if (same) same = all(transfer(a, 0_int64, size(a)) == transfer(b, 0_int64, size(b)))
    end function same

@@ -337,7 +337,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group   !! group name
       character(len=*), intent(in) :: name   !! variable name
-      real(wp), intent(in) :: x
+      real(wp), intent(in) :: x               !! the value
       if (allocated(err)) return
       if (.not. ieee_is_finite(x)) call make_error(err, '&' // group // ': ' // name // &
          ' must be a finite number, got ' // rtoa(x))
@@ -348,8 +348,8 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=*), intent(in) :: group   !! group name
       character(len=*), intent(in) :: name   !! variable name
-      real(wp), intent(in) :: x
-      logical, intent(in), optional :: zero_ok
+      real(wp), intent(in) :: x               !! the value
+      logical, intent(in), optional :: zero_ok   !! accept 0 too (default: no)
       logical :: zok
       if (allocated(err)) return
       zok = .false.
@@ -393,7 +393,7 @@ contains
       character(len=*), intent(in) :: group   !! group name
       character(len=*), intent(in) :: name   !! variable name
       character(len=*), intent(in) :: value   !! its value text
-      character(len=*), intent(in) :: choices(:)
+      character(len=*), intent(in) :: choices(:)   !! the values allowed
       character(len=:), allocatable :: list
       integer :: k
       if (allocated(err)) return
@@ -474,7 +474,7 @@ contains
    contains
       !> profile_times must not decrease: check entry k against entry k - 1.
       subroutine need_order(k)
-         integer, intent(in) :: k
+         integer, intent(in) :: k   !! index into profile_times (> 1)
          if (run%profile_times(k) < run%profile_times(k - 1)) call make_error(err, &
             '&run: profile_times(' // itoa(k) // ') must not be earlier than profile_times(' &
             // itoa(k - 1) // ')')
@@ -484,7 +484,7 @@ contains
    !> Check &mesh's values.
    subroutine validate_mesh(mesh, nseg, err)
       type(mesh_cfg), intent(in) :: mesh   !! &mesh values
-      integer, intent(in) :: nseg
+      integer, intent(in) :: nseg          !! segments (&segments n)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       if (allocated(err)) return
       call need_finite(err, 'mesh', 'dt', mesh%dt)
@@ -506,7 +506,7 @@ contains
 
    !> Check &segments' values and fill the defaults of the segments given.
    subroutine validate_segments(seg, err)
-      type(segments_cfg), intent(inout) :: seg
+      type(segments_cfg), intent(inout) :: seg   !! &segments values (defaults filled in)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer :: j
       character(len=:), allocatable :: sj
@@ -569,7 +569,7 @@ contains
       !> A value given for a segment beyond n is an error.
       subroutine beyond_n(name, x)
          character(len=*), intent(in) :: name   !! variable name
-         real(wp), intent(in) :: x
+         real(wp), intent(in) :: x   !! its value for the segment
          if (allocated(err)) return
          if (is_set(x)) call make_error(err, '&segments: ' // name // sj // ' is given but n = ' &
                                         // itoa(seg%n) // ' (set n to the number of segments)')
@@ -578,7 +578,7 @@ contains
 
    !> Check &ends' values.
    subroutine validate_ends(ends, err)
-      type(ends_cfg), intent(in) :: ends
+      type(ends_cfg), intent(in) :: ends   !! &ends values
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       call need_choice(err, 'ends', 'top', ends%top, top_words)
       call need_choice(err, 'ends', 'bottom', ends%bottom, bottom_words)
@@ -594,7 +594,7 @@ contains
    !> Check &load's values against the ends.
    subroutine validate_load(load, ends, err)
       type(load_cfg), intent(in) :: load   !! &load values
-      type(ends_cfg), intent(in) :: ends
+      type(ends_cfg), intent(in) :: ends   !! &ends values
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=name_len) :: face_end
       call need_choice(err, 'load', 'kind', load%kind, kind_words)

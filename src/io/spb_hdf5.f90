@@ -36,10 +36,10 @@ module spb_hdf5
             bind(c, name='H5Pset_file_space_strategy') result(status)
          import :: c_int, c_bool, c_int64_t, c_long_long
          implicit none
-         integer(c_int64_t), value :: fcpl           ! hid_t
-         integer(c_int), value :: strategy
-         logical(c_bool), value :: persist
-         integer(c_long_long), value :: threshold    ! hsize_t
+         integer(c_int64_t), value :: fcpl           !! file creation property list (hid_t)
+         integer(c_int), value :: strategy           !! H5F_fspace_strategy_t (3: none)
+         logical(c_bool), value :: persist           !! keep free-space information in the file
+         integer(c_long_long), value :: threshold    !! hsize_t: smallest section tracked [bytes]
          integer(c_int) :: status
       end function h5pset_file_space_strategy
    end interface
@@ -95,7 +95,7 @@ contains
    !> Record the first failure of an HDF5 call.
    subroutine check(h5, hdferr, what)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
-      integer, intent(in) :: hdferr
+      integer, intent(in) :: hdferr             !! status of the HDF5 call (< 0: it failed)
       character(len=*), intent(in) :: what      !! operation and object
       if (hdferr < 0 .and. .not. allocated(h5%error)) then
          h5%error = 'HDF5: ' // what // ' failed in ''' // h5%path // ''''
@@ -145,7 +145,7 @@ contains
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer(hid_t), intent(out) :: obj   !! an open group or dataset
-      logical, intent(out) :: is_dset
+      logical, intent(out) :: is_dset      !! always .false. (h5oopen_f opens either kind)
       integer :: hdferr
       is_dset = .false.
       call h5oopen_f(h5%file, path, obj, hdferr)
@@ -290,7 +290,7 @@ contains
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: units   !! unit of the data
       integer, intent(in) :: values(:)     !! the data
-      integer(hsize_t), intent(in) :: dims(:)
+      integer(hsize_t), intent(in) :: dims(:)   !! the dataset's dimensions (Fortran order)
       integer(hid_t) :: space, dset
       integer :: hdferr
       if (h5%file < 0) return
@@ -310,9 +310,9 @@ contains
    subroutine create_extendible(h5, path, dtype, nrow, dset)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      integer(hid_t), intent(in) :: dtype
-      integer, intent(in) :: nrow
-      integer(hid_t), intent(out) :: dset
+      integer(hid_t), intent(in) :: dtype  !! HDF5 type of the elements
+      integer, intent(in) :: nrow          !! rows of a 2-D dataset (0: 1-D)
+      integer(hid_t), intent(out) :: dset  !! the open dataset (-1: not created)
       integer(hid_t) :: space, plist
       integer(hsize_t) :: dims(2), maxdims(2), chunk(2)
       integer :: hdferr, rank
@@ -342,9 +342,9 @@ contains
    subroutine h5_table(h5, path, names, units, is_int, handle)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      character(len=*), intent(in) :: names(:)
+      character(len=*), intent(in) :: names(:)   !! column names
       character(len=*), intent(in) :: units(:)   !! unit of the data
-      logical, intent(in) :: is_int(:)
+      logical, intent(in) :: is_int(:)     !! the column is stored as integers
       integer, intent(out) :: handle       !! table handle (h5_table)
       type(table_t) :: tab
       integer :: k
@@ -371,7 +371,7 @@ contains
    subroutine h5_append(h5, handle, row)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       integer, intent(in) :: handle        !! table handle (h5_table)
-      real(wp), intent(in) :: row(:)
+      real(wp), intent(in) :: row(:)       !! one value per column
       if (h5%file < 0 .or. handle < 1) return
       associate (tab => h5%tables(handle))
          tab%nbuf = tab%nbuf + 1
@@ -422,7 +422,7 @@ contains
    subroutine h5_xt(h5, path, nrow)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      integer, intent(in) :: nrow
+      integer, intent(in) :: nrow          !! half-node rows per time
       character(len=6), parameter :: names(3) = [character(len=6) :: 'u', 'v', 'stress']
       character(len=6), parameter :: units(3) = [character(len=6) :: 'm', 'm/s', 'Pa']
       integer :: k
@@ -444,7 +444,9 @@ contains
    subroutine h5_append_xt(h5, t, u, v, s)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       real(wp), intent(in) :: t                !! [s]
-      real(wp), intent(in) :: u(:), v(:), s(:) !! per half-node row [m], [m/s], [Pa]
+      real(wp), intent(in) :: u(:)             !! displacement per half-node row [m]
+      real(wp), intent(in) :: v(:)             !! velocity per half-node row [m/s]
+      real(wp), intent(in) :: s(:)             !! stress per half-node row [Pa]
       if (h5%file < 0 .or. .not. h5%has_xt) return
       h5%xt%nbuf = h5%xt%nbuf + 1
       h5%xt%tbuf(h5%xt%nbuf) = t
@@ -570,8 +572,8 @@ contains
    subroutine h5_dims(h5, path, dims, rank)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      integer(hsize_t), intent(out) :: dims(2)
-      integer, intent(out) :: rank
+      integer(hsize_t), intent(out) :: dims(2)   !! its dimensions, Fortran order
+      integer, intent(out) :: rank         !! its rank (-1: absent)
       integer(hid_t) :: dset, space
       integer(hsize_t) :: maxdims(2)
       integer :: hdferr
@@ -591,8 +593,8 @@ contains
    logical function open_1d(h5, path, dset, n)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      integer(hid_t), intent(out) :: dset
-      integer(hsize_t), intent(out) :: n
+      integer(hid_t), intent(out) :: dset  !! the open dataset (-1: not opened)
+      integer(hsize_t), intent(out) :: n   !! its length
       integer(hsize_t) :: dims(2)
       integer :: hdferr, rank
       n = 0
@@ -626,7 +628,7 @@ contains
    subroutine h5_get_columns(h5, path, c0, values)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      integer, intent(in) :: c0
+      integer, intent(in) :: c0            !! columns before the first one read
       real(wp), intent(out) :: values(:, :)   !! the data
       integer(hid_t) :: dset, fspace, mspace
       integer(hsize_t) :: off(2), cnt(2)
@@ -656,7 +658,7 @@ contains
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: name   !! attribute name
       integer(hid_t), intent(out) :: obj   !! an open group or dataset
-      integer(hid_t), intent(out) :: attr
+      integer(hid_t), intent(out) :: attr  !! the open attribute (< 0: absent)
       integer :: hdferr
       logical :: is_dset, exists
       attr = -1
@@ -682,7 +684,7 @@ contains
    !> Close an attribute and its object.
    subroutine close_attr(obj, attr)
       integer(hid_t), intent(in) :: obj    !! an open group or dataset
-      integer(hid_t), intent(in) :: attr
+      integer(hid_t), intent(in) :: attr   !! an attribute opened by open_attr (< 0: none)
       integer :: hdferr
       if (attr >= 0) call h5aclose_f(attr, hdferr)
       if (obj >= 0) call h5oclose_f(obj, hdferr)
@@ -749,8 +751,10 @@ contains
 
    !> Copy an object (a group with everything under it, or a dataset) from src to dst.
    subroutine h5_copy(src, src_path, dst, dst_path)
-      type(h5file_t), intent(inout) :: src, dst
-      character(len=*), intent(in) :: src_path, dst_path
+      type(h5file_t), intent(inout) :: src   !! the file copied from
+      type(h5file_t), intent(inout) :: dst   !! the file copied into
+      character(len=*), intent(in) :: src_path   !! object path in src
+      character(len=*), intent(in) :: dst_path   !! its path in dst
       integer :: hdferr
       if (src%file < 0 .or. dst%file < 0) return
       call h5ocopy_f(src%file, src_path, dst%file, dst_path, hdferr)
@@ -776,8 +780,8 @@ contains
    !> Length of a 1-D dataset (or the last dimension) in an existing file; -1 if absent.
    subroutine h5_read_size(path, dset_path, n)
       character(len=*), intent(in) :: path   !! the file
-      character(len=*), intent(in) :: dset_path
-      integer, intent(out) :: n
+      character(len=*), intent(in) :: dset_path   !! dataset path in the file
+      integer, intent(out) :: n                   !! its length (last dimension; -1: absent)
       integer(hid_t) :: file, dset, space
       integer(hsize_t) :: dims(2), maxdims(2)
       integer :: hdferr, rank
@@ -801,9 +805,9 @@ contains
    !> Read a 1-D float64 dataset of an existing file into values (size from h5_read_size).
    subroutine h5_read(path, dset_path, values, ok)
       character(len=*), intent(in) :: path   !! the file
-      character(len=*), intent(in) :: dset_path
+      character(len=*), intent(in) :: dset_path   !! dataset path in the file
       real(wp), intent(out) :: values(:)   !! the data
-      logical, intent(out) :: ok
+      logical, intent(out) :: ok           !! the dataset was read
       integer(hid_t) :: file, dset
       integer(hsize_t) :: dims(1)
       integer :: hdferr

@@ -15,8 +15,9 @@ contains
 
    !> Read a two-column table t [s], p [Pa]; '#' and '!' start comments.
    subroutine read_table(path, t, p, err)
-      character(len=*), intent(in) :: path
-      real(wp), allocatable, intent(out) :: t(:), p(:)
+      character(len=*), intent(in) :: path   !! the table file
+      real(wp), allocatable, intent(out) :: t(:)   !! times [s], non-decreasing
+      real(wp), allocatable, intent(out) :: p(:)   !! pressures [Pa]
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer :: u, ios, nrow, line, k, nchar
       logical :: ok

@@ -189,7 +189,7 @@ contains
    contains
       !> Open PREFIX.ext for writing (unit u).
       subroutine open_one(ext, u)
-         character(len=*), intent(in) :: ext
+         character(len=*), intent(in) :: ext   !! file extension, e.g. '.his'
          integer, intent(out) :: u         !! open formatted unit
          integer :: ios
          character(len=256) :: msg
@@ -203,7 +203,7 @@ contains
       !> The header lines every text file starts with.
       subroutine header(u, what)
          integer, intent(in) :: u          !! open formatted unit
-         character(len=*), intent(in) :: what
+         character(len=*), intent(in) :: what   !! what the file holds (its first line)
          write(u, '(a)') '# spallbar ' // version // ' -- ' // what
          write(u, '(a)') '# title: ' // rec%title
          call write_echo(u, rec, '# ')
@@ -215,8 +215,8 @@ contains
    subroutine write_mesh_summary(u, mesh, report, prefix)
       integer, intent(in) :: u             !! open formatted unit
       type(mesh_t), intent(in) :: mesh     !! the mesh
-      character(len=*), intent(in) :: report(:)
-      character(len=*), intent(in) :: prefix   !! output path prefix
+      character(len=*), intent(in) :: report(:)   !! the mesh fit report (stretched segments)
+      character(len=*), intent(in) :: prefix   !! what each line starts with, e.g. '# '
       integer :: j
       write(u, '(a)') prefix // 'mesh: dt = ' // rtoa(mesh%dt) // ' s, ' // itoa(mesh%n) // &
          ' cells, ' // itoa(mesh%nsteps) // ' steps to t = ' // &
@@ -346,7 +346,7 @@ contains
    !> HDF5 file (its first error), comes back in err.
    subroutine close_outputs(out, err)
       type(outputs_t), intent(inout) :: out   !! the outputs
-      type(spb_error_t), allocatable, intent(out), optional :: err
+      type(spb_error_t), allocatable, intent(out), optional :: err   !! allocated: it failed
       type(spb_error_t), allocatable :: short
       call check_written(out, short)
       if (out%his /= no_unit) close(out%his)
@@ -377,7 +377,7 @@ contains
    !> Bytes in each text file now (written through to the file first).
    subroutine text_sizes(out, bytes)
       type(outputs_t), intent(in) :: out   !! the outputs
-      integer(int64), intent(out) :: bytes(4)
+      integer(int64), intent(out) :: bytes(4)   !! .his, .prf, .evt, .frg (0: not open)
       integer :: k, u(4)
       u = [out%his, out%prf, out%evt, out%frg]
       bytes = 0
@@ -471,7 +471,8 @@ contains
    subroutine find_header(path, k, head, size_bytes)
       character(len=*), intent(in) :: path   !! file path
       integer, intent(in) :: k             !! text file (text_extensions)
-      integer(int64), intent(out) :: head, size_bytes
+      integer(int64), intent(out) :: head         !! bytes of the header (-1: not found)
+      integer(int64), intent(out) :: size_bytes   !! bytes of the file
       integer, parameter :: scan_max = 4194304
       character(len=:), allocatable :: buf
       character(len=:), allocatable :: line
@@ -535,7 +536,7 @@ contains
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
-      character(len=*), intent(in) :: report(:)
+      character(len=*), intent(in) :: report(:)   !! the mesh fit report (stretched segments)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       logical :: whole(n_history), whole_evt(n_event_columns)
@@ -613,8 +614,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(out) :: u(:)        !! displacement of each half-node row [m]
-      real(wp), intent(out) :: v(:)
-      real(wp), intent(out) :: s(:)
+      real(wp), intent(out) :: v(:)        !! velocity of each row over the last step [m/s]
+      real(wp), intent(out) :: s(:)        !! stress of each row's cell [Pa]
       integer :: i, r
       r = 0
       do i = 0, mesh%n
@@ -658,7 +659,7 @@ contains
 
    !> The names of a table's columns, blank-separated.
    pure function column_names(table) result(line)
-      type(column_t), intent(in) :: table(:)
+      type(column_t), intent(in) :: table(:)   !! the table's columns
       character(len=:), allocatable :: line
       integer :: k
       line = trim(table(1)%name)
@@ -669,8 +670,8 @@ contains
 
    !> The blank-separated words of s.
    pure subroutine split(s, words)
-      character(len=*), intent(in) :: s
-      character(len=32), allocatable, intent(out) :: words(:)
+      character(len=*), intent(in) :: s   !! the text
+      character(len=32), allocatable, intent(out) :: words(:)   !! its words, in order
       integer :: i, j, n
       allocate(words(0))
       i = 1
@@ -749,7 +750,7 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       real(wp), intent(in) :: t            !! time of the row [s]
       real(wp), intent(in) :: dt           !! time step [s]
-      type(frag_info_t), intent(in) :: list(:)
+      type(frag_info_t), intent(in) :: list(:)   !! the fragments, top to bottom
       integer :: f
       character(len=:), allocatable :: g
       write(out%frg, '(a)') '# t = ' // rtoa(t)
@@ -822,14 +823,14 @@ contains
    !> An event kind's name right-justified in 16 characters (the A16 field of fmt_evt),
    !> without an allocatable temporary per event.
    pure function kind_field(kind) result(f)
-      integer, intent(in) :: kind
+      integer, intent(in) :: kind   !! event kind (ev_*)
       character(len=16) :: f
       f = adjustr('  ' // event_kind_names(max(1, min(4, kind))))
    end function kind_field
 
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.
    pure function unquote(v) result(r)
-      character(len=*), intent(in) :: v
+      character(len=*), intent(in) :: v   !! the value text
       character(len=:), allocatable :: r
       integer :: n
       n = len(v)

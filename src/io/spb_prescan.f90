@@ -316,7 +316,7 @@ contains
    !> End the open assignment (if any) at text position last.
    pure subroutine close_assignment(scan, last)
       type(deck_scan_t), intent(inout) :: scan   !! the prescan of the deck
-      integer, intent(in) :: last
+      integer, intent(in) :: last   !! text position where it ends
       integer :: k
       k = size(scan%last)
       if (k == 0) return
@@ -380,22 +380,22 @@ contains
 
    !> A control character other than tab, line feed and carriage return (binary junk).
    pure logical function is_control(c)
-      character, intent(in) :: c
+      character, intent(in) :: c   !! the character
       is_control = (iachar(c) < 32 .and. c /= achar(9) .and. c /= achar(10) .and. &
                     c /= achar(13)) .or. iachar(c) == 127
    end function is_control
 
    !> Whether c starts a name.
    pure logical function is_letter(c)
-      character, intent(in) :: c
+      character, intent(in) :: c   !! the character
       is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
    end function is_letter
 
    !> Read an identifier starting at text(j:), lower-cased; j ends after it.
    subroutine read_word(text, j, word)
       character(len=*), intent(in) :: text   !! the deck text
-      integer, intent(inout) :: j
-      character(len=:), allocatable, intent(out) :: word
+      integer, intent(inout) :: j   !! where the word starts; on return, just after it
+      character(len=:), allocatable, intent(out) :: word   !! the word, lower case
       integer :: j0
       character :: c
       j0 = j
@@ -409,7 +409,7 @@ contains
 
    !> The group names, comma-separated.
    pure function join_groups(names) result(s)
-      character(len=*), intent(in) :: names(:)
+      character(len=*), intent(in) :: names(:)   !! the group names
       character(len=:), allocatable :: s
       integer :: k
       s = ''

@@ -31,7 +31,7 @@ contains
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
-      character(len=*), intent(in) :: report(:)
+      character(len=*), intent(in) :: report(:)   !! the mesh fit report (stretched segments)
       type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
@@ -190,7 +190,8 @@ contains
       character(len=*), intent(in) :: columns   !! its column names, blank-separated
       type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
       type(outputs_t), intent(inout) :: out   !! the outputs
-      integer, intent(in) :: handle, rows      !! table handle in out%h5; rows to copy
+      integer, intent(in) :: handle            !! table handle in out%h5
+      integer, intent(in) :: rows              !! rows to copy
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=32), allocatable :: names(:)
       real(wp), allocatable :: col(:), table(:, :)

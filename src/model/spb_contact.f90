@@ -34,7 +34,12 @@ contains
    !> (5.6): stress in the section of a collision between halves moving at v_a (above)
    !> and v_b (below), with alpha = Z_below / Z_above.
    pure real(wp) function collision_stress(s_above, s_below, v_a, v_b, z_above, z_below) result(sz)
-      real(wp), intent(in) :: s_above, s_below, v_a, v_b, z_above, z_below
+      real(wp), intent(in) :: s_above      !! stress of the cell above the node [Pa]
+      real(wp), intent(in) :: s_below      !! stress of the cell below the node [Pa]
+      real(wp), intent(in) :: v_a          !! velocity of the upper half along +x [m/s]
+      real(wp), intent(in) :: v_b          !! velocity of the lower half along +x [m/s]
+      real(wp), intent(in) :: z_above      !! impedance of the cell above [kg/(m^2 s)]
+      real(wp), intent(in) :: z_below      !! impedance of the cell below [kg/(m^2 s)]
       real(wp) :: alpha
       alpha = z_below / z_above
       sz = (2.0_wp * (alpha * s_above + s_below) + (v_a - v_b) * z_below) / (alpha + 1.0_wp)
@@ -44,7 +49,8 @@ contains
    !> correction is smaller (min, (5.3)); corr is the chosen correction (5.2).
    pure subroutine choose_time(timing, d_acc, d_del, at_n, corr)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
-      real(wp), intent(in) :: d_acc, d_del   !! corrections (5.2) for t^n and t^{n+1} [m]
+      real(wp), intent(in) :: d_acc          !! correction (5.2) for a join at t^n [m]
+      real(wp), intent(in) :: d_del          !! correction (5.2) for a join at t^{n+1} [m]
       logical, intent(out) :: at_n           !! join at t^n (else at t^{n+1})
       real(wp), intent(out) :: corr          !! the correction of the chosen time [m]
       select case (timing)
@@ -66,7 +72,8 @@ contains
       integer, intent(in) :: timing            !! timing_* rule
       integer, intent(in) :: policy            !! shift_* policy
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      real(wp), intent(in) :: i_top, i_bot     !! face-load integrals over the step [Pa s]
+      real(wp), intent(in) :: i_top            !! top face-load integral over the step [Pa s]
+      real(wp), intent(in) :: i_bot            !! bottom face-load integral over the step [Pa s]
       integer, intent(in) :: rules             !! events_admissible | events_paper
       real(wp), intent(in) :: eps_rel          !! admissible: faces collide when they overlap
                                                !! by more than eps_rel dx (round-off) [-]
@@ -193,7 +200,8 @@ contains
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(in) :: rules         !! event rules (events_*)
       integer, intent(in) :: i             !! split node
-      integer, intent(out) :: r_top, r_bot
+      integer, intent(out) :: r_top        !! top node of the region the event can change
+      integer, intent(out) :: r_bot        !! bottom node of that region
       real(wp) :: d_acc, d_del, amount, corr, x, y
       integer :: j, k, top, bot
       logical :: at_n
@@ -400,7 +408,7 @@ contains
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       real(wp), intent(out) :: w               !! [m/s]
-      logical, intent(out) :: ok
+      logical, intent(out) :: ok               !! w exists and sets the region back by at most dt
       real(wp) :: mass, force, vm, disc
       w = 0.0_wp
       ok = .true.
@@ -427,7 +435,7 @@ contains
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       real(wp), intent(in) :: shift        !! its shift along x [m]
-      real(wp), intent(in) :: w
+      real(wp), intent(in) :: w            !! its velocity change (path_speed) [m/s]
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       real(wp) :: de, mass, mom, f_end, work
@@ -459,12 +467,17 @@ contains
    !> join is at t^n (the faces then keep the small gap they had: never an overlap).
    pure subroutine shift_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, moved, &
                                     i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: g, d_acc, d_del, i_top, i_bot
-      integer, intent(in) :: policy, i
-      logical, intent(inout) :: at_n
-      real(wp), intent(inout) :: corr
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: d_acc        !! correction (5.2) for a join at t^n [m]
+      real(wp), intent(in) :: d_del        !! correction (5.2) for a join at t^{n+1} [m]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: i             !! split node
+      logical, intent(inout) :: at_n       !! join at t^n (else t^{n+1}); updated to the time used
+      real(wp), intent(inout) :: corr      !! chosen correction (5.2); updated to the one used [m]
       real(wp), intent(out) :: moved         !! shift of the upper side (of the lower one where the
                                              !! upper stays) [m]
       integer :: top, bot, j, k
@@ -495,9 +508,10 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: delta
-      integer, intent(in) :: a, b
-      logical, intent(in) :: far
+      real(wp), intent(in) :: delta        !! the shift along x [m]
+      integer, intent(in) :: a             !! top node of the part (as top in shift_span)
+      integer, intent(in) :: b             !! bottom node of the part (as bot in shift_span)
+      logical, intent(in) :: far           !! the part lies beyond the two fragments
       real(wp) :: de
       call shift_span(mesh, st, g, a, b, delta, de)
       st%ledger%e_shift = st%ledger%e_shift - de
@@ -508,16 +522,22 @@ contains
    !> at the time (at_n) and with the correction (corr) it settles on.
    pure subroutine plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, &
                                    x, y, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      real(wp), intent(in) :: g, d_acc, d_del
-      real(wp), intent(in) :: i_top, i_bot   !! face-load integrals of the step [Pa s]: a side
-                                             !! that holds a loaded face only moves along the load
-      integer, intent(in) :: policy, i
-      logical, intent(inout) :: at_n
-      real(wp), intent(inout) :: corr
-      integer, intent(out) :: top, bot
-      real(wp), intent(out) :: x, y          !! [m]
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: d_acc        !! correction (5.2) for a join at t^n [m]
+      real(wp), intent(in) :: d_del        !! correction (5.2) for a join at t^{n+1} [m]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+                                           !! (a side holding a loaded face moves only along it)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      integer, intent(in) :: i             !! split node
+      logical, intent(inout) :: at_n       !! join at t^n (else t^{n+1}); updated to the time used
+      real(wp), intent(inout) :: corr      !! chosen correction (5.2); updated to the one used [m]
+      integer, intent(out) :: top          !! top node of the upper side
+      integer, intent(out) :: bot          !! bottom node of the lower side
+      real(wp), intent(out) :: x           !! the upper side moves by -x [m]
+      real(wp), intent(out) :: y           !! the lower side moves by +y [m]
       integer :: j, k, pass
       real(wp) :: m_u, m_l, bias, other
       logical :: anch_u, anch_l, blocked, lift
@@ -600,7 +620,8 @@ contains
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(in) :: i             !! split node
       real(wp), intent(in) :: corr         !! the chosen correction (5.2) [m]
-      integer, intent(out) :: top, bot         !! the region moved, as for shift_span
+      integer, intent(out) :: top              !! top node of the region moved, as for shift_span
+      integer, intent(out) :: bot              !! bottom node of the region moved
       real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
       integer :: j, k
       call fragment_span(mesh, st, i, j, k)
@@ -645,7 +666,7 @@ contains
       integer, intent(in) :: policy        !! shift policy (shift_*)
       real(wp), intent(in) :: corr         !! the chosen correction (5.2) [m]
       integer, intent(out) :: j            !! top node of the region
-      real(wp), intent(out) :: shift_amount
+      real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
       integer :: k
       call fragment_span(mesh, st, mesh%n, j, k)
       if (policy == shift_above) j = 0
@@ -801,9 +822,14 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       type(event_t), intent(inout) :: ev       !! kind, stress and stress_bound already set
-      integer, intent(in) :: node, above, below
+      integer, intent(in) :: node              !! node of the section (n: the base)
+      integer, intent(in) :: above             !! fragment id for frag_above (collision: the
+                                               !! merged fragment)
+      integer, intent(in) :: below             !! fragment id for frag_below (collision: the
+                                               !! lower one merged; base: 0)
       logical, intent(in) :: at_n              !! joined at t^n (else t^{n+1})
-      real(wp), intent(in) :: corr, shift      !! correction (5.2) and the shift applied [m]
+      real(wp), intent(in) :: corr             !! correction (5.2) of the chosen time [m]
+      real(wp), intent(in) :: shift            !! the shift applied [m]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       ev%step = st%step
       if (at_n) ev%step = st%step - 1
@@ -823,7 +849,7 @@ contains
    !> wave energy follows, as what the event removed.
    pure subroutine book_shift_work(st, work)
       type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: work
+      real(wp), intent(in) :: work         !! work of the face load on the shift [J/m^2]
       st%ledger%w_wave = st%ledger%w_wave + work
       st%ledger%e_lost_wave = st%ledger%e_lost_wave + work
    end subroutine book_shift_work

@@ -90,7 +90,7 @@ contains
    pure subroutine fragment_list(mesh, st, list)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      type(frag_info_t), allocatable, intent(out) :: list(:)
+      type(frag_info_t), allocatable, intent(out) :: list(:)   !! the fragments, top to bottom
       integer :: nf, top, bot, i, f
       logical :: whole_top, whole_bot
       real(wp) :: mom, ekin, estr, dt

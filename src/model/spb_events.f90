@@ -39,8 +39,8 @@ contains
 
    !> Append an event to the list (grown by doubling).
    pure subroutine push_event(list, ev)
-      type(event_list_t), intent(inout) :: list
-      type(event_t), intent(in) :: ev
+      type(event_list_t), intent(inout) :: list   !! the list (grown as needed)
+      type(event_t), intent(in) :: ev             !! the event to append
       type(event_t), allocatable :: grown(:)
       if (.not. allocated(list%e)) allocate(list%e(8))
       if (list%n == size(list%e)) then

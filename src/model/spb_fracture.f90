@@ -85,8 +85,9 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: delta
-      integer, intent(in) :: top, bot      !! end nodes; an end node of the bar moves whole
+      real(wp), intent(in) :: delta        !! rigid shift along x [m]
+      integer, intent(in) :: top           !! top node: its lower half B_top moves (all of it if 0)
+      integer, intent(in) :: bot           !! bottom node: its upper half A_bot moves (all if n)
       real(wp), intent(out) :: de_pot      !! [J/m^2]
       integer :: i
       do i = top, bot
@@ -100,8 +101,8 @@ contains
    !> birth step (kept per node like the id: memory does not grow with the events).
    pure subroutine new_fragment_id(st, parent, node)
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: parent
-      integer, intent(in) :: node
+      integer, intent(in) :: parent        !! id of the parent fragment (0: none)
+      integer, intent(in) :: node          !! top node of the new fragment
       st%gen%n_frag_ids = st%gen%n_frag_ids + 1
       st%gen%frag_id(node) = st%gen%n_frag_ids
       st%gen%frag_parent(node) = parent
@@ -117,7 +118,8 @@ contains
       real(wp), intent(in) :: eps_rel    !! round-off guard, relative to the stress scale
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       integer, intent(in) :: rules       !! events_admissible | events_paper
-      real(wp), intent(in) :: i_top, i_bot  !! face-load integrals over the step [Pa s]
+      real(wp), intent(in) :: i_top      !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot      !! load integral on the bottom face over the step [Pa s]
       integer, allocatable :: brk(:)
       real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
       integer :: cand(mesh%n)
@@ -268,8 +270,10 @@ contains
       type(state_t), intent(inout) :: st   !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: i             !! node
-      real(wp), intent(in) :: dd_a, dd_b   !! [m]
-      real(wp), intent(in) :: ds_a, ds_b   !! [Pa]
+      real(wp), intent(in) :: dd_a         !! change of the upper half's u and du [m]
+      real(wp), intent(in) :: dd_b         !! change of the lower half's u and du [m]
+      real(wp), intent(in) :: ds_a         !! stress change of the cell above [Pa]
+      real(wp), intent(in) :: ds_b         !! stress change of the cell below [Pa]
       real(wp) :: e0
       e0 = node_energy(mesh, st, g, i)
       st%ua(i) = st%ua(i) + dd_a
@@ -292,7 +296,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       integer, intent(in) :: i             !! node
-      integer, intent(in) :: j
+      integer, intent(in) :: j             !! top node of the fragment that broke
       real(wp), intent(in) :: stress          !! the section stress that broke it [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       type(event_t) :: ev

@@ -56,7 +56,7 @@ contains
 
    !> log(1 + x) accurate for small x (Goldberg's correction; F2008 has no log1p).
    pure elemental real(wp) function log1p_acc(x) result(r)
-      real(wp), intent(in) :: x
+      real(wp), intent(in) :: x   !! argument, > -1 [-]
       real(wp) :: w, d
       w = 1.0_wp + x
       d = w - 1.0_wp
@@ -69,7 +69,7 @@ contains
 
    !> exp(x) - 1 accurate for small x (Kahan's correction; F2008 has no expm1).
    pure elemental real(wp) function expm1_acc(x) result(r)
-      real(wp), intent(in) :: x
+      real(wp), intent(in) :: x   !! exponent [-]
       real(wp) :: w, d
       w = exp(x)
       d = w - 1.0_wp
@@ -85,7 +85,8 @@ contains
    !> Integral of p(t) over [a, b] (b >= a), exact for both load forms.
    pure real(wp) function load_integral(load, a, b) result(q)
       type(load_t), intent(in) :: load     !! the end load
-      real(wp), intent(in) :: a, b   !! window [s]
+      real(wp), intent(in) :: a   !! start of the window [s]
+      real(wp), intent(in) :: b   !! end of the window [s]
       select case (load%kind)
       case (load_power)
          q = power_integral(load, a, b)
@@ -101,7 +102,8 @@ contains
    !> Integral of the power-law load over [a, b] [Pa s].
    pure real(wp) function power_integral(load, a, b) result(q)
       type(load_t), intent(in) :: load     !! the end load
-      real(wp), intent(in) :: a, b
+      real(wp), intent(in) :: a   !! start of the window [s]
+      real(wp), intent(in) :: b   !! end of the window [s]
       real(wp) :: lo, hi, ca, cb, k
       lo = max(a, 0.0_wp)
       hi = min(b, load%t_cut)
@@ -127,7 +129,8 @@ contains
    !> p0 exp(-t/t_k) on [0, t_cut]: p0 t_k exp(-lo/t_k) (1 - exp(-(hi - lo)/t_k)).
    pure real(wp) function exponential_integral(load, a, b) result(q)
       type(load_t), intent(in) :: load     !! the end load
-      real(wp), intent(in) :: a, b
+      real(wp), intent(in) :: a   !! start of the window [s]
+      real(wp), intent(in) :: b   !! end of the window [s]
       real(wp) :: lo, hi
       lo = max(a, 0.0_wp)
       hi = min(b, load%t_cut)
@@ -138,8 +141,10 @@ contains
 
    !> Integral of the piecewise-linear table over [a, b]; p = 0 outside the table.
    pure real(wp) function table_integral(t, p, a, b) result(q)
-      real(wp), intent(in) :: t(:), p(:)
-      real(wp), intent(in) :: a, b
+      real(wp), intent(in) :: t(:)   !! table times [s], non-decreasing
+      real(wp), intent(in) :: p(:)   !! table pressures [Pa]
+      real(wp), intent(in) :: a      !! start of the window [s]
+      real(wp), intent(in) :: b      !! end of the window [s]
       integer :: i, lo_i, hi_i, mid
       real(wp) :: x0, x1, slope, p_at0, p_at1
       q = 0.0_wp

@@ -156,7 +156,8 @@ contains
    !> dx = a dt, masses Z dt, stiffness E/dx, positions, half masses, cumulative mass.
    pure subroutine fill_cells(prob, a, zz, mesh)
       type(problem_t), intent(in) :: prob   !! the problem
-      real(wp), intent(in) :: a(:), zz(:)     !! wave speed [m/s], impedance per segment
+      real(wp), intent(in) :: a(:)            !! wave speed per segment [m/s]
+      real(wp), intent(in) :: zz(:)           !! impedance per segment [kg/(m^2 s)]
       type(mesh_t), intent(inout) :: mesh   !! the mesh
       integer :: i, j, k
       real(wp) :: dt

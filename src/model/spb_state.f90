@@ -340,7 +340,7 @@ contains
    !> Split interior node i (it must be joined): its halves move apart from now on. O(n_split).
    pure subroutine open_node(st, i)
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! the interior node to split
       integer :: c
       c = st%n_split
       do while (c > 0)
@@ -356,7 +356,7 @@ contains
    !> Join split interior node i: its halves move together from now on. O(n_split).
    pure subroutine close_node(st, i)
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: i
+      integer, intent(in) :: i             !! the interior node to join
       integer :: c, k
       k = 0
       do c = 1, st%n_split

@@ -20,7 +20,8 @@ contains
       real(wp), intent(in) :: g                   !! gravity [m/s^2]
       real(wp), intent(out) :: u(0:mesh%n)        !! [m]
       real(wp), intent(out) :: s(1:mesh%n)        !! [Pa], compression positive
-      real(wp), intent(out) :: s_top, s_bot       !! [Pa]
+      real(wp), intent(out) :: s_top              !! top end stress, as a cell above node 0 [Pa]
+      real(wp), intent(out) :: s_bot              !! bottom end stress, as a cell below node n [Pa]
       real(wp) :: m(0:mesh%n), c(mesh%n), d(mesh%n), w
       logical :: top_held, bot_held
       integer :: i, n

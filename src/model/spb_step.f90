@@ -36,7 +36,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(out) :: s_top, s_bot   !! [Pa]
+      real(wp), intent(out) :: s_top          !! top face stress, as a cell above node 0 [Pa]
+      real(wp), intent(out) :: s_bot          !! bottom face stress, as a cell below node n [Pa]
       integer, intent(in), optional :: step   !! the step index n (default st%step)
       real(wp) :: p
       integer :: m
@@ -74,7 +75,7 @@ contains
    pure subroutine face_load_integrals(mesh, load, step, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
-      integer, intent(in) :: step
+      integer, intent(in) :: step          !! step index: the step ends at t^step
       real(wp), intent(out) :: i_top       !! load integral on the top face over the step [Pa s]
       real(wp), intent(out) :: i_bot       !! load integral on the bottom face over the step [Pa s]
       real(wp) :: q
@@ -92,9 +93,10 @@ contains
    !> Integral of the load over the step from t^n to t^{n+1} on the face it acts on [Pa s].
    pure subroutine step_load_integrals(load, n, dt, q_top, q_bot)
       type(load_t), intent(in) :: load     !! the end load
-      integer, intent(in) :: n
+      integer, intent(in) :: n             !! step index: the step from t^n to t^{n+1}
       real(wp), intent(in) :: dt           !! time step [s]
-      real(wp), intent(out) :: q_top, q_bot
+      real(wp), intent(out) :: q_top       !! the integral if the top is loaded, else 0 [Pa s]
+      real(wp), intent(out) :: q_bot       !! the integral if the bottom is loaded, else 0 [Pa s]
       real(wp) :: q
       q_top = 0.0_wp
       q_bot = 0.0_wp
@@ -225,7 +227,7 @@ contains
       type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: g                     !! gravity along +x [m/s^2]
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: nsteps
+      integer, intent(in) :: nsteps                 !! steps to take
       integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
       real(wp), intent(out), optional :: max_sec_bottom  !! largest sec(n) of these steps [Pa]
       type(end_step_t) :: r(nsteps)
@@ -316,7 +318,8 @@ contains
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       real(wp), intent(in) :: s(0:)       !! cell stresses s^n, ends included [Pa]
       real(wp), intent(inout) :: du(0:)   !! increments [m]
-      integer, intent(in) :: i0, i1
+      integer, intent(in) :: i0           !! first node to update
+      integer, intent(in) :: i1           !! last node to update
       real(wp) :: dt2
       integer :: i
       dt2 = mesh%dt * mesh%dt
@@ -337,7 +340,7 @@ contains
    pure subroutine hold_top(mesh, st, r)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      type(end_step_t), intent(inout) :: r
+      type(end_step_t), intent(inout) :: r   !! the step's end-node record (top part set)
       r%held_top = mesh%top == end_fixed
       if (r%held_top) then
          r%p_top = mesh%ma(0) * st%dua(0) + mesh%mb(0) * st%dub(0)
@@ -351,7 +354,7 @@ contains
    pure subroutine hold_bottom(mesh, st, r)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      type(end_step_t), intent(inout) :: r
+      type(end_step_t), intent(inout) :: r   !! the step's end-node record (bottom part set)
       integer :: n
       n = mesh%n
       r%held_bot = mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%ends%base_contact)
@@ -369,7 +372,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       type(state_t), intent(inout) :: st   !! the state
-      type(end_step_t), intent(in) :: r
+      type(end_step_t), intent(in) :: r    !! what the step did at the end nodes
       real(wp) :: dt, du_top_old, du_bot_old
       integer :: n
       n = mesh%n

@@ -81,8 +81,8 @@ contains
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       real(wp) :: e, jp, jr, ja
       integer :: t, b, i
       ! gravity potential at mid-step, -g m (u^n + u^{n+1})/2, of the halves the region owns
@@ -119,7 +119,8 @@ contains
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
+      real(wp), intent(in) :: i_top          !! top face-load integral over the step [Pa s]
+      real(wp), intent(in) :: i_bot          !! bottom face-load integral over the step [Pa s]
       real(wp), intent(out) :: e             !! continuum energy [J/m^2]
       real(wp), intent(out) :: jprime        !! alternating sum J' with the load terms [kg/(m s)]
       real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
@@ -185,10 +186,11 @@ contains
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      real(wp), intent(in) :: i_top, i_bot   !! face-load integrals over the step [Pa s]
-      logical, intent(in) :: at_n
-      real(wp), intent(out) :: f(top+1:)
-      real(wp), intent(out) :: g(top+1:)   !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top          !! top face-load integral over the step [Pa s]
+      real(wp), intent(in) :: i_bot          !! bottom face-load integral over the step [Pa s]
+      logical, intent(in) :: at_n          !! the t^n intervals (else those at t^{n+1})
+      real(wp), intent(out) :: f(top+1:)   !! down-going interval f_k of each cell [m]
+      real(wp), intent(out) :: g(top+1:)   !! up-going interval g_k of each cell [m]
       real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot)), jp, jr, ja
       call fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jp, jr, ja)
       g(top+1:bot) = h(top+1:bot) / mesh%z(top+1:bot)
@@ -200,13 +202,19 @@ contains
    !> the cell below).
    pure subroutine fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jprime, jordan, &
                               jordan_abs)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      integer, intent(in) :: top, bot
-      real(wp), intent(in) :: i_top, i_bot
-      logical, intent(in) :: at_n
-      real(wp), intent(out) :: h(top+1:), sdt(top+1:)   !! [kg/(m s)] each
-      real(wp), intent(out) :: jprime, jordan, jordan_abs
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      logical, intent(in) :: at_n          !! the t^n reading (s^n), else t^{n+1} (s^{n+1})
+      real(wp), intent(out) :: h(top+1:)     !! h_k = Z_k g_k of each cell [kg/(m s)]
+      real(wp), intent(out) :: sdt(top+1:)   !! s_k dt of each cell [kg/(m s)]
+      real(wp), intent(out) :: jprime        !! alternating sum J' with the load terms [kg/(m s)]
+      real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
+                                             !! and |s dt| [kg/(m s)]
+      real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
       real(wp) :: r(top:bot), h_dn(top+1:max(top+1, bot)), h_up(top+1:max(top+1, bot))
       real(wp) :: dt, load_top, load_bot, scale, sgn, res, alpha, num, den
       logical :: eq_top, eq_bot, tr_top, tr_bot
@@ -305,8 +313,10 @@ contains
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      logical, intent(in) :: eq_top, eq_bot          !! the faces give equations
-      real(wp), intent(in) :: load_top, load_bot     !! their load terms [kg/(m s)]
+      logical, intent(in) :: eq_top                  !! the top face gives an equation
+      logical, intent(in) :: eq_bot                  !! the bottom face gives an equation
+      real(wp), intent(in) :: load_top               !! load term of the top face [kg/(m s)]
+      real(wp), intent(in) :: load_bot               !! load term of the bottom face [kg/(m s)]
       real(wp), intent(inout) :: jprime              !! J' from the nodes [kg/(m s)]
       ! Found by computing the
       ! conserved functional of the affine one-step map and checked exact (round-off) for
@@ -375,12 +385,18 @@ contains
    !> the free face's reading is exact there (Example 1's splinter under g).
    pure subroutine face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, &
                                   load_top, load_bot, tr_top, tr_bot)
-      type(mesh_t), intent(in) :: mesh
-      type(state_t), intent(in) :: st
-      integer, intent(in) :: top, bot
-      real(wp), intent(in) :: i_top, i_bot
-      logical, intent(out) :: eq_top, eq_bot, tr_top, tr_bot
-      real(wp), intent(out) :: load_top, load_bot
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      logical, intent(out) :: eq_top       !! the top face gives an equation (tr_top included)
+      logical, intent(out) :: eq_bot       !! the bottom face gives an equation (tr_bot included)
+      logical, intent(out) :: tr_top       !! the top face is a transmitting end that is used
+      logical, intent(out) :: tr_bot       !! the bottom face is a transmitting end that is used
+      real(wp), intent(out) :: load_top    !! load term of the top face, I_top/2 or 0 [kg/(m s)]
+      real(wp), intent(out) :: load_bot    !! load term of the bottom face, I_bot/2 or 0 [kg/(m s)]
       load_top = 0.0_wp
       load_bot = 0.0_wp
       if (top > 0) then

@@ -27,7 +27,8 @@ contains
    !> Action act is due at every multiple of period (period <= 0: never by period).
    pure subroutine schedule_every(sched, act, period)
       type(schedule_t), intent(inout) :: sched   !! the schedule
-      integer, intent(in) :: act, period   !! act_* ; [steps]
+      integer, intent(in) :: act           !! the action (act_*)
+      integer, intent(in) :: period        !! its period [steps]
       sched%every(act) = max(period, 0)
    end subroutine schedule_every
 
@@ -41,7 +42,8 @@ contains
    !> Whether action act is due by its period at step n (list actions: see next_due).
    pure logical function is_due(sched, act, n)
       type(schedule_t), intent(in) :: sched   !! the schedule
-      integer, intent(in) :: act, n
+      integer, intent(in) :: act           !! the action (act_*)
+      integer, intent(in) :: n             !! the step
       is_due = .false.
       if (sched%every(act) > 0) is_due = mod(n, sched%every(act)) == 0
    end function is_due

@@ -80,9 +80,10 @@ contains
    !> scheme's own (e_wave = e_kin + e_strain, w_wave = w_ext, e_lost_w = e_lost).
    pure subroutine measure(sim, e, wv, w_wave, e_lost_w)
       type(sim_t), intent(in) :: sim       !! the simulation
-      type(energies_t), intent(in) :: e
-      type(wave_t), intent(out) :: wv
-      real(wp), intent(out) :: w_wave, e_lost_w     !! [J/m^2]
+      type(energies_t), intent(in) :: e    !! the scheme's energies (spb_diag)
+      type(wave_t), intent(out) :: wv      !! the wave measure (full mass: only e_wave)
+      real(wp), intent(out) :: w_wave      !! work in that measure [J/m^2]
+      real(wp), intent(out) :: e_lost_w    !! energy events removed, in that measure [J/m^2]
       real(wp) :: q_top, q_bot
       if (sim%mesh%full_mass) then
          wv%e_wave = e%e_kin + e%e_strain
@@ -219,7 +220,7 @@ contains
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      type(checkpoint_t), intent(in), optional :: resume
+      type(checkpoint_t), intent(in), optional :: resume   !! checkpoint to resume from
       associate (opt => sim%opt)
          run%ck_on = run%to_files .and. len(opt%checkpoint) > 0
          if (run%to_files) call claim_outputs(prefix, sim%record, opt%checkpoint, err)
@@ -318,7 +319,7 @@ contains
       type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      logical, intent(out) :: stop_now
+      logical, intent(out) :: stop_now     !! the run ends here
       integer :: n, sig
       logical :: wrote_row
       integer(int64) :: c_now
@@ -463,8 +464,8 @@ contains
    subroutine guard(sim, summary, e, wv, w_w, err)
       type(sim_t), intent(in) :: sim       !! the simulation
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
-      type(energies_t), intent(in) :: e
-      type(wave_t), intent(in) :: wv
+      type(energies_t), intent(in) :: e    !! the scheme's energies (e_pot is used)
+      type(wave_t), intent(in) :: wv       !! the wave measure
       real(wp), intent(in) :: w_w      !! work in that measure [J/m^2]
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       real(wp) :: excess

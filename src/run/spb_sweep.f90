@@ -85,10 +85,10 @@ contains
    !> The deck of case c: the varied variable set to its value, the realization's seed.
    subroutine case_deck(deck, c, cdeck, value, realization, err)
       type(deck_t), intent(in) :: deck     !! the deck
-      integer, intent(in) :: c
-      type(deck_t), intent(out) :: cdeck
-      real(wp), intent(out) :: value
-      integer, intent(out) :: realization
+      integer, intent(in) :: c                 !! case number (1..sweep_case_count)
+      type(deck_t), intent(out) :: cdeck       !! the case's deck
+      real(wp), intent(out) :: value           !! value of the varied variable (0: none varied)
+      integer, intent(out) :: realization      !! the case's realization (0: none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer :: nrep, iv
       nrep = max(1, deck%sweep%realizations)
@@ -113,10 +113,11 @@ contains
    !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin).
    subroutine run_case(deck, c, nbins, l_hist, row, hist)
       type(deck_t), intent(in) :: deck     !! the deck
-      integer, intent(in) :: c, nbins
+      integer, intent(in) :: c               !! case number
+      integer, intent(in) :: nbins           !! histogram bins
       real(wp), intent(in) :: l_hist         !! histogram range [m]
-      real(wp), intent(out) :: row(n_columns)
-      integer, intent(out) :: hist(nbins)
+      real(wp), intent(out) :: row(n_columns)   !! the case's table row (sweep_table columns)
+      integer, intent(out) :: hist(nbins)    !! fragments per length bin
       type(deck_t) :: cdeck
       type(sim_t) :: sim
       type(run_summary_t) :: summary
@@ -223,7 +224,8 @@ contains
    !> case order (rank 0 receives in the same order: no deadlock).
    subroutine run_static(deck, k, me, l_hist, progress, t0, rows, hists)
       type(deck_t), intent(in) :: deck     !! the deck
-      integer, intent(in) :: k, me             !! ranks, this rank
+      integer, intent(in) :: k                 !! ranks
+      integer, intent(in) :: me                !! this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
       real(wp), intent(in) :: t0               !! par_wtime at the start [s]
@@ -261,7 +263,8 @@ contains
    !> the other ranks compute. Case 0 means stop.
    subroutine run_dynamic(deck, rank, nranks, l_hist, progress, t0, rows, hists)
       type(deck_t), intent(in) :: deck     !! the deck
-      integer, intent(in) :: rank, nranks      !! this rank, ranks
+      integer, intent(in) :: rank              !! this rank
+      integer, intent(in) :: nranks            !! ranks
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
       real(wp), intent(in) :: t0               !! par_wtime at the start [s]
@@ -310,7 +313,8 @@ contains
 
    !> The sweep's progress line on stderr.
    subroutine show(n_done, n_all, t0)
-      integer, intent(in) :: n_done, n_all     !! cases done, all cases
+      integer, intent(in) :: n_done            !! cases done
+      integer, intent(in) :: n_all             !! all cases
       real(wp), intent(in) :: t0               !! par_wtime at the start [s]
       character(len=100) :: line
       write(line, '(a,i0,a,i0,a,f8.1,a)') 'spallbar sweep: ', min(n_done, n_all), ' of ', &
@@ -324,7 +328,7 @@ contains
    !> histogram range is the longest bar of the cases.
    subroutine check_cases(deck, l_hist, err)
       type(deck_t), intent(in) :: deck     !! the deck
-      real(wp), intent(out) :: l_hist
+      real(wp), intent(out) :: l_hist      !! histogram range: the longest bar of the cases [m]
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(deck_t) :: cdeck
       type(mesh_t) :: mesh
@@ -358,7 +362,7 @@ contains
    subroutine write_table(deck, prefix, rows, err)
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
-      real(wp), intent(in) :: rows(:, :)
+      real(wp), intent(in) :: rows(:, :)       !! (column, case)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=24) :: cell
       character(len=:), allocatable :: line
@@ -423,9 +427,9 @@ contains
    subroutine write_h5(deck, prefix, rows, hists, l_hist, err)
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
-      real(wp), intent(in) :: rows(:, :)
-      integer, intent(in) :: hists(:, :)
-      real(wp), intent(in) :: l_hist
+      real(wp), intent(in) :: rows(:, :)       !! (column, case)
+      integer, intent(in) :: hists(:, :)       !! (bin, case)
+      real(wp), intent(in) :: l_hist           !! histogram range [m]
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       real(wp) :: col(size(rows, 2))
