@@ -374,9 +374,10 @@ contains
       spb_integer = v%integer
       spb_logical = v%logical
       spb_text = v%text
-      spb_reals = v%reals
-      spb_texts = v%texts
+      allocate(spb_reals, source=v%reals)
+      allocate(spb_texts, source=v%texts)
       read(record, nml=spb_value, iostat=ios)
+      if (ios /= 0) return   ! the slots keep what they had
       v%real = spb_real
       v%integer = spb_integer
       v%logical = spb_logical
