@@ -17,6 +17,7 @@ usage: cli_faults.py SPALLBAR WORKDIR
 """
 import os
 import shutil
+import stat
 import subprocess
 import sys
 import time
@@ -310,6 +311,46 @@ def tampered_checkpoints(exe, work, check):
     check(r.returncode == 0, f"untouched checkpoint restarts: exit {r.returncode} {r.stderr!r}")
 
 
+def special_files(exe, work, check):
+    """A FIFO (or a device) is never a deck, a load table or a checkpoint: a FIFO deck hung
+    in open, or was read once by the scan only; a checkpoint renamed over a device or the
+    load table replaced it (issue 19). Exit 2, one line, nothing written."""
+    d = os.path.join(work, "special")
+    os.makedirs(d)
+    os.mkfifo(os.path.join(d, "fifo"))
+    with open(os.path.join(d, "t.txt"), "w") as f:
+        f.write("0 0\n1e-4 1e6\n2e-4 0\n")
+    table = SMALL.replace("kind = 'power', p0 = 1e6, t_k = 1e-4", "kind = 'table', table = 't.txt'")
+    cases = (("deck_fifo", None, "fifo", "deck: 'fifo' is not a regular file"),
+             ("table_fifo", table.replace("'t.txt'", "'fifo'"), "d.nml",
+              "&load: table = 'fifo': not a regular file"),
+             ("checkpoint_table", table.replace("title = 'small'",
+                                                "title = 'small', checkpoint = 't.txt'"),
+              "d.nml", "&run: checkpoint = 't.txt' is the load table of this deck"),
+             ("checkpoint_fifo", SMALL.replace("title = 'small'",
+                                               "title = 'small', checkpoint = 'fifo'"),
+              "d.nml", "&run: checkpoint = 'fifo' is not a regular file"))
+    for name, text, deck, expect in cases:
+        if text is not None:
+            with open(os.path.join(d, deck), "w") as f:
+                f.write(text)
+        before = open(os.path.join(d, "t.txt")).read()
+        try:
+            r = subprocess.run([exe, deck, "--quiet", "--output", "out"], cwd=d, timeout=20,
+                               capture_output=True, text=True, stdin=subprocess.DEVNULL)
+        except subprocess.TimeoutExpired:
+            check(False, f"{name}: hangs")
+            continue
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0],
+              f"{name}: exit {r.returncode}, {r.stderr!r}")
+        check(open(os.path.join(d, "t.txt")).read() == before, f"{name}: the load table changed")
+        check(stat.S_ISFIFO(os.stat(os.path.join(d, "fifo")).st_mode), f"{name}: the FIFO replaced")
+        check(not any(os.path.exists(os.path.join(d, "out" + e))
+                      for e in (".his", ".prf", ".evt", ".frg", ".h5")), f"{name}: wrote outputs")
+        print(f"ok   {name}: {lines[0] if lines else ''}")
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
@@ -322,6 +363,7 @@ def main():
     deck_reals(exe, work, check)
     load_tables(exe, work, check)
     tampered_checkpoints(exe, work, check)
+    special_files(exe, work, check)
     return check.finish()
 
 

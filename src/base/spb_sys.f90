@@ -9,7 +9,12 @@ module spb_sys
    private
    public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
    public :: fp_traps_off, fp_traps_restore, heap_for_large_arrays
-   public :: sys_file_size, sys_lock, sys_real_path, sys_is_directory
+   public :: sys_file_size, sys_lock, sys_real_path, sys_is_directory, sys_file_kind
+   public :: file_missing, file_regular, file_folder, file_other
+   integer, parameter :: file_missing = -1   !! sys_file_kind: nothing there
+   integer, parameter :: file_regular = 0    !! sys_file_kind: a regular file
+   integer, parameter :: file_folder = 1     !! sys_file_kind: a folder
+   integer, parameter :: file_other = 2      !! sys_file_kind: a FIFO, device or socket
 
    type(ieee_flag_type), parameter :: read_traps(3) = [ieee_overflow, ieee_invalid, &
       ieee_divide_by_zero]
@@ -28,6 +33,13 @@ module spb_sys
          integer(c_int), value :: status   !! exit status of the process
       end subroutine c_exit_now
       !> C isatty(3).
+      function c_file_kind(path) bind(c, name='spb_file_kind') result(r)
+         import :: c_char, c_int
+         implicit none
+         character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
+         integer(c_int) :: r
+      end function c_file_kind
+
       function c_isatty(fd) bind(c, name='isatty') result(r)
          import :: c_int
          implicit none
@@ -215,6 +227,13 @@ contains
       real_path = buffer(:k - 1) // '/' // name
       if (buffer(:k - 1) == '/') real_path = '/' // name
    end function sys_real_path
+
+   !> What path names (following links): file_missing, file_regular, file_folder or
+   !> file_other (a FIFO, a device, a socket: never a deck, an input or an output).
+   integer function sys_file_kind(path)
+      character(len=*), intent(in) :: path   !! a path
+      sys_file_kind = int(c_file_kind(trim(path) // c_null_char))
+   end function sys_file_kind
 
    !> Whether path names a folder.
    logical function sys_is_directory(path)

@@ -4,7 +4,7 @@ module spb_load_table
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa
-   use spb_sys, only: fp_traps_off, fp_traps_restore
+   use spb_sys, only: fp_traps_off, fp_traps_restore, sys_file_kind, file_other
    implicit none
    private
    public :: read_table
@@ -27,6 +27,11 @@ contains
       real(wp), allocatable :: tw(:), pw(:)
       logical :: traps(3)
 
+      if (sys_file_kind(path) == file_other) then
+         call make_error(err, '&load: table = ''' // trim(path) // ''': not a regular file ' // &
+                         '(a FIFO, a device or a socket)')
+         return
+      end if
       open(newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
       if (ios /= 0) then
          call make_error(err, '&load: table = ''' // trim(path) // ''': cannot open: ' // trim(msg))

@@ -12,7 +12,8 @@ module spb_output
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
       h5_table_rows, h5_xt_rows, h5_read_size
-   use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory
+   use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
+      sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
    use spb_events, only: event_list_t, event_kind_names
@@ -283,9 +284,15 @@ contains
       if (ck == sys_real_path(rec%path)) then
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is the deck ' // &
                          'itself; give the checkpoint a file of its own')
+      else if (len(rec%table) > 0 .and. ck == sys_real_path(rec%table)) then
+         call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is the load ' // &
+                         'table of this deck; give the checkpoint a file of its own')
       else if (sys_is_directory(checkpoint)) then
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is a folder; ' // &
                          'give a file such as ''' // checkpoint // '/run.h5''')
+      else if (sys_file_kind(checkpoint) == file_other) then
+         call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is not a ' // &
+                         'regular file (a FIFO, a device or a socket); give a file of its own')
       end if
    end subroutine claim_outputs
 

@@ -7,6 +7,7 @@ module spb_prescan
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, lower
    use spb_kinds, only: path_len
+   use spb_sys, only: sys_file_kind, file_regular, file_other
    implicit none
    private
    public :: deck_scan_t, scan_deck, has_group, has_var, assignment_text, group_preamble
@@ -46,6 +47,12 @@ contains
       integer :: u, ios, fsize
       character(len=256) :: msg
 
+      if (sys_file_kind(path) == file_other) then
+         ! a FIFO would block the open (or be read once, by the scan only), a device endlessly
+         call make_error(err, 'deck: ''' // trim(path) // ''' is not a regular file (a FIFO, ' &
+                         // 'a device or a socket); give the deck as a file')
+         return
+      end if
       open(newunit=u, file=path, status='old', action='read', access='stream', &
            form='unformatted', iostat=ios, iomsg=msg)
       if (ios /= 0) then
@@ -149,36 +156,38 @@ contains
       end do
    end subroutine skip_comment
 
-   !> A quoted string (a doubled quote stands for one), inside a group, terminated, not
-   !> longer than a string variable, without control characters.
+   !> A quoted string (a doubled quote stands for one), inside a group, closed on the line
+   !> it opens on (a string running over a line end is a missing quote: the quote that
+   !> seems to close it belongs to a later value), not longer than a string variable,
+   !> without control characters (a tab included). Messages name the variable assigned.
    subroutine skip_string(lx, text, err)
       type(lexer_t), intent(inout) :: lx   !! where the scan is
       character(len=*), intent(in) :: text   !! the deck text
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character :: quote
-      integer :: j, string_line
+      character :: quote, c
+      integer :: j
       if (.not. lx%in_group) then
          call make_error(err, 'deck: line ' // itoa(lx%line) // ': text outside any &group')
          return
       end if
       quote = text(lx%i:lx%i)
-      string_line = lx%line
       lx%i = lx%i + 1
       j = lx%i
       do
          if (lx%i - j > path_len - 1) then
             ! longer than any string variable: gfortran would cut it with a warning
-            call make_error(err, '&' // lx%group // ': ' // lx%var // ': a string longer than ' &
+            call make_error(err, string_where(lx) // 'a string longer than ' &
                             // itoa(path_len - 1) // ' characters (line ' // &
-                            itoa(string_line) // ')')
+                            itoa(lx%line) // ')')
             return
          end if
          if (lx%i > lx%n) then
-            call make_error(err, '&' // lx%group // ': unterminated string starting at line ' &
-                            // itoa(string_line))
+            call make_error(err, string_where(lx) // 'unterminated string starting at line ' &
+                            // itoa(lx%line))
             return
          end if
-         if (text(lx%i:lx%i) == quote) then
+         c = text(lx%i:lx%i)
+         if (c == quote) then
             if (lx%i < lx%n) then
                if (text(lx%i+1:lx%i+1) == quote) then
                   lx%i = lx%i + 2
@@ -188,11 +197,14 @@ contains
             lx%i = lx%i + 1
             exit
          end if
-         if (text(lx%i:lx%i) == achar(10)) lx%line = lx%line + 1
-         if (is_control(text(lx%i:lx%i))) then
-            call make_error(err, '&' // lx%group // ': line ' // itoa(lx%line) // &
-                            ': character code ' // itoa(iachar(text(lx%i:lx%i))) // &
-                            ' in a string is not deck text')
+         if (c == achar(10) .or. c == achar(13)) then
+            call make_error(err, string_where(lx) // 'unterminated string starting at line ' &
+                            // itoa(lx%line) // ' (a string closes on its own line)')
+            return
+         end if
+         if (is_control(c) .or. c == achar(9)) then
+            call make_error(err, string_where(lx) // 'character code ' // itoa(iachar(c)) // &
+                            ' in a string (line ' // itoa(lx%line) // ') is not deck text')
             return
          end if
          lx%i = lx%i + 1
@@ -242,6 +254,7 @@ contains
          scan%groups = [character(len=key_len) :: scan%groups, word]
          scan%group_first = [scan%group_first, j]
          lx%group = word
+         lx%var = ''
          lx%group_line = lx%line
          lx%in_group = .true.
       end if
@@ -377,6 +390,14 @@ contains
       has_var = .false.     ! a deck built in memory has no scan
       if (allocated(scan%keys)) has_var = any(scan%keys == group // ':' // var)
    end function has_var
+
+   !> '&group: variable: ' of the string being scanned ('&group: ' before any assignment).
+   function string_where(lx) result(text)
+      type(lexer_t), intent(in) :: lx   !! where the scan is
+      character(len=:), allocatable :: text
+      text = '&' // lx%group // ': '
+      if (len(lx%var) > 0) text = text // lx%var // ': '
+   end function string_where
 
    !> A control character other than tab, line feed and carriage return (binary junk).
    pure logical function is_control(c)

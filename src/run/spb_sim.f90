@@ -148,6 +148,14 @@ contains
       if (prob%load_kind == load_table) then
          call read_table(deck%load%table, prob%table_t, prob%table_p, err)
          if (allocated(err)) return
+      else if (len_trim(deck%load%table) > 0) then
+         ! a table given with another kind is not used, but a missing or malformed one is a
+         ! mistake in the deck all the same (doc/deck.md)
+         block
+            real(wp), allocatable :: t_unused(:), p_unused(:)
+            call read_table(deck%load%table, t_unused, p_unused, err)
+            if (allocated(err)) return
+         end block
       end if
       call build_load(prob, load)
    end subroutine setup_model
