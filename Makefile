@@ -9,6 +9,8 @@
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): figure, table
 #   make golden REF=REV  every output of the Release program against revision REV's (scripts/golden.py)
+#   make archive-check   every deck of input/ against the results archive (archive/, doc/archive.md)
+#   make rebaseline WHY="..."  rewrite archive/ with this program; WHY goes to archive/CHANGES.md
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
@@ -28,12 +30,12 @@ RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug debug-configure run test test-translator figures bench fragmentation golden clean help
+.PHONY: all setup build debug debug-configure run test test-translator figures bench fragmentation golden archive-check rebaseline clean help
 
 all: build
 
 help:
-	@sed -n '1,12p' Makefile
+	@sed -n '1,14p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -83,5 +85,11 @@ clean:
 	rm -rf build
 
 REF ?= HEAD
+archive-check: build
+	python3 scripts/archive.py check --exe $(BUILD_RELEASE)/bin/spallbar --compare $(BUILD_RELEASE)/bin/spallbar-compare
+
+rebaseline: build
+	python3 scripts/archive.py rebaseline --exe $(BUILD_RELEASE)/bin/spallbar --why "$(WHY)"
+
 golden: build
 	python3 scripts/golden.py --exe $(BUILD_RELEASE)/bin/spallbar --ref-rev $(REF) --work $(BUILD_RELEASE)/golden

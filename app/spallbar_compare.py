@@ -2,7 +2,7 @@
 """spallbar-compare: compare a candidate curve table with a reference, with tolerances.
 
     spallbar-compare REFERENCE CANDIDATE [--column NAME[:CAND_NAME]]... [--rtol R] [--atol A]
-                     [--time-tol T] [--report FILE] [--plot FILE.png] [--quiet]
+                     [--time-tol T] [--t-max T] [--report FILE] [--plot FILE.png] [--quiet]
 
 REFERENCE and CANDIDATE are spallbar column outputs (.his, .gau, .sweep: `#` header lines,
 the last one naming the columns) or plain tables `t value ...` (`#` or `!` comments, blanks
@@ -20,7 +20,8 @@ explicitly) is evaluated at the reference's abscissae, the candidate interpolate
 --time-tol T it also passes when the candidate curve comes within that band somewhere within
 +-T of the point's abscissa (a tube: timing differences within T pass; for curves read off a
 figure), and the shift it needed is reported. A reference point outside the candidate's
-abscissa range fails (unless the tube reaches it).
+abscissa range fails (unless the tube reaches it). --t-max T compares the reference's
+points up to abscissa T only.
 
 Prints per column: points, max absolute and relative error, relative L1 and L2 norms
 (sum |c - r| / sum |r|, sqrt(sum (c - r)^2 / sum r^2)), failures, the largest time shift
@@ -228,7 +229,8 @@ def report_lines(ref, cand, results, args):
     out = [f"# {PROG}: reference {ref}, candidate {cand}",
            f"# pass: |c - r| <= atol + rtol |r|, rtol = {args.rtol:g}, atol = "
            + (f"{args.atol:g}" if args.atol is not None else "1e-9 of each column's largest |r|")
-           + (f"; tube +-{args.time_tol:g} in the abscissa" if args.time_tol > 0 else ""),
+           + (f"; tube +-{args.time_tol:g} in the abscissa" if args.time_tol > 0 else "")
+           + (f"; up to {args.t_max:g}" if args.t_max is not None else ""),
            "| column | points | max abs error | max rel error | rel L1 | rel L2 | failures "
            "| largest time shift | first failure at |",
            "|---|---|---|---|---|---|---|---|---|"]
@@ -281,6 +283,8 @@ def main(argv=None):
     p.add_argument("--rtol", type=float, default=1e-6)
     p.add_argument("--atol", type=float, default=None)
     p.add_argument("--time-tol", type=float, default=0.0)
+    p.add_argument("--t-max", type=float, default=None,
+                   help="compare the reference's points up to this abscissa only")
     p.add_argument("--report", metavar="FILE")
     p.add_argument("--plot", metavar="FILE.png")
     p.add_argument("--quiet", action="store_true", help="no table on stdout, only the status")
@@ -297,6 +301,11 @@ def main(argv=None):
                 raise BadInput(f"{name} must be a finite number >= 0, got {v}")
         ref = read_table(args.reference)
         cand = read_table(args.candidate)
+        if args.t_max is not None:
+            keep = [k for k, x in enumerate(ref[1][0]) if x <= args.t_max]
+            if not keep:
+                raise BadInput(f"--t-max {args.t_max:g}: no reference point up to it")
+            ref = (ref[0], [[col[k] for k in keep] for col in ref[1]])
         pairs = pairs_to_compare(ref[0], cand[0], args.column)
         results = []
         for r, c in pairs:
