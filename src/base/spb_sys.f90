@@ -32,14 +32,16 @@ module spb_sys
          implicit none
          integer(c_int), value :: status   !! exit status of the process
       end subroutine c_exit_now
-      !> C isatty(3).
+      !> spb_file_kind (spb_sys_c.c): what a path names, through stat(2).
       function c_file_kind(path) bind(c, name='spb_file_kind') result(r)
          import :: c_char, c_int
          implicit none
+         ! allow(assumed-size)
          character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
          integer(c_int) :: r
       end function c_file_kind
 
+      !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
          import :: c_int
          implicit none
