@@ -15,7 +15,7 @@ program spallbar
    use spb_output, only: write_mesh_summary
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
-   use spb_par, only: par_init, par_finalize, par_rank, par_kind
+   use spb_par, only: par_init, par_finalize, par_barrier, par_rank, par_kind
    implicit none
 
    type(deck_t) :: deck
@@ -108,6 +108,19 @@ contains
             prefix // '_sweep.h5'
       end if
       flush(output_unit)
+      ! stopped by a signal: rank 0 writes the table and its message, then every rank exits
+      ! 128 + signal at once, without MPI_Finalize: mpirun, when it got the signal itself,
+      ! is ending the job, never completes a finalize and SIGKILLs the ranks 1 s after
+      ! forwarding the signal (odls_base_sigkill_timeout; doc/sweeps.md)
+      if (ssum%signal /= 0) then
+         if (rank == 0 .and. allocated(err)) then
+            write(error_unit, '(a)') 'spallbar: ' // err%message
+            flush(error_unit)
+         end if
+         call par_barrier()
+         if (allocated(err)) call sys_exit(err%code)
+         call sys_exit(128 + ssum%signal)
+      end if
       call par_finalize()
       if (allocated(err)) then
          if (rank == 0) call fail(err)

@@ -13,6 +13,11 @@ stride that does not divide the step count:
   * truncation: outputs that reach past the checkpoint (a complete later run) are cut back
     to it and continued: identical again;
   * SIGTERM: a run stopped by a signal writes its checkpoint; restarted, identical;
+  * interrupted restart (issue 19): a --restart killed (SIGKILL) while it sets the outputs
+    aside, rebuilds them or removes the set-aside copies is resumed by the next --restart,
+    identical again: each crash state made on disk (renames half done, the copy cut,
+    PREFIX.h5 cut, the removal half done), then real SIGKILLs at random times in the
+    rebuild of a 6 MB history; a fresh run drops PREFIX.*.restart left behind;
   * refusals, each exit status 2 with one line naming what is wrong, the outputs left as
     they were and no PREFIX.*.restart left behind: another deck, another t_end before the
     checkpoint, other earlier profile_times, outputs missing or shorter than the
@@ -24,6 +29,7 @@ usage: cli_restart.py SPALLBAR WORKDIR INPUT_DIR     (needs h5py)
 """
 import hashlib
 import os
+import random
 import re
 import shutil
 import signal
@@ -239,6 +245,8 @@ def main():
     check(p.returncode == 0, f"SIGTERM: restart exits 0 ({p.stderr.strip()})")
     same_outputs(check, "stopped by SIGTERM and restarted", work, "sig_U", "sig_R")
 
+    interrupted_restart(check, exe, work)
+
     # refusals: exit 2, one line, the outputs untouched
     name = "c2delay"
     full = open(os.path.join(work, name + "_full.nml")).read()
@@ -315,6 +323,108 @@ def main():
             "&run: checkpoint_every = 10 needs checkpoint",
             set_run(text_without_checkpoint(full), checkpoint_every="10"), prefix="refused")
     return check.finish()
+
+
+BIG = WEIBULL.replace("t_end = 3.0e-4", "t_end = 2.0e-2\n  hdf5 = .true.\n  field_every = 97")
+
+
+def interrupted_restart(check, exe, work):
+    """A --restart killed anywhere in its file handling, then --restart again."""
+    full = set_run(BIG, checkpoint="'big_end.ck.h5'")
+    with open(os.path.join(work, "big_full.nml"), "w") as f:
+        f.write(full)
+    with open(os.path.join(work, "big_short.nml"), "w") as f:
+        f.write(short_deck(full, 0.45, "big.ck.h5"))
+    p = run(exe, ["big_full.nml", "--output", "big_U", "-q"], work)
+    check(p.returncode == 0, f"interrupted restart: uninterrupted run ({p.stderr.strip()})")
+    p = run(exe, ["big_short.nml", "--output", "big_R", "-q"], work)
+    check(p.returncode == 0, f"interrupted restart: short run ({p.stderr.strip()})")
+    exts = EXTS + [".h5"]
+    pristine = {}
+    for e in exts:
+        with open(os.path.join(work, "big_R" + e), "rb") as f:
+            pristine[e] = f.read()
+    restart_args = ["big_full.nml", "--output", "big_R", "--restart", "big.ck.h5", "-q"]
+
+    def path(e, aside=False):
+        return os.path.join(work, "big_R" + e + (".restart" if aside else ""))
+
+    def lay_out(files):
+        """The previous outputs as a crash left them: {name: bytes}."""
+        for f in os.listdir(work):
+            if f.startswith("big_R."):
+                os.remove(os.path.join(work, f))
+        for name, data in files.items():
+            with open(os.path.join(work, name), "wb") as f:
+                f.write(data)
+
+    def resumed(what):
+        left = sorted(f for f in os.listdir(work) if f.startswith("big_R."))
+        p = run(exe, restart_args, work)
+        check(p.returncode == 0, f"{what} ({left}): the next --restart exits 0, got "
+              f"{p.returncode} ({p.stderr.strip()})")
+        same_outputs(check, what, work, "big_U", "big_R")
+
+    head = {e: pristine[e][:200] for e in EXTS}   # a fresh header, cut: what a crash leaves
+    # 1. killed while renaming: .his and .prf set aside, the others not yet
+    lay_out({"big_R.his.restart": pristine[".his"], "big_R.prf.restart": pristine[".prf"],
+             "big_R.evt": pristine[".evt"], "big_R.frg": pristine[".frg"],
+             "big_R.h5": pristine[".h5"]})
+    resumed("killed while renaming")
+    # 2. killed while copying: every file set aside, .his cut at 3 MB, the others headers
+    state = {f"big_R{e}.restart": pristine[e] for e in exts}
+    state.update({f"big_R{e}": head[e] for e in EXTS})
+    state["big_R.his"] = pristine[".his"][:3 * 1048576]
+    lay_out(state)
+    resumed("killed while copying .his")
+    # 3. killed while PREFIX.h5 was rebuilt: text files rebuilt, PREFIX.h5 cut (no HDF5 file)
+    state = {f"big_R{e}.restart": pristine[e] for e in exts}
+    for e in EXTS:
+        with open(os.path.join(work, "big_U" + e), "rb") as f:
+            state[f"big_R{e}"] = f.read()
+    state["big_R.h5"] = pristine[".h5"][:4096]
+    lay_out(state)
+    resumed("killed while PREFIX.h5 was rebuilt")
+    # 4. killed while removing the set-aside files: .his.restart and .prf.restart gone
+    state = {f"big_R{e}.restart": pristine[e] for e in [".evt", ".frg", ".h5"]}
+    state.update({f"big_R{e}": pristine[e] for e in exts})
+    lay_out(state)
+    resumed("killed while removing the set-aside files")
+    # 5. real SIGKILLs: once the outputs are set aside, at a random time in the rebuild
+    # (how long the outputs stay set aside, measured first: the kills fall inside it)
+    def start():
+        lay_out({f"big_R{e}": pristine[e] for e in exts})
+        proc = subprocess.Popen([exe] + restart_args, cwd=work, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        deadline = time.time() + 60
+        while not os.path.exists(path(".his", True)) and proc.poll() is None \
+                and time.time() < deadline:
+            time.sleep(0.0005)
+        return proc, time.time()
+
+    proc, t0 = start()
+    while os.path.exists(path(".his", True)) and proc.poll() is None:
+        time.sleep(0.0005)
+    window = time.time() - t0
+    proc.wait()
+    rng = random.Random(19)
+    landed = 0
+    for attempt in range(4):
+        proc, t0 = start()
+        time.sleep(max(0.0, rng.uniform(0.1, 0.9) * window - (time.time() - t0)))
+        proc.kill()
+        proc.wait()
+        left = sorted(f for f in os.listdir(work) if f.endswith(".restart"))
+        landed += bool(left)
+        resumed(f"SIGKILL {attempt + 1}")
+    check(landed > 0, f"SIGKILL: at least one kill landed inside the restart ({landed} of 4)")
+    print(f"interrupted restart: 4 crash states and {landed} of 4 SIGKILLs inside the restart "
+          f"(outputs set aside for {window:.3f} s) resumed, outputs identical")
+    # a fresh run on the prefix drops set-aside files left behind
+    lay_out({"big_R.his.restart": b"stale", "big_R.h5.restart": b"stale"})
+    p = run(exe, ["big_short.nml", "--output", "big_R", "-q"], work)
+    left = [f for f in os.listdir(work) if f.endswith(".restart")]
+    check(p.returncode == 0 and not left, f"a fresh run drops PREFIX.*.restart ({left})")
 
 
 def text_without_checkpoint(text):

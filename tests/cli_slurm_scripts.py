@@ -3,7 +3,8 @@
 array tasks pick their deck line (comments and blank lines skipped), write their outputs
 and return spallbar's exit status; the MPI sweep script writes the same table as a serial
 sweep; the restart script, stopped by SIGTERM (as Slurm does before the time limit) and
-started again, ends with the outputs of one uninterrupted run.
+started again, ends with the outputs of one uninterrupted run; the MPI sweep script stopped
+by SIGTERM exits 143 with the table written (mpirun itself exits 1).
 
 usage: cli_slurm_scripts.py SPALLBAR SCRIPTS_DIR INPUT_DIR WORK_DIR MPIEXEC|-
 """
@@ -52,6 +53,25 @@ if mpiexec != "-":
     rows = lambda f: [l for l in open(os.path.join(work, f)) if not l.startswith("#")]
     check(os.path.isfile(os.path.join(work, "mpi.sweep")) and rows("mpi.sweep") == rows("serial.sweep"),
           "the sweep script's table equals the serial sweep's")
+    # the sweep script stopped by SIGTERM (as --signal=B:TERM@60 does): it passes the signal
+    # to mpirun once; the ranks write the table (cases not run: status -1); mpirun exits 1,
+    # the script 143
+    open(os.path.join(work, "long.nml"), "w").write(
+        deck.replace("realizations = 4", "realizations = 300"))
+    proc = subprocess.Popen(["bash", os.path.join(scripts, "slurm-sweep-mpi.sbatch"), "long.nml",
+                             "stopped"], cwd=work, stdin=subprocess.DEVNULL,
+                            env=dict(env, SLURM_NTASKS="2", MPIRUN=mpiexec,
+                                     OMPI_MCA_odls_base_sigkill_timeout="2"),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.5)
+    proc.send_signal(signal.SIGTERM)
+    out, err = proc.communicate(timeout=120)
+    check(proc.returncode == 143, f"sweep script stopped by SIGTERM: exit {proc.returncode} "
+          f"({out.strip()[-300:]} {err.strip()[:300]})")
+    check("stopped by signal 15 (mpirun exit 1)" in out, f"sweep script says so: {out.strip()}")
+    st = [l.split()[8] for l in rows("stopped.sweep")]
+    check(len(st) == 900 and "-1" in st and "0" in st,
+          f"sweep script stopped: 900 rows, some done, some not run (status -1)")
 # the restart script: SIGTERM to the script, then the script again
 deck = open(os.path.join(indir, "example3_case2", "min_fragment_h190.nml")).read()
 deck = re.sub(r"(&run\n)", "\\1  checkpoint = 'long.ck.h5'\n  checkpoint_every = 500\n", deck,

@@ -9,8 +9,10 @@ usage: cli_sweep.py SPALLBAR INPUT_DIR WORK_DIR MPIEXEC|-
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 import h5py
 import numpy as np
@@ -75,6 +77,57 @@ for p in others:
                   f"{os.path.basename(p)}_sweep.h5 /cases/{name} equal")
         check(np.array_equal(a["histogram/counts"][()], b["histogram/counts"][()]),
               f"{os.path.basename(p)}_sweep.h5 histograms equal")
+
+# -- an MPI sweep stopped by SIGTERM (doc/sweeps.md, "Stopped by a signal"): to mpirun, which
+# forwards it to the ranks 1 s later; to the ranks only. The ranks write the table (cases
+# not run: status -1) and exit 143; OpenMPI's mpirun exits 1 when it was signalled itself,
+# else with the ranks' 143.
+def ranks_of(pid):
+    """The processes mpirun started (its children; one node)."""
+    kids = []
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                with open(f"/proc/{d}/stat") as f:
+                    if int(f.read().rsplit(")", 1)[1].split()[1]) == pid:
+                        kids.append(int(d))
+            except (OSError, ValueError, IndexError):
+                pass
+    return kids
+
+
+def stopped_sweep(tag, to_ranks):
+    d = os.path.join(work, "stop.nml")
+    open(d, "w").write(open(deck).read().replace("realizations = 32", "realizations = 300"))
+    prefix = os.path.join(work, tag)
+    proc = subprocess.Popen([mpiexec, "--oversubscribe", "-np", "2", exe, "--sweep", d, "-o",
+                             prefix, "-q"], cwd=work, stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.5)
+    ranks = ranks_of(proc.pid)
+    if to_ranks:
+        for r in ranks:
+            os.kill(r, signal.SIGTERM)
+    else:
+        proc.send_signal(signal.SIGTERM)
+    t0 = time.time()
+    _, err = proc.communicate(timeout=120)
+    expect = 143 if to_ranks else 1
+    check(len(ranks) == 2, f"{tag}: mpirun started 2 ranks ({ranks})")
+    check(proc.returncode == expect, f"{tag}: mpirun exits {expect}, got {proc.returncode}: "
+          f"{err.strip()[:600]}")
+    check("spallbar: sweep: stopped by signal 15 with" in err, f"{tag}: the message: {err!r}")
+    _, data = rows(prefix)
+    status = [int(r[k["status"]]) for r in data]
+    check([int(r[0]) for r in data] == list(range(1, 901)), f"{tag}: 900 rows in case order")
+    check(status.count(-1) > 0 and status.count(0) > 0 and set(status) <= {0, 143, -1},
+          f"{tag}: cases done (0), cut (143), not run (-1): {sorted(set(status))}")
+    with h5py.File(prefix + "_sweep.h5") as h:
+        check(np.array_equal(h["cases/status"][()].astype(int), status),
+              f"{tag}: {tag}_sweep.h5 holds the same status column")
+    print(f"{tag}: mpirun exit {proc.returncode} {time.time() - t0:.1f} s after SIGTERM; "
+          f"{status.count(0)} done, {status.count(-1)} not run")
+
 
 # -- the HDF5 file holds the table
 with h5py.File(ref + "_sweep.h5") as h:
@@ -158,4 +211,8 @@ os.makedirs(os.path.join(work, "blocked.sweep.part"))
 p = run(exe, ["--sweep", small_deck, "-o", os.path.join(work, "blocked"), "-q"], work)
 check(p.returncode == 3 and "cannot write" in p.stderr and "blocked.sweep" in p.stderr,
       f"an unwritable table after the run: exit {p.returncode} {p.stderr.strip()}")
+if mpiexec != "-":
+    stopped_sweep("stop_mpirun", False)
+    stopped_sweep("stop_ranks", True)
+
 sys.exit(check.finish())

@@ -10,7 +10,7 @@ module spb_par
    implicit none
    private
    public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, &
-      par_wtime, par_any, par_kind
+      par_wtime, par_max, par_barrier, par_any, par_kind
 
    integer, parameter :: par_any = -1               !! any source (par_recv)
    character(len=*), parameter :: par_kind = 'MPI'  !! what this build runs sweeps on
@@ -54,6 +54,17 @@ contains
    real(wp) function par_wtime()
       par_wtime = real(MPI_Wtime(), wp)
    end function par_wtime
+
+   !> The largest of i over the ranks (every rank calls it; a barrier too).
+   integer function par_max(i)
+      integer, intent(in) :: i             !! this rank's value
+      call MPI_Allreduce(i, par_max, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
+   end function par_max
+
+   !> Wait until every rank is here.
+   subroutine par_barrier()
+      call MPI_Barrier(MPI_COMM_WORLD)
+   end subroutine par_barrier
 
    !> Send a message of reals to rank dest with tag.
    subroutine send_real(buf, dest, tag)

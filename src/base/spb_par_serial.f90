@@ -6,7 +6,7 @@ module spb_par
    implicit none
    private
    public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, &
-      par_wtime, par_any, par_kind
+      par_wtime, par_max, par_barrier, par_any, par_kind
 
    integer, parameter :: par_any = -1
    character(len=*), parameter :: par_kind = 'serial (built without MPI)'
@@ -32,6 +32,16 @@ contains
    integer function par_rank()
       par_rank = 0
    end function par_rank
+
+   !> The largest of i over the ranks: i.
+   integer function par_max(i)
+      integer, intent(in) :: i             !! this rank's value
+      par_max = i
+   end function par_max
+
+   !> Wait until every rank is here: one rank, no wait.
+   subroutine par_barrier()
+   end subroutine par_barrier
 
    !> The number of ranks.
    integer function par_size()

@@ -15,7 +15,7 @@ module spb_restart
       no_unit, block_name, split
    implicit none
    private
-   public :: resume_outputs
+   public :: resume_outputs, drop_set_aside
 
    character(len=*), parameter :: aside = '.restart'   !! suffix of the set-aside outputs
    character(len=*), parameter :: hint = ' (a restart continues the outputs of the run ' // &
@@ -27,6 +27,12 @@ contains
    !> run's files up to the marks (rows written after them are dropped), open for appending.
    !> The previous files are set aside as PREFIX.ext.restart while this is done and removed
    !> after; nothing is touched when they do not hold what the marks count.
+   !>
+   !> A restart killed on the way (SIGKILL, a node that died) is resumed by the next one: a
+   !> PREFIX.ext.restart that exists is the previous output (the rename happened; PREFIX.ext
+   !> is then a cut copy or one rebuilt up to the marks, and is rebuilt again from it), else
+   !> PREFIX.ext is. Renames are atomic and the set-aside files are removed only once every
+   !> output is rebuilt, so at every instant one complete copy of each file exists.
    subroutine resume_outputs(prefix, rec, mesh, report, marks, out, err)
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
@@ -35,50 +41,27 @@ contains
       type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      integer(int64) :: sz, head(4)
-      integer :: k, nrows, u, ios
-      logical :: there, ok
-      character(len=tail_len) :: tail
-      ! the previous outputs: a header, then at least the body the checkpoint counts, ending
-      ! in the bytes it remembers
+      integer(int64) :: head(4)
+      integer :: k, nrows
+      logical :: aside_there(5), ok
+      character(len=:), allocatable :: f   !! one output's path
+      character(len=len(prefix) + 12) :: prev(5)   !! the previous outputs (PREFIX.ext[.restart])
+      ! the previous outputs (set aside by a restart that did not finish, or not yet): a
+      ! header, then at least the body the checkpoint counts, ending in the bytes it remembers
+      do k = 1, 5
+         f = output_file(prefix, k)
+         inquire(file=f // aside, exist=aside_there(k))
+         if (aside_there(k)) f = f // aside
+         prev(k) = f
+      end do
       do k = 1, 4
-         associate (f => prefix // text_extensions(k))
-            inquire(file=f, exist=there)
-            if (.not. there) then
-               call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
-               return
-            end if
-            call find_header(f, k, head(k), sz)
-            if (head(k) < 0) then
-               call make_error(err, '--restart: ''' // f // ''' has no header line ''' // &
-                  column_line(k) // ''': not a spallbar output' // hint)
-            else if (sz - head(k) < marks%body(k)) then
-               call make_error(err, '--restart: ''' // f // ''' holds ' // &
-                  itoa(sz - head(k)) // ' bytes after its header, the checkpoint counts ' // &
-                  itoa(marks%body(k)) // hint)
-            else if (marks%tail_n(k) < 0) then
-               call make_error(err, '--restart: the checkpoint could not read the end of ''' // &
-                  f // ''' when it was written')
-            else if (marks%tail_n(k) > 0) then
-               open(newunit=u, file=f, access='stream', form='unformatted', status='old', &
-                    action='read', iostat=ios)
-               if (ios == 0) read(u, pos=head(k) + marks%body(k) - marks%tail_n(k) + 1, &
-                                  iostat=ios) tail(1:marks%tail_n(k))
-               if (ios == 0) close(u)
-               if (ios /= 0) then
-                  call make_error(err, '--restart: cannot read ''' // f // '''')
-               else if (tail(1:marks%tail_n(k)) /= marks%tail(k)(1:marks%tail_n(k))) then
-                  call make_error(err, '--restart: ''' // f // ''' is not the output of the ' // &
-                     'run that wrote the checkpoint (its rows differ at the checkpoint)' // hint)
-               end if
-            end if
-         end associate
+         call check_text(trim(prev(k)), k, marks, head(k), err)
          if (allocated(err)) return
       end do
       if (rec%hdf5) then
-         call h5_read_size(prefix // '.h5', '/history/t', nrows)
+         call h5_read_size(trim(prev(5)), '/history/t', nrows)
          if (nrows < marks%rows_his) then
-            call make_error(err, '--restart: ''' // prefix // '.h5'' holds ' // &
+            call make_error(err, '--restart: ''' // trim(prev(5)) // ''' holds ' // &
                itoa(max(nrows, 0)) // ' history rows, the checkpoint counts ' // &
                itoa(marks%rows_his) // hint)
             return
@@ -86,12 +69,14 @@ contains
       end if
       do k = 1, 5
          if (k == 5 .and. .not. rec%hdf5) exit
-         associate (f => prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)))
-            call sys_rename(f, f // aside, ok)
-            if (.not. ok) call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' &
-                                          // f // aside // '''')
-         end associate
-         if (allocated(err)) return
+         if (aside_there(k)) cycle
+         f = output_file(prefix, k)
+         call sys_rename(f, f // aside, ok)
+         if (.not. ok) then
+            call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' // f // &
+                            aside // '''')
+            return
+         end if
       end do
       call open_outputs(prefix, rec, mesh, report, out, err)
       if (allocated(err)) return
@@ -103,11 +88,71 @@ contains
          call replay_h5(prefix, mesh, marks, out, err)
          if (allocated(err)) return
       end if
-      do k = 1, 5
-         if (k == 5 .and. .not. rec%hdf5) exit
-         call remove_file(prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)) // aside)
-      end do
+      call drop_set_aside(prefix)
    end subroutine resume_outputs
+
+   !> Refuse a previous text output k that lacks the header, the body the checkpoint counts
+   !> or the bytes it remembers at the end of that body.
+   subroutine check_text(f, k, marks, head, err)
+      character(len=*), intent(in) :: f   !! the previous output
+      integer, intent(in) :: k            !! text file (text_extensions)
+      type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
+      integer(int64), intent(out) :: head   !! its header bytes
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
+      integer(int64) :: sz
+      integer :: u, ios
+      logical :: there
+      character(len=tail_len) :: tail
+      head = -1
+      inquire(file=f, exist=there)
+      if (.not. there) then
+         call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
+         return
+      end if
+      call find_header(f, k, head, sz)
+      if (head < 0) then
+         call make_error(err, '--restart: ''' // f // ''' has no header line ''' // &
+            column_line(k) // ''': not a spallbar output' // hint)
+      else if (sz - head < marks%body(k)) then
+         call make_error(err, '--restart: ''' // f // ''' holds ' // &
+            itoa(sz - head) // ' bytes after its header, the checkpoint counts ' // &
+            itoa(marks%body(k)) // hint)
+      else if (marks%tail_n(k) < 0) then
+         call make_error(err, '--restart: the checkpoint could not read the end of ''' // &
+            f // ''' when it was written')
+      else if (marks%tail_n(k) > 0) then
+         open(newunit=u, file=f, access='stream', form='unformatted', status='old', &
+              action='read', iostat=ios)
+         if (ios == 0) read(u, pos=head + marks%body(k) - marks%tail_n(k) + 1, &
+                            iostat=ios) tail(1:marks%tail_n(k))
+         if (ios == 0) close(u)
+         if (ios /= 0) then
+            call make_error(err, '--restart: cannot read ''' // f // '''')
+         else if (tail(1:marks%tail_n(k)) /= marks%tail(k)(1:marks%tail_n(k))) then
+            call make_error(err, '--restart: ''' // f // ''' is not the output of the ' // &
+               'run that wrote the checkpoint (its rows differ at the checkpoint)' // hint)
+         end if
+      end if
+   end subroutine check_text
+
+   !> Remove the set-aside outputs PREFIX.ext.restart: at the end of a restart (the outputs
+   !> are rebuilt), and before a run that starts afresh on PREFIX (left by a restart that
+   !> was killed, they would be taken for that run's outputs by its next --restart).
+   subroutine drop_set_aside(prefix)
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      integer :: k
+      do k = 1, 5
+         call remove_file(output_file(prefix, k) // aside)
+      end do
+   end subroutine drop_set_aside
+
+   !> PREFIX.ext of output k (text_extensions, 5: PREFIX.h5).
+   pure function output_file(prefix, k) result(f)
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      integer, intent(in) :: k   !! file (text_extensions, 5: PREFIX.h5)
+      character(len=:), allocatable :: f
+      f = prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4))
+   end function output_file
 
    !> Append the body up to the mark of the set-aside file k to the fresh one.
    subroutine copy_body(prefix, k, head, body, out, err)

@@ -24,7 +24,7 @@ module spb_sim
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
       claim_outputs, check_written
-   use spb_restart, only: resume_outputs
+   use spb_restart, only: resume_outputs, drop_set_aside
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress
@@ -242,6 +242,7 @@ contains
             sim%st = resume%st
             summary = resume%summary
          else if (run%to_files) then
+            call drop_set_aside(prefix)
             call open_outputs(prefix, sim%record, sim%mesh, sim%report, run%out, err)
             if (allocated(err)) return
          end if

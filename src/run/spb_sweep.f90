@@ -23,7 +23,8 @@ module spb_sweep
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
    use spb_output, only: h5_deck_header, column_t, column_names
-   use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_any, par_kind
+   use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_max, par_any, &
+      par_kind
    implicit none
    private
    public :: run_sweep, sweep_case_count, case_deck, run_case, sweep_summary_t
@@ -70,6 +71,9 @@ module spb_sweep
    type :: sweep_summary_t
       integer :: cases = 0, ranks = 1
       integer :: done = 0, failed = 0, not_run = 0
+      !> the signal (SIGTERM, SIGINT) that stopped the sweep on some rank, 0: none; the same
+      !> on every rank
+      integer :: signal = 0
       real(wp) :: wall = 0.0_wp          !! [s]
       character(len=16) :: distribution = ''
    end type sweep_summary_t
@@ -202,6 +206,8 @@ contains
          call run_static(deck, nranks, rank, l_hist, progress, t0, rows, hists)
       end if
       summary%wall = par_wtime() - t0
+      ! every rank learns whether one was stopped (and waits here until all are done)
+      summary%signal = par_max(int(stop_signal()))
       if (rank /= 0) return
       summary%done = count(nint(rows(col_status, :)) == 0)
       summary%not_run = count(nint(rows(col_status, :)) == status_not_run)
@@ -209,10 +215,11 @@ contains
       call write_table(deck, prefix, rows, err)
       if (.not. allocated(err)) call write_h5(deck, prefix, rows, hists, l_hist, err)
       if (allocated(err)) return
-      if (summary%not_run > 0 .and. stop_signal() /= 0) then
-         call make_error(err, 'sweep: stopped by signal ' // itoa(stop_signal()) // ' with ' // &
+      if (summary%signal /= 0) then
+         call make_error(err, 'sweep: stopped by signal ' // itoa(summary%signal) // ' with ' // &
             itoa(summary%not_run) // ' of ' // itoa(nc) // ' cases not run (status -1); ' // &
-            prefix // '.sweep and ' // prefix // '_sweep.h5 are written', code=128 + stop_signal())
+            prefix // '.sweep and ' // prefix // '_sweep.h5 are written', &
+            code=128 + summary%signal)
       else if (summary%failed > 0) then
          call make_error(err, 'sweep: ' // itoa(summary%failed) // ' of ' // itoa(nc) // &
             ' cases went wrong (status column); ' // prefix // '.sweep and ' // prefix // &
