@@ -58,6 +58,10 @@ module spb_checkpoint
       type(output_marks_t) :: marks
    end type checkpoint_t
 
+   !> Deck variables added after checkpoints existed ('group:name'): not given, they keep the
+   !> behaviour of before, and a checkpoint that predates them fits a deck that leaves them out.
+   character(len=*), parameter :: later_variables(1) = ['segments:area']
+
 contains
 
    !> Refuse (exit 2) a checkpoint path that cannot be written, before the run starts.
@@ -632,6 +636,10 @@ contains
                ! every other value identifies the run
             end select
          end if
+         ! a variable added since checkpoints were first written, left at its default, is
+         ! what a checkpoint made before it had: such checkpoints still restart
+         if (.not. items(k)%given .and. any(later_variables == items(k)%group // ':' // &
+                                             items(k)%name)) cycle
          text = text // '&' // items(k)%group // ' ' // items(k)%name // ' = ' // &
                 items(k)%value // nl
       end do

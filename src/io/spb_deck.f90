@@ -43,10 +43,11 @@ contains
       n = deck%seg%n
       prob%nseg = n
       allocate(prob%length(n), prob%young(n), prob%density(n), prob%strength(n), &
-               prob%velocity(n), prob%dry(n), prob%gap(n))
+               prob%velocity(n), prob%dry(n), prob%gap(n), prob%area(n))
       prob%length(:) = deck%seg%length(1:n)
       prob%young(:) = deck%seg%young(1:n)
       prob%density(:) = deck%seg%density(1:n)
+      prob%area(:) = deck%seg%area(1:n)
       prob%strength(:) = deck%seg%strength(1:n)
       prob%velocity(:) = deck%seg%velocity(1:n)
       prob%dry = .false.
@@ -532,6 +533,11 @@ contains
             else
                seg%velocity(j) = 0.0_wp
             end if
+            if (is_set(seg%area(j))) then
+               call need_positive(err, 'segments', 'area' // sj, seg%area(j))
+            else
+               seg%area(j) = 1.0_wp
+            end if
             if (j < seg%n) then
                if (len_trim(seg%interface(j)) == 0) seg%interface(j) = 'bonded'
                call need_choice(err, 'segments', 'interface' // sj, seg%interface(j), &
@@ -558,6 +564,7 @@ contains
             call beyond_n('density', seg%density(j))
             call beyond_n('strength', seg%strength(j))
             call beyond_n('velocity', seg%velocity(j))
+            call beyond_n('area', seg%area(j))
             if (j >= seg%n) call beyond_n('gap', seg%gap(j))
             if (len_trim(seg%interface(j)) > 0 .and. .not. allocated(err)) then
                call make_error(err, '&segments: interface' // sj // ' is given but n = ' // itoa(seg%n))

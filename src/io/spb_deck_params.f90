@@ -15,6 +15,7 @@
 module spb_deck_params
    use, intrinsic :: iso_fortran_env, only: int64
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_exceptions, only: ieee_underflow, ieee_get_flag, ieee_set_flag
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, ltoa, lower
@@ -114,6 +115,8 @@ contains
                     count=n, sweep=.true.)
          call param(p, 'segments', 'density', 'kg/m^3', 'densities (required)', &
                     ra=s%density, count=n, sweep=.true.)
+         call param(p, 'segments', 'area', 'm^2', 'cross-section areas (default 1: outputs ' &
+                    // 'per unit area)', ra=s%area, count=n, sweep=.true.)
          call param(p, 'segments', 'strength', 'Pa (< 0: unbreakable)', 'tensile ' &
                     // 'strengths (default -1)', ra=s%strength, count=n, sweep=.true.)
          call param(p, 'segments', 'interface', '', 'interface j between segments j and ' &
@@ -286,6 +289,7 @@ contains
       type(slots_t) :: v
       character(len=:), allocatable :: record
       integer :: ios, k
+      logical :: underflow
       if (present(ra)) then
          allocate(v%reals, source=ra)
       else
@@ -303,17 +307,25 @@ contains
       if (present(t)) v%text = t
       record = slot_record(p%record, p%group, p%name, &
                            slot_name(present(r), present(i), present(l), present(t), present(ra)))
-      call read_slots(record, v, ios)
+      call read_slots(record, v, ios, underflow)
       if (ios /= 0) then
          call blame(p%err, p%group, p%name, p%record)
          return
       end if
+
       if (present(t)) call check_length(p, v%text, len(t), keyword)
       do k = 1, size(v%texts)
          call check_length(p, v%texts(k), len(ta), keyword, k)
       end do
       if (present(r) .or. present(ra)) call check_reals(p, record, v%real, v%reals, present(ra))
       if (allocated(p%err)) return
+      if (underflow .and. (present(r) .or. present(ra))) then
+         ! a denormal is refused above by its value; 1e-400 reads as an exact 0
+         call make_error(p%err, '&' // p%group // ': ' // p%name // ': a value below ' // &
+                         '1e-308 in magnitude reads as 0, which is not what was written: a ' // &
+                         'deck real is 0 or between 1e-60 and 1e60 in magnitude')
+         return
+      end if
       if (keyword) v%text = lower(v%text)
       do k = 1, size(v%texts)
          v%texts(k) = lower(v%texts(k))
@@ -359,10 +371,12 @@ contains
 
    !> The namelist slots of one assignment, one of each type; the record (renamed by
    !> slot_record) reads into the one of its variable's type.
-   subroutine read_slots(record, v, ios)
+   subroutine read_slots(record, v, ios, underflow)
       character(len=*), intent(in) :: record   !! '&spb_value slot... = value /'
       type(slots_t), intent(inout) :: v        !! the slots: current values in, as read out
       integer, intent(out) :: ios              !! the read's status
+      logical, intent(out), optional :: underflow   !! a number read underflowed (1e-400 -> 0)
+      logical :: flag
       real(wp) :: spb_real
       integer :: spb_integer
       logical :: spb_logical
@@ -376,7 +390,11 @@ contains
       spb_text = v%text
       allocate(spb_reals, source=v%reals)
       allocate(spb_texts, source=v%texts)
+      call ieee_set_flag(ieee_underflow, .false.)
       read(record, nml=spb_value, iostat=ios)
+      call ieee_get_flag(ieee_underflow, flag)
+      call ieee_set_flag(ieee_underflow, .false.)
+      if (present(underflow)) underflow = flag
       if (ios /= 0) return   ! the slots keep what they had
       v%real = spb_real
       v%integer = spb_integer

@@ -82,6 +82,7 @@ module spb_deck_types
       real(wp) :: length(max_segments) = unset          !! [m]
       real(wp) :: young(max_segments) = unset           !! [Pa]
       real(wp) :: density(max_segments) = unset         !! [kg/m^3]
+      real(wp) :: area(max_segments) = unset            !! cross-section area [m^2] (default 1)
       real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
       character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
       real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]

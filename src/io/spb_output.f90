@@ -108,6 +108,7 @@ module spb_output
       character(len=:), allocatable :: prefix
       integer :: his = no_unit, prf = no_unit, evt = no_unit, frg = no_unit   !! units
       logical :: hdf5 = .false.                           !! PREFIX.h5 is written
+      logical :: per_area = .true.                        !! every area 1: units per unit area
       type(h5file_t) :: h5
       integer :: h_his = 0, h_evt = 0                     !! its table handles
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
@@ -142,6 +143,7 @@ contains
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       out%prefix = prefix
+      out%per_area = per_unit_area(mesh)
       call open_one('.his', out%his)
       if (.not. allocated(err)) call open_one('.prf', out%prf)
       if (.not. allocated(err)) call open_one('.evt', out%evt)
@@ -157,7 +159,7 @@ contains
          // 'w_ext = w_load + w_transmit; e_lost = e_fracture'
       write(out%his, '(a)') '# momentum balance: momentum - momentum(t=0) = i_gravity + i_ends ' &
          // '+ i_support + p_shift (gravity, end stresses, supports/base, collision shifts)'
-      write(out%his, '(a)') '# units: ' // history_units
+      write(out%his, '(a)') '# units: ' // bar_units(history_units, mesh)
       write(out%his, '(a)') '# ' // history_columns()
       call header(out%prf, 'stress profiles: one block per profile time')
       write(out%prf, '(a)') '# rows per half node, top to bottom: node 0 lower half only, ' &
@@ -182,8 +184,8 @@ contains
       write(out%frg, '(a)') '# x_top, x_bottom: current positions x + u of the faces; e_vib: ' &
          // 'kinetic energy about the mean motion + strain energy; birth_t: time of the ' &
          // 'fracture that made it'
-      write(out%frg, '(a)') '# units: birth_t [s]; x_* [m]; mass [kg/m^2]; velocity [m/s]; ' &
-         // 'e_vib [J/m^2]; ids and nodes [-]'
+      write(out%frg, '(a)') '# units: ' // bar_units('birth_t [s]; x_* [m]; mass [kg/m^2]; ' &
+         // 'velocity [m/s]; e_vib [J/m^2]; ids and nodes [-]', mesh)
       write(out%frg, '(a)') '# ' // fragment_columns
       call text_sizes(out, out%head)
       if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err)
@@ -227,23 +229,69 @@ contains
             itoa(mesh%first(j)) // '..' // itoa(mesh%last(j)) // ', dx = a dt = ' // &
             rtoa(mesh%dx(mesh%first(j))) // ' m, a = ' // rtoa(mesh%wave_speed(j)) // &
             ' m/s, Z = ' // rtoa(mesh%impedance(j)) // ' kg/(m^2 s), length ' // &
-            rtoa(mesh%length(j)) // ' m (asked ' // rtoa(mesh%length_req(j)) // ')'
+            rtoa(mesh%length(j)) // ' m (asked ' // rtoa(mesh%length_req(j)) // ')' // &
+            area_note(j)
       end do
       do j = 1, size(report)
          write(u, '(a)') prefix // 'fit = ''stretch'': ' // trim(report(j))
       end do
+   contains
+      !> ', area A = ... m^2' where the bar is not per unit area.
+      function area_note(j) result(note)
+         integer, intent(in) :: j   !! the segment
+         character(len=:), allocatable :: note
+         note = ''
+         if (.not. per_unit_area(mesh)) note = ', area A = ' // rtoa(mesh%seg_area(j)) // ' m^2'
+      end function area_note
    end subroutine write_mesh_summary
 
-   !> Before any output is created or truncated: hold PREFIX.lock (a second run on the same
-   !> PREFIX is refused), check that every file of the run can be written without touching
-   !> it, and that the checkpoint ('' : none) is none of the run's other files nor the deck.
+   !> Whether every cross-section is 1 m^2: the outputs are per unit area, as before areas.
+   pure logical function per_unit_area(mesh)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      per_unit_area = maxval(abs(mesh%seg_area - 1.0_wp)) <= 0.0_wp   ! every area exactly 1
+   end function per_unit_area
+
+   !> Units text for this bar: as written (per unit area) when every area is 1, else the
+   !> whole bar's: J/m^2 -> J, kg/(m s) -> kg m/s, kg/m^2 -> kg, kg/(m^2 s) -> kg/s, Pa/m ->
+   !> N/m (stresses stay Pa).
+   pure function bar_units(text, mesh) result(out)
+      character(len=*), intent(in) :: text   !! units as per unit area
+      type(mesh_t), intent(in) :: mesh       !! the mesh
+      character(len=:), allocatable :: out
+      out = unit_text(text, per_unit_area(mesh))
+   end function bar_units
+
+   !> bar_units for a bar that is (per_area) or is not per unit area.
+   pure function unit_text(text, per_area) result(out)
+      character(len=*), intent(in) :: text   !! units as per unit area
+      logical, intent(in) :: per_area        !! every area is 1
+      character(len=:), allocatable :: out
+      character(len=10), parameter :: per(5) = [character(len=10) :: 'J/m^2', 'kg/(m s)', &
+         'kg/(m^2 s)', 'kg/m^2', 'Pa/m']
+      character(len=6), parameter :: whole(5) = [character(len=6) :: 'J', 'kg m/s', 'kg/s', &
+         'kg', 'N/m']
+      integer :: k, i
+      out = text
+      if (per_area) return
+      do k = 1, size(per)
+         do
+            i = index(out, trim(per(k)))
+            if (i == 0) exit
+            out = out(:i - 1) // trim(whole(k)) // out(i + len_trim(per(k)):)
+         end do
+      end do
+   end function unit_text
+
+   !> Before any output is created or truncated: check that every file of the run can be
+   !> written without touching it, that the checkpoint ('' : none) is none of the run's other
+   !> files, the deck or its load table and can be written, then hold PREFIX.lock (a second
+   !> run on the same PREFIX is refused). The lock comes last: a refusal leaves no file.
    subroutine claim_outputs(prefix, rec, checkpoint, err)
       character(len=*), intent(in) :: prefix       !! output path prefix
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
       character(len=len(prefix) + 5) :: files(6)
-      character(len=:), allocatable :: ck
       integer :: k, n, state
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
@@ -260,6 +308,8 @@ contains
          call check_writable('--output', trim(files(k)), err)
          if (allocated(err)) return
       end do
+      call claim_checkpoint(checkpoint, rec, files, err)
+      if (allocated(err)) return
       call sys_lock(trim(files(6)), state)
       if (state == 1) then
          call make_error(err, '--output: cannot make the lock file ''' // trim(files(6)) // '''')
@@ -270,6 +320,18 @@ contains
             'another --output')
          return
       end if
+   end subroutine claim_outputs
+
+   !> The checkpoint's part of claim_outputs: not a file of the run (files: its outputs and
+   !> lock), the deck, its load table, a folder or a FIFO/device, and its .part writable
+   !> (checked without truncating one a running program may be writing).
+   subroutine claim_checkpoint(checkpoint, rec, files, err)
+      character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
+      type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
+      character(len=*), intent(in) :: files(:)     !! the run's 4 text files, .h5, .lock
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
+      character(len=:), allocatable :: ck
+      integer :: k
       if (len(checkpoint) == 0) return
       ck = sys_real_path(checkpoint)
       do k = 1, 6
@@ -294,7 +356,9 @@ contains
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is not a ' // &
                          'regular file (a FIFO, a device or a socket); give a file of its own')
       end if
-   end subroutine claim_outputs
+      if (.not. allocated(err)) call check_writable('&run: checkpoint = ''' // checkpoint // &
+                                                    '''', checkpoint // '.part', err)
+   end subroutine claim_checkpoint
 
    !> Error unless path can be written: an existing file is opened for appending and closed
    !> untouched, a missing one is created and removed again.
@@ -563,17 +627,21 @@ contains
          call h5_attr(out%h5, '/mesh', 'fit_report_' // itoa(k), trim(report(k)))
       end do
       call h5_write(out%h5, '/mesh/x', mesh%x, 'm')
-      call h5_write(out%h5, '/mesh/m_upper', mesh%ma, 'kg/m^2')
-      call h5_write(out%h5, '/mesh/m_lower', mesh%mb, 'kg/m^2')
+      call h5_write(out%h5, '/mesh/m_upper', mesh%ma, bar_units('kg/m^2', mesh))
+      call h5_write(out%h5, '/mesh/m_lower', mesh%mb, bar_units('kg/m^2', mesh))
       call h5_write(out%h5, '/mesh/dx', mesh%dx, 'm')
-      call h5_write(out%h5, '/mesh/dm', mesh%dm, 'kg/m^2')
-      call h5_write(out%h5, '/mesh/impedance', mesh%z, 'kg/(m^2 s)')
-      call h5_write(out%h5, '/mesh/stiffness', mesh%stiff, 'Pa/m')
+      call h5_write(out%h5, '/mesh/dm', mesh%dm, bar_units('kg/m^2', mesh))
+      call h5_write(out%h5, '/mesh/impedance', mesh%z, bar_units('kg/(m^2 s)', mesh))
+      call h5_write(out%h5, '/mesh/stiffness', mesh%stiff, bar_units('Pa/m', mesh))
+      if (.not. per_unit_area(mesh)) call h5_write(out%h5, '/mesh/area', mesh%area, 'm^2')
       call h5_write(out%h5, '/mesh/segment', mesh%seg, '-')
       call h5_write(out%h5, '/mesh/x_half', half_x(mesh), 'm')
       ! tables
       names = history_table%name
       units = history_table%unit
+      do k = 1, size(units)
+         units(k) = bar_units(trim(units(k)), mesh)
+      end do
       whole = history_table%whole
       call h5_table(out%h5, '/history', names, units, whole, out%h_his)
       call h5_attr(out%h5, '/history', 'columns', history_columns())
@@ -630,13 +698,13 @@ contains
             r = r + 1
             u(r) = st%ua(i)
             v(r) = st%dua(i) / mesh%dt
-            s(r) = st%s(i)
+            s(r) = st%s(i) / mesh%area(i)
          end if
          if (i < mesh%n) then
             r = r + 1
             u(r) = st%ub(i)
             v(r) = st%dub(i) / mesh%dt
-            s(r) = st%s(i + 1)
+            s(r) = st%s(i + 1) / mesh%area(i + 1)
          end if
       end do
    end subroutine half_rows
@@ -785,11 +853,11 @@ contains
          rc = list%x_bot
          call h5_write(out%h5, g // '/x_bottom', rc, 'm')
          rc = list%mass
-         call h5_write(out%h5, g // '/mass', rc, 'kg/m^2')
+         call h5_write(out%h5, g // '/mass', rc, unit_text('kg/m^2', out%per_area))
          rc = list%velocity
          call h5_write(out%h5, g // '/velocity', rc, 'm/s')
          rc = list%e_vib
-         call h5_write(out%h5, g // '/e_vib', rc, 'J/m^2')
+         call h5_write(out%h5, g // '/e_vib', rc, unit_text('J/m^2', out%per_area))
          ic = list%top
          call h5_write(out%h5, g // '/top_node', ic, '-')
          ic = list%bot
@@ -812,8 +880,10 @@ contains
       write(out%prf, '(a)') '# t = ' // rtoa(real(st%step, wp) * dt)
       write(out%prf, '(a)') '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested)
       do i = 0, n
-         if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, st%s(i)
-         if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, st%s(i + 1)
+         if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, &
+                                            st%s(i) / mesh%area(i)
+         if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, &
+                                            st%s(i + 1) / mesh%area(i + 1)
       end do
       if (.not. out%hdf5) return
       out%n_prof = out%n_prof + 1

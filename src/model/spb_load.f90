@@ -14,25 +14,33 @@ module spb_load
    type :: load_t
       integer :: kind = load_none         !! load_none | load_power | load_table
       integer :: face = face_top          !! face_top | face_bottom
-      real(wp) :: p0 = 0.0_wp             !! [Pa]
+      real(wp) :: p0 = 0.0_wp             !! [Pa A]: the force on the face (spb_mesh)
       real(wp) :: t_k = 0.0_wp            !! [s]; 0: constant pressure (exponent 0)
       real(wp) :: exponent = 0.0_wp       !! [-]
       real(wp) :: t_cut = huge(1.0_wp)    !! [s] p = 0 after
       real(wp), allocatable :: t(:)       !! table times [s], non-decreasing
-      real(wp), allocatable :: p(:)       !! table pressures [Pa]
+      real(wp), allocatable :: p(:)       !! table pressures times the face's area [Pa A]
    end type load_t
 
 contains
 
-   !> The end load of the problem (a table's rows come with it, read by spb_load_table).
+   !> The end load of the problem (a table's rows come with it, read by spb_load_table), as
+   !> the force on the loaded face: the pressure times its cell's cross-section (spb_mesh:
+   !> the model's stresses are forces).
    pure subroutine build_load(prob, load)
       type(problem_t), intent(in) :: prob   !! the problem
       type(load_t), intent(out) :: load    !! the end load
+      real(wp) :: area
+      area = 1.0_wp
+      if (allocated(prob%area)) then
+         area = prob%area(1)
+         if (prob%load_face == face_bottom) area = prob%area(prob%nseg)
+      end if
       load%face = prob%load_face
       select case (prob%load_kind)
       case (load_power)
          load%kind = load_power
-         load%p0 = prob%p0
+         load%p0 = prob%p0 * area
          load%exponent = prob%exponent
          if (prob%has_t_k) load%t_k = prob%t_k
          if (prob%has_t_cut) then
@@ -42,13 +50,13 @@ contains
          end if
       case (load_exponential)
          load%kind = load_exponential
-         load%p0 = prob%p0
+         load%p0 = prob%p0 * area
          load%t_k = prob%t_k
          if (prob%has_t_cut) load%t_cut = prob%t_cut
       case (load_table)
          load%kind = load_table
          load%t = prob%table_t
-         load%p = prob%table_p
+         load%p = prob%table_p * area
       case default
          load%kind = load_none
       end select

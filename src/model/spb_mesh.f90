@@ -5,7 +5,7 @@ module spb_mesh
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base
    implicit none
    private
-   public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base
+   public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base, node_area
    public :: mesh_fault_t, max_cells, max_steps, fault_none, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
 
@@ -43,12 +43,16 @@ module spb_mesh
       real(wp), allocatable :: length(:)               !! length modelled = cells a dt [m]
       real(wp), allocatable :: wave_speed(:)           !! a_j [m/s]
       real(wp), allocatable :: impedance(:)            !! Z_j = rho_j a_j [kg/(m^2 s)]
+      real(wp), allocatable :: seg_area(:)             !! A_j, cross-section area [m^2]
       ! per cell k = 1..n
       integer, allocatable :: seg(:)         !! segment of the cell
       real(wp), allocatable :: dx(:)         !! a_j dt [m]
-      real(wp), allocatable :: dm(:)         !! rho_j dx_j = Z_j dt [kg/m^2]
-      real(wp), allocatable :: z(:)          !! impedance [kg/(m^2 s)]
-      real(wp), allocatable :: stiff(:)      !! E_j / dx_j [Pa/m]
+      real(wp), allocatable :: dm(:)         !! rho_j A_j dx_j = Z_j A_j dt [kg/m^2 A]
+      real(wp), allocatable :: z(:)          !! axial impedance Z_j A_j [kg/(m^2 s) A]
+      real(wp), allocatable :: stiff(:)      !! axial stiffness E_j A_j / dx_j [Pa/m A]
+      real(wp), allocatable :: area(:)       !! A_j of the cell [m^2]: the model's stresses
+                                             !! are forces A sigma ('A' in the units above:
+                                             !! per unit area when every A_j = 1)
       ! per node i = 0..n
       real(wp), allocatable :: x(:)          !! reference position [m]
       real(wp), allocatable :: ma(:)         !! upper half mass (cell above) [kg/m^2]
@@ -77,6 +81,11 @@ contains
       allocate(report(0), a(nseg), zz(nseg), ncont(nseg))
       a = sqrt(prob%young / prob%density)
       zz = prob%density * a
+      if (.not. allocated(prob%area)) then
+         mesh%seg_area = [(1.0_wp, j = 1, nseg)]
+      else
+         mesh%seg_area = prob%area
+      end if
       r = prob%ref_segment
       if (.not. (prob%dt > 0.0_wp) .and. prob%cells > max_cells) then
          fault%kind = fault_cells
@@ -153,7 +162,10 @@ contains
    end subroutine build_mesh
 
    !> The per-cell and per-node arrays of a mesh whose segments' cell ranges and dt are set:
-   !> dx = a dt, masses Z dt, stiffness E/dx, positions, half masses, cumulative mass.
+   !> dx = a dt, masses Z A dt, stiffness E A/dx, positions, half masses, cumulative mass.
+   !> A bar of cross-sections A_j is the unit-area bar of density rho_j A_j and modulus
+   !> E_j A_j (the same wave speed, the axial impedance Z_j A_j): its stresses are the forces
+   !> A sigma, its strengths R A and its face loads p A (doc/areas.md).
    pure subroutine fill_cells(prob, a, zz, mesh)
       type(problem_t), intent(in) :: prob   !! the problem
       real(wp), intent(in) :: a(:)            !! wave speed per segment [m/s]
@@ -163,15 +175,16 @@ contains
       real(wp) :: dt
       dt = mesh%dt
       associate (n => mesh%n)
-         allocate(mesh%seg(n), mesh%dx(n), mesh%dm(n), mesh%z(n), mesh%stiff(n))
+         allocate(mesh%seg(n), mesh%dx(n), mesh%dm(n), mesh%z(n), mesh%stiff(n), mesh%area(n))
          allocate(mesh%x(0:n), mesh%ma(0:n), mesh%mb(0:n), mesh%inv_m(0:n))
          do j = 1, mesh%nseg
             do k = mesh%first(j), mesh%last(j)
                mesh%seg(k) = j
                mesh%dx(k) = a(j) * dt
-               mesh%dm(k) = zz(j) * dt
-               mesh%z(k) = zz(j)
-               mesh%stiff(k) = prob%young(j) / mesh%dx(k)
+               mesh%area(k) = mesh%seg_area(j)
+               mesh%dm(k) = (zz(j) * mesh%area(k)) * dt
+               mesh%z(k) = zz(j) * mesh%area(k)
+               mesh%stiff(k) = (prob%young(j) * mesh%area(k)) / mesh%dx(k)
             end do
          end do
          mesh%x(0) = 0.0_wp
@@ -203,4 +216,18 @@ contains
          end do
       end associate
    end subroutine fill_cells
+
+   !> The area of node i's section [m^2]: the narrower of its two cells (an end node: its
+   !> cell). A section force over it is the stress there that a break or a gauge reads.
+   pure real(wp) function node_area(mesh, i) result(a)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      integer, intent(in) :: i             !! node 0..n
+      if (i <= 0) then
+         a = mesh%area(1)
+      else if (i >= mesh%n) then
+         a = mesh%area(mesh%n)
+      else
+         a = min(mesh%area(i), mesh%area(i + 1))
+      end if
+   end function node_area
 end module spb_mesh

@@ -33,6 +33,8 @@ module spb_problem
       real(wp), allocatable :: length(:)           !! asked length [m]
       real(wp), allocatable :: young(:)            !! Young's modulus [Pa]
       real(wp), allocatable :: density(:)          !! [kg/m^3]
+      real(wp), allocatable :: area(:)             !! cross-section area [m^2] (1: the
+                                                   !! model per unit area, as before)
       real(wp), allocatable :: strength(:)         !! tensile strength [Pa]; < 0 unbreakable
       real(wp), allocatable :: velocity(:)         !! initial rigid velocity [m/s]
       logical, allocatable :: dry(:)               !! interface below segment j is dry

@@ -322,13 +322,16 @@ contains
       real(wp) :: u
       integer :: k
       cs = prob%strength(mesh%seg)
-      if (.not. prob%weibull) return
-      g = rng_seed(prob%seed)
-      do k = 1, mesh%n
-         if (cs(k) < 0.0_wp) cycle
-         call rng_uniform(g, u)
-         cs(k) = weibull(u, prob%weibull_modulus, prob%weibull_scale)
-      end do
+      if (prob%weibull) then
+         g = rng_seed(prob%seed)
+         do k = 1, mesh%n
+            if (cs(k) < 0.0_wp) cycle
+            call rng_uniform(g, u)
+            cs(k) = weibull(u, prob%weibull_modulus, prob%weibull_scale)
+         end do
+      end if
+      ! the model's stresses are forces A sigma (spb_mesh): so are its strengths
+      where (cs >= 0.0_wp) cs = cs * mesh%area
    end function cell_strengths
 
    !> Number of fragments: pieces between split interior nodes.

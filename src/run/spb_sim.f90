@@ -12,7 +12,7 @@ module spb_sim
    use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record, mesh_fault_message
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
-   use spb_mesh, only: mesh_t, build_mesh, end_base, mesh_fault_t, fault_none
+   use spb_mesh, only: mesh_t, build_mesh, end_base, mesh_fault_t, fault_none, node_area
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
@@ -281,7 +281,7 @@ contains
       summary%guard_scale = w0%e_wave
       if (sim%mesh%full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
       summary%ledger_w0 = summary%e_mech0 - w_w + e_l
-      summary%max_reaction_bottom = sim%st%section(sim%mesh%n)
+      summary%max_reaction_bottom = sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n)
       call row(sim, run, summary, err)
       call profiles(sim, run)
       if (run%sched%every(act_field) > 0 .and. run%to_files) then
@@ -302,12 +302,21 @@ contains
       if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
          call advance_joined(sim%mesh, sim%load, sim%prob%gravity, sim%st, k - 1, &
                              max_sec_bottom=sec_max)
-         summary%max_reaction_bottom = max(summary%max_reaction_bottom, sec_max)
+         summary%max_reaction_bottom = max(summary%max_reaction_bottom, &
+                                           sec_max / sim%mesh%area(sim%mesh%n))
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
-      summary%max_reaction_bottom = max(summary%max_reaction_bottom, sim%st%section(sim%mesh%n))
+      summary%max_reaction_bottom = max(summary%max_reaction_bottom, &
+                                        sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       if (run%events%n == 0) return
+      ! the events' section forces as stresses over their sections (spb_mesh)
+      do j = 1, run%events%n
+         associate (ev => run%events%e(j))
+            ev%stress = ev%stress / node_area(sim%mesh, ev%node)
+            ev%stress_bound = ev%stress_bound / node_area(sim%mesh, ev%node)
+         end associate
+      end do
       if (run%to_files) call write_events(run%out, run%events)
       summary%events = summary%events + run%events%n
       do j = 1, run%events%n
@@ -450,9 +459,11 @@ contains
       summary%w_ext_end = e%w_ext
       ! the values in the order of history_table (spb_output)
       if (run%to_files) call write_history_row(run%out, [real(sim%st%step, wp) * sim%mesh%dt, &
-         sim%st%section(sim%mesh%n), sim%st%section(0), real(fragment_count(sim%st), wp), &
+         sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n), &
+         sim%st%section(0) / sim%mesh%area(1), real(fragment_count(sim%st), wp), &
          e%e_kin, e%e_strain, e%e_pot, e%w_ext, e%e_lost, e%momentum, &
-         real(sim%st%step, wp), s_top, s_bot, sim%st%ledger%w_load, sim%st%ledger%w_transmit, &
+         real(sim%st%step, wp), s_top / sim%mesh%area(1), s_bot / sim%mesh%area(sim%mesh%n), &
+         sim%st%ledger%w_load, sim%st%ledger%w_transmit, &
          e%ledger, sim%st%ledger%e_fracture, sim%st%ledger%e_join, sim%st%ledger%e_shift, sim%st%ledger%e_contact, &
          g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%ledger%i_ends, sim%st%ledger%i_support, sim%st%ledger%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
