@@ -31,7 +31,7 @@ program spallbar
    if (sweep) call sweep_main()
    call read_deck(deck_path, deck, err)
    if (allocated(err)) call fail(err)
-   call sim_setup(deck, sim, err)
+   call sim_setup(deck, sim, err, restart=len(restart_path) > 0)
    if (allocated(err)) call fail(err)
    if (len(restart_path) > 0) then
       block

@@ -11,7 +11,12 @@ lost, nothing half made.
     the first finishes with exit 0 and outputs identical to a run alone;
   * a checkpoint that is the deck, an output of the run or a folder: exit 2, deck intact;
   * deck reals that the "not given" marker would swallow, or whose products overflow:
-    exit 2 naming the variable.
+    exit 2 naming the variable;
+  * memory: a mesh, an x-t buffer or a sweep table beyond the limit (SPALLBAR_MEMORY_LIMIT,
+    ulimit -v) is refused before it is allocated (exit 2 naming the variable, nothing
+    written); the x-t buffer shrinks first, with the same fields;
+  * a Weibull field whose draws overflow (or underflow) is refused before it is drawn;
+  * a sweep's output that is a folder: exit 2 before any case runs, nothing created.
 
 usage: cli_faults.py SPALLBAR WORKDIR
 """
@@ -351,6 +356,174 @@ def special_files(exe, work, check):
         print(f"ok   {name}: {lines[0] if lines else ''}")
 
 
+MEM_DECK = """&run t_end = {t_end}, title = 'memory'{extra} /
+&mesh cells = {cells} /
+&segments n = 1, length = 1.0, young = 2e11, density = 8000, strength = 1e9 /
+&load kind = 'power', p0 = 1e6, t_k = 1e-4 /
+"""
+
+
+def run_env(exe, args, cwd, env=None, limit_as=None):
+    """Run spallbar with extra environment variables and an address-space limit (bytes)."""
+    full = dict(os.environ)
+    full.update(env or {})
+
+    def limit():
+        if limit_as:
+            import resource
+            resource.setrlimit(resource.RLIMIT_AS, (limit_as, limit_as))
+    return subprocess.run([exe] + args, cwd=cwd, capture_output=True, text=True,
+                          errors="replace", timeout=600, stdin=subprocess.DEVNULL,
+                          env=full, preexec_fn=limit)
+
+
+def only_deck(d, name):
+    """Files in folder d other than the decks."""
+    return sorted(f for f in os.listdir(d) if not f.endswith(".nml"))
+
+
+def memory_limits(exe, work, check):
+    """What a deck needs is checked against the memory before anything large is allocated
+    (SPALLBAR_MEMORY_LIMIT lowers the machine's limit; ulimit -v is the address space)."""
+    d = os.path.join(work, "memory")
+    os.makedirs(d)
+    small = {"SPALLBAR_MEMORY_LIMIT": str(50 * 10**6)}
+    with open(os.path.join(d, "big.nml"), "w") as f:
+        f.write(MEM_DECK.format(t_end="2e-9", cells=1000000, extra=""))
+    r = run_env(exe, ["big.nml", "--quiet"], d, small)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 1000000" in lines[0]
+          and "memory" in lines[0] and "50.0 MB" in lines[0],
+          f"1e6 cells under 50 MB: exit {r.returncode} {r.stderr!r}")
+    check(only_deck(d, "big") == [], f"1e6 cells under 50 MB wrote {only_deck(d, 'big')}")
+    print(f"ok   1e6 cells, limit 50 MB: {lines[0] if lines else ''}")
+
+    # the largest mesh the deck reader takes, under ulimit -v 3 GB: refused, not
+    # "Error allocating"
+    with open(os.path.join(d, "huge.nml"), "w") as f:
+        f.write(MEM_DECK.format(t_end="2e-11", cells=50000000, extra=""))
+    r = run_env(exe, ["huge.nml", "--quiet"], d, limit_as=3 * 2**30)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 50000000" in lines[0]
+          and "GB of memory" in lines[0],
+          f"5e7 cells under ulimit -v 3 GB: exit {r.returncode} {r.stderr!r}")
+    check(only_deck(d, "huge") == [], "5e7 cells under ulimit -v: wrote files")
+    print(f"ok   5e7 cells, ulimit -v 3 GB: {lines[0] if lines else ''}")
+
+    # hdf5 x-t rows: 1e5 cells need ~42 MB before the buffer and 6.4 MB per buffered time
+    xt = MEM_DECK.format(t_end="4e-8", cells=100000, extra=", hdf5 = .true., field_every = 1")
+    with open(os.path.join(d, "xt.nml"), "w") as f:
+        f.write(xt)
+    r = run_env(exe, ["xt.nml", "--quiet", "--output", "xt_full"], d)
+    check(r.returncode == 0, f"x-t run: exit {r.returncode} {r.stderr!r}")
+    r = run_env(exe, ["xt.nml", "--quiet", "--output", "xt_short"], d,
+                {"SPALLBAR_MEMORY_LIMIT": str(60 * 10**6)})
+    check(r.returncode == 0, f"x-t run under 60 MB (a smaller buffer): exit {r.returncode} "
+          f"{r.stderr!r}")
+    same = r.returncode == 0 and all(
+        open(os.path.join(d, "xt_full" + e), "rb").read().replace(b"xt_full", b"")
+        == open(os.path.join(d, "xt_short" + e), "rb").read().replace(b"xt_short", b"")
+        for e in (".his", ".evt"))
+    check(same, "x-t run under 60 MB: history or events differ from the full buffer's")
+    h5diff = shutil.which("h5diff")
+    if h5diff and r.returncode == 0:
+        c = subprocess.run([h5diff, "xt_full.h5", "xt_short.h5", "/fields/xt", "/fields/xt"],
+                           cwd=d, capture_output=True, text=True)
+        check(c.returncode == 0, f"x-t run under 60 MB: /fields/xt differs: {c.stdout[-300:]!r}")
+        print("ok   x-t fields with a smaller buffer equal the full buffer's (h5diff)")
+    else:
+        print("skip comparing the x-t fields: no h5diff here")
+    r = run_env(exe, ["xt.nml", "--quiet", "--output", "xt_refused"], d,
+                {"SPALLBAR_MEMORY_LIMIT": str(45 * 10**6)})
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "&run: field_every = 1" in lines[0]
+          and "memory" in lines[0], f"x-t under 45 MB: exit {r.returncode} {r.stderr!r}")
+    check(not any(f.startswith("xt_refused") for f in os.listdir(d)),
+          "x-t under 45 MB: wrote files")
+    print(f"ok   x-t rows, limit 45 MB: {lines[0] if lines else ''}")
+
+    # a sweep whose table and histograms do not fit
+    with open(os.path.join(d, "sw.nml"), "w") as f:
+        f.write(SMALL + "&strength_field kind = 'weibull', modulus = 6, scale = 1e5 /\n"
+                "&sweep realizations = 1000000, bins = 100000 /\n")
+    r = run_env(exe, ["--sweep", "sw.nml", "--quiet"], d,
+                {"SPALLBAR_MEMORY_LIMIT": str(10**9)})
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and lines[0].startswith("spallbar: &sweep: ")
+          and "realizations = 1000000" in lines[0] and "bins = 100000" in lines[0]
+          and "GB of memory" in lines[0], f"huge sweep table: exit {r.returncode} {r.stderr!r}")
+    check(not any(f.startswith("sw.") and f != "sw.nml" or f.startswith("sw_")
+                  for f in os.listdir(d)), "huge sweep table: wrote files")
+    print(f"ok   sweep table beyond the memory: {lines[0] if lines else ''}")
+
+    # a normal deck under a generous limit runs as before
+    with open(os.path.join(d, "small.nml"), "w") as f:
+        f.write(SMALL)
+    r = run_env(exe, ["small.nml", "--quiet", "--output", "lim"], d,
+                {"SPALLBAR_MEMORY_LIMIT": str(2 * 10**9)})
+    r0 = run_env(exe, ["small.nml", "--quiet", "--output", "nolim"], d)
+    check(r.returncode == 0 and r0.returncode == 0,
+          f"small deck under 2 GB: exit {r.returncode} {r.stderr!r}")
+    check(r.returncode == 0 and open(os.path.join(d, "lim.his")).read().replace("lim", "") ==
+          open(os.path.join(d, "nolim.his")).read().replace("nolim", ""),
+          "small deck under 2 GB: history differs")
+    print("ok   a small deck under a 2 GB limit runs as without it")
+
+
+def weibull_overflow(exe, work, check):
+    """A Weibull field whose largest draw overflows the deck's reals is refused before any
+    strength is drawn (it was SIGFPE in the Debug build, Inf strengths in Release)."""
+    d = os.path.join(work, "weibull")
+    os.makedirs(d)
+    with open(os.path.join(d, "w.nml"), "w") as f:
+        f.write(SMALL + "&strength_field kind = 'weibull', modulus = 1e-3, scale = 3e6 /\n")
+    r = run(exe, ["w.nml", "--quiet"], d)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and
+          lines[0].startswith("spallbar: &strength_field: modulus = ") and "overflow" in lines[0],
+          f"weibull modulus 1e-3: exit {r.returncode} {r.stderr!r}")
+    check(only_deck(d, "w") == [], "weibull modulus 1e-3: wrote files")
+    print(f"ok   weibull modulus 1e-3: {lines[0] if lines else ''}")
+    with open(os.path.join(d, "w.nml"), "w") as f:
+        f.write(SMALL + "&strength_field kind = 'weibull', modulus = 0.02, scale = 1e-50 /\n")
+    r = run(exe, ["w.nml", "--quiet"], d)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "modulus = 0.02" in lines[0] and
+          "underflow" in lines[0], f"weibull underflow: exit {r.returncode} {r.stderr!r}")
+    with open(os.path.join(d, "w.nml"), "w") as f:
+        f.write(SMALL + "&strength_field kind = 'weibull', modulus = 0.2, scale = 1e5 /\n")
+    r = run(exe, ["w.nml", "--quiet"], d)
+    check(r.returncode == 0, f"weibull modulus 0.2: exit {r.returncode} {r.stderr!r}")
+    # a sweep over the modulus reaching the overflow is refused before any case runs
+    with open(os.path.join(d, "s.nml"), "w") as f:
+        f.write(SMALL + "&strength_field kind = 'weibull', modulus = 6, scale = 1e5 /\n"
+                "&sweep vary = 'modulus', values = 6, 1e-3 /\n")
+    r = run(exe, ["--sweep", "s.nml", "--quiet"], d)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "&sweep: values(2)" in lines[0] and
+          "overflow" in lines[0], f"sweep to modulus 1e-3: exit {r.returncode} {r.stderr!r}")
+    print(f"ok   sweep to modulus 1e-3: {lines[0] if lines else ''}")
+
+
+def sweep_outputs_first(exe, work, check):
+    """A sweep checks its outputs before any case runs: one that is a folder is exit 2 at
+    once, one line, nothing created (it ran every case and exited 3 before)."""
+    for name in ("out.sweep", "out_sweep.h5", "out.sweep.part", "out_sweep.h5.part", "out"):
+        d = os.path.join(work, "sweep_" + name.replace(".", "_"))
+        os.makedirs(os.path.join(d, name))
+        with open(os.path.join(d, "sw.nml"), "w") as f:
+            f.write(SWEEP)
+        t0 = time.time()
+        r = run(exe, ["--sweep", "sw.nml", "--quiet", "--output", "out"], d)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and name in lines[0] and
+              "folder" in lines[0], f"sweep, {name} a folder: exit {r.returncode} {r.stderr!r}")
+        check(sorted(os.listdir(d)) == sorted([name, "sw.nml"]),
+              f"sweep, {name} a folder: left {sorted(os.listdir(d))}")
+        print(f"ok   sweep, {name} a folder ({time.time() - t0:.2f} s): "
+              f"{lines[0] if lines else ''}")
+
+
 def main():
     exe, work = sys.argv[1], sys.argv[2]
     shutil.rmtree(work, ignore_errors=True)
@@ -364,6 +537,9 @@ def main():
     load_tables(exe, work, check)
     tampered_checkpoints(exe, work, check)
     special_files(exe, work, check)
+    memory_limits(exe, work, check)
+    weibull_overflow(exe, work, check)
+    sweep_outputs_first(exe, work, check)
     return check.finish()
 
 

@@ -206,11 +206,17 @@ plain = os.path.join(indir, "example1.nml")
 p = run(exe, ["--sweep", plain, "-o", os.path.join(work, "plain")], work)
 check(p.returncode == 2 and "&sweep: required group is missing" in p.stderr,
       f"--sweep without &sweep: {p.stderr}")
-# the table cannot be written after the cases ran: a runtime failure (exit 3), not bad input
+# the table's temporary is a folder: found before any case runs (issue 19), exit 2, one
+# line, nothing created (a table that cannot be written after the cases ran, a full disk,
+# is exit 3: cli_faults.py)
 os.makedirs(os.path.join(work, "blocked.sweep.part"))
+before = set(os.listdir(work))
 p = run(exe, ["--sweep", small_deck, "-o", os.path.join(work, "blocked"), "-q"], work)
-check(p.returncode == 3 and "cannot write" in p.stderr and "blocked.sweep" in p.stderr,
-      f"an unwritable table after the run: exit {p.returncode} {p.stderr.strip()}")
+lines = p.stderr.strip().splitlines()
+check(p.returncode == 2 and len(lines) == 1 and "cannot write" in lines[0] and
+      "blocked.sweep.part" in lines[0] and "folder" in lines[0],
+      f"the table's temporary is a folder: exit {p.returncode} {p.stderr.strip()}")
+check(set(os.listdir(work)) - before == set(), "the table's temporary is a folder: files made")
 if mpiexec != "-":
     stopped_sweep("stop_mpirun", False)
     stopped_sweep("stop_ranks", True)

@@ -13,12 +13,18 @@ module spb_random
    use spb_kinds, only: wp
    implicit none
    private
-   public :: rng_t, rng_seed, rng_uniform, weibull, realization_seed
+   public :: rng_t, rng_seed, rng_uniform, weibull, realization_seed, weibull_log_min, &
+      weibull_log_max
 
    integer(int64), parameter :: m1 = 4294967087_int64, m2 = 4294944443_int64
    integer(int64), parameter :: a12 = 1403580_int64, a13n = 810728_int64
    integer(int64), parameter :: a21 = 527612_int64, a23n = 1370589_int64
    real(wp), parameter :: norm = 1.0_wp / (real(m1, wp) + 1.0_wp)
+   !> The extremes of -ln(1 - u) over the numbers rng_uniform gives (u = z norm, z = 1 .. m1):
+   !> a Weibull draw scale (-ln(1 - u))^(1/m) lies between scale weibull_log_min^(1/m)
+   !> (about 2.3e-10) and scale weibull_log_max^(1/m) (about 22.18 = ln(m1 + 1)).
+   real(wp), parameter :: weibull_log_min = -log(1.0_wp - norm)
+   real(wp), parameter :: weibull_log_max = -log(1.0_wp - real(m1, wp) * norm)
 
    !> Generator state: (s10, s11, s12) modulo m1 and (s20, s21, s22) modulo m2.
    type :: rng_t

@@ -25,6 +25,8 @@ module spb_sys
    !> spallbar: a signal handler can reach nothing else. Written by the handler only.
    integer(c_int), volatile :: caught = 0_c_int
 
+   public :: sys_memory_limit
+
    interface
       !> C _exit(2): ends the process at once, without exit handlers.
       subroutine c_exit_now(status) bind(c, name='_exit')
@@ -277,4 +279,49 @@ contains
       integer(c_int), value :: signum   !! the signal number
       caught = signum
    end subroutine on_signal
+
+   !> The memory this process may use [bytes]: the physical memory (sysconf(3)
+   !> _SC_PHYS_PAGES x _SC_PAGESIZE), or the address-space limit (getrlimit(2) RLIMIT_AS,
+   !> the soft limit `ulimit -v` sets) when that is smaller; the environment variable
+   !> SPALLBAR_MEMORY_LIMIT (bytes, digits only; tests) lowers it further. Linux numbers:
+   !> _SC_PAGESIZE 30, _SC_PHYS_PAGES 85, RLIMIT_AS 9, RLIM_INFINITY all bits set (-1 here).
+   !> huge(1_int64) when nothing is known.
+   function sys_memory_limit() result(bytes)
+      integer(int64) :: bytes
+      interface
+         !> C sysconf(3).
+         function c_sysconf(name) bind(c, name='sysconf') result(r)
+            import :: c_int, c_long
+            implicit none
+            integer(c_int), value :: name   !! the setting (_SC_*)
+            integer(c_long) :: r
+         end function c_sysconf
+         !> C getrlimit(2): struct rlimit {rlim_t rlim_cur, rlim_max} (two unsigned longs).
+         function c_getrlimit(resource, rlim) bind(c, name='getrlimit') result(r)
+            import :: c_int, c_long
+            implicit none
+            integer(c_int), value :: resource          !! the limit (RLIMIT_*)
+            integer(c_long), intent(out) :: rlim(2)    !! soft and hard limit [bytes]
+            integer(c_int) :: r
+         end function c_getrlimit
+      end interface
+      integer(c_long) :: pages, page_size, rlim(2)
+      integer(int64) :: env_bytes
+      character(len=32) :: text
+      integer :: length, status, ios
+      bytes = huge(1_int64)
+      pages = c_sysconf(85_c_int)
+      page_size = c_sysconf(30_c_int)
+      if (pages > 0 .and. page_size > 0) then
+         if (pages < huge(1_int64) / page_size) bytes = int(pages, int64) * int(page_size, int64)
+      end if
+      if (c_getrlimit(9_c_int, rlim) == 0_c_int) then
+         if (rlim(1) > 0) bytes = min(bytes, int(rlim(1), int64))
+      end if
+      call get_environment_variable('SPALLBAR_MEMORY_LIMIT', text, length, status)
+      if (status /= 0 .or. length < 1 .or. length > 18) return
+      if (verify(text(:length), '0123456789') /= 0) return
+      read(text(:length), *, iostat=ios) env_bytes
+      if (ios == 0 .and. env_bytes > 0) bytes = min(bytes, env_bytes)
+   end function sys_memory_limit
 end module spb_sys

@@ -18,7 +18,8 @@ module spb_deck
       events_words, model_words, fit_words, top_words, bottom_words, interface_words, &
       kind_words, face_words, state_words, field_words, distribution_words
    use spb_deck_params, only: param_pass_t, deck_params, pass_read, pass_echo, pass_find, &
-      pass_set, pass_doc
+      pass_set, pass_doc, huge_real
+   use spb_random, only: weibull_log_min, weibull_log_max
    use spb_sys, only: fp_traps_off, fp_traps_restore
    use spb_mesh, only: mesh_fault_t, max_cells, max_steps, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
@@ -665,10 +666,56 @@ contains
       call need_positive(err, 'strength_field', 'modulus', deck%field%modulus)
       call need_positive(err, 'strength_field', 'scale', deck%field%scale)
       if (allocated(err)) return
+      call need_weibull_range(deck%field%modulus, deck%field%scale, err)
+      if (allocated(err)) return
       if (.not. any(deck%seg%strength(1:deck%seg%n) >= 0.0_wp)) call make_error(err, &
          '&strength_field: kind = ''weibull'' applies to segments with strength >= 0 ' // &
          '(&segments strength), and there is none')
    end subroutine validate_field
+
+   !> Every strength a Weibull field can draw, scale (-ln(1 - u))^(1/modulus) for the
+   !> generator's u (spb_random: weibull_log_min .. weibull_log_max), must lie in the deck's
+   !> range (at most huge_real) and be a normal number (not below tiny(1.0_wp)): checked in
+   !> logarithms before any is drawn, so a small modulus cannot overflow the field.
+   subroutine need_weibull_range(modulus, scale, err)
+      real(wp), intent(in) :: modulus      !! Weibull modulus, > 0 [-]
+      real(wp), intent(in) :: scale        !! Weibull scale, > 0 [Pa]
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      real(wp) :: ln_hi, ln_lo
+      character(len=:), allocatable :: what
+      ln_hi = log(scale) + log(weibull_log_max) / modulus
+      ln_lo = log(scale) + log(weibull_log_min) / modulus
+      what = '&strength_field: modulus = ' // rtoa(modulus) // ' with scale = ' // &
+             rtoa(scale) // ' draws strengths '
+      if (ln_hi > log(huge_real)) then
+         call make_error(err, what // 'up to ' // power_text(ln_hi) // ' Pa (overflow: at ' // &
+            'most ' // rtoa(huge_real) // ' Pa); give a larger modulus or a smaller scale')
+      else if (ln_lo < log(tiny(1.0_wp))) then
+         call make_error(err, what // 'down to ' // power_text(ln_lo) // ' Pa (underflow: ' // &
+            'at least ' // power_text(log(tiny(1.0_wp))) // ' Pa); give a larger modulus ' // &
+            'or a larger scale')
+      end if
+   end subroutine need_weibull_range
+
+   !> exp(ln_x) written as a power of ten ('3e1352'), for a logarithm beyond the reals.
+   function power_text(ln_x) result(text)
+      real(wp), intent(in) :: ln_x         !! natural logarithm of the number
+      character(len=:), allocatable :: text
+      real(wp) :: e10
+      integer :: m, e
+      e10 = ln_x / log(10.0_wp)
+      if (abs(e10) > 1.0e9_wp) then
+         text = '10^' // rtoa(e10)
+         return
+      end if
+      e = floor(e10)
+      m = nint(10.0_wp**(e10 - real(e, wp)))
+      if (m >= 10) then
+         m = 1
+         e = e + 1
+      end if
+      text = itoa(m) // 'e' // itoa(e)
+   end function power_text
 
    !> Check &initial's values.
    subroutine validate_initial(deck, err)

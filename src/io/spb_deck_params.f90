@@ -24,7 +24,8 @@ module spb_deck_params
       interface_words, kind_words, face_words, state_words, field_words, distribution_words
    implicit none
    private
-   public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc
+   public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc, &
+      huge_real
 
    real(wp), parameter :: tiny_real = 1.0e-60_wp   !! smallest magnitude of a deck real (or 0)
    real(wp), parameter :: huge_real = 1.0e60_wp    !! largest magnitude of a deck real

@@ -418,11 +418,13 @@ contains
       end associate
    end subroutine write_table
 
-   !> The x-t fields under path: t(nt) and u, v, stress(nrow, nt), with units.
-   subroutine h5_xt(h5, path, nrow)
+   !> The x-t fields under path: t(nt) and u, v, stress(nrow, nt), with units; rows times
+   !> are buffered before they are written (64 unless memory is short; spb_sim).
+   subroutine h5_xt(h5, path, nrow, rows)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       integer, intent(in) :: nrow          !! half-node rows per time
+      integer, intent(in) :: rows          !! times buffered (>= 1)
       character(len=6), parameter :: names(3) = [character(len=6) :: 'u', 'v', 'stress']
       character(len=6), parameter :: units(3) = [character(len=6) :: 'm', 'm/s', 'Pa']
       integer :: k
@@ -430,7 +432,7 @@ contains
       call h5_group(h5, path)
       h5%has_xt = .true.
       h5%xt%nrow = nrow
-      allocate(h5%xt%buf(nrow, 3, 64), h5%xt%tbuf(64))
+      allocate(h5%xt%buf(nrow, 3, max(1, rows)), h5%xt%tbuf(max(1, rows)))
       call create_extendible(h5, path // '/t', H5T_NATIVE_DOUBLE, 0, h5%xt%dset(4))
       call attr_string(h5, path // '/t', 'units', 's')
       do k = 1, 3

@@ -23,7 +23,7 @@ module spb_output
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
-   public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
+   public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, claim_sweep_outputs, &
       check_written
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
@@ -135,13 +135,14 @@ module spb_output
 contains
 
    !> Open PREFIX.his, .prf, .evt and write their headers.
-   subroutine open_outputs(prefix, rec, mesh, report, out, err)
+   subroutine open_outputs(prefix, rec, mesh, report, out, err, xt_rows)
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)     !! mesh fit report lines
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
       out%prefix = prefix
       out%per_area = per_unit_area(mesh)
       call open_one('.his', out%his)
@@ -188,7 +189,7 @@ contains
          // 'velocity [m/s]; e_vib [J/m^2]; ids and nodes [-]', mesh)
       write(out%frg, '(a)') '# ' // fragment_columns
       call text_sizes(out, out%head)
-      if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err)
+      if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err, xt_rows)
    contains
       !> Open PREFIX.ext for writing (unit u).
       subroutine open_one(ext, u)
@@ -292,7 +293,7 @@ contains
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
       character(len=len(prefix) + 5) :: files(6)
-      integer :: k, n, state
+      integer :: k, n
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
                          'such as ''' // prefix // '/run''')
@@ -310,16 +311,7 @@ contains
       end do
       call claim_checkpoint(checkpoint, rec, files, err)
       if (allocated(err)) return
-      call sys_lock(trim(files(6)), state)
-      if (state == 1) then
-         call make_error(err, '--output: cannot make the lock file ''' // trim(files(6)) // '''')
-         return
-      else if (state /= 0) then
-         call make_error(err, '--output: ''' // prefix // ''' is in use by another ' // &
-            'spallbar run (' // trim(files(6)) // ' is locked); wait for it or give ' // &
-            'another --output')
-         return
-      end if
+      call hold_lock(prefix, err)
    end subroutine claim_outputs
 
    !> The checkpoint's part of claim_outputs: not a file of the run (files: its outputs and
@@ -359,6 +351,41 @@ contains
       if (.not. allocated(err)) call check_writable('&run: checkpoint = ''' // checkpoint // &
                                                     '''', checkpoint // '.part', err)
    end subroutine claim_checkpoint
+
+   !> Hold PREFIX.lock for the life of the process: a second run on the same PREFIX is refused.
+   subroutine hold_lock(prefix, err)
+      character(len=*), intent(in) :: prefix       !! output path prefix
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
+      integer :: state
+      call sys_lock(prefix // '.lock', state)
+      if (state == 1) then
+         call make_error(err, '--output: cannot make the lock file ''' // prefix // '.lock''')
+      else if (state /= 0) then
+         call make_error(err, '--output: ''' // prefix // ''' is in use by another ' // &
+            'spallbar run (' // prefix // '.lock is locked); wait for it or give ' // &
+            'another --output')
+      end if
+   end subroutine hold_lock
+
+   !> A sweep's claim_outputs, before any case runs: PREFIX.sweep, PREFIX_sweep.h5 and the
+   !> .part files they are written as can be written (none is a folder), PREFIX.lock held.
+   subroutine claim_sweep_outputs(prefix, err)
+      character(len=*), intent(in) :: prefix       !! output path prefix
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
+      character(len=*), parameter :: tails(4) = [character(len=14) :: '.sweep', &
+         '.sweep.part', '_sweep.h5', '_sweep.h5.part']
+      integer :: k
+      if (sys_is_directory(prefix)) then
+         call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
+                         'such as ''' // prefix // '/run''')
+         return
+      end if
+      do k = 1, size(tails)
+         call check_writable('--output', prefix // trim(tails(k)), err)
+         if (allocated(err)) return
+      end do
+      call hold_lock(prefix, err)
+   end subroutine claim_sweep_outputs
 
    !> Error unless path can be written: an existing file is opened for appending and closed
    !> untouched, a missing one is created and removed again.
@@ -603,13 +630,14 @@ contains
 
    !> PREFIX.h5: root attributes, /deck, /mesh, the /history and /events tables, /fields
    !> (profiles, and x-t rows when field_every > 0), /fragments.
-   subroutine open_h5(prefix, rec, mesh, report, out, err)
+   subroutine open_h5(prefix, rec, mesh, report, out, err, xt_rows)
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
       character(len=*), intent(in) :: report(:)   !! the mesh fit report (stretched segments)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
       logical :: whole(n_history), whole_evt(n_event_columns)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
@@ -657,7 +685,9 @@ contains
                    'node 0 lower half, then upper and lower half of each interior node, ' // &
                    'node n upper half; x at /mesh/x_half')
       if (rec%field_every > 0) then
-         call h5_xt(out%h5, '/fields/xt', 2 * n)
+         k = 64
+         if (present(xt_rows)) k = xt_rows
+         call h5_xt(out%h5, '/fields/xt', 2 * n, k)
          call h5_attr(out%h5, '/fields/xt', 'every', rec%field_every)
       end if
       call h5_group(out%h5, '/fragments')

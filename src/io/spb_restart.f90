@@ -33,7 +33,7 @@ contains
    !> is then a cut copy or one rebuilt up to the marks, and is rebuilt again from it), else
    !> PREFIX.ext is. Renames are atomic and the set-aside files are removed only once every
    !> output is rebuilt, so at every instant one complete copy of each file exists.
-   subroutine resume_outputs(prefix, rec, mesh, report, marks, out, err)
+   subroutine resume_outputs(prefix, rec, mesh, report, marks, out, err, xt_rows)
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
@@ -41,6 +41,7 @@ contains
       type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
       integer(int64) :: head(4)
       integer :: k, nrows
       logical :: aside_there(5), ok
@@ -78,7 +79,7 @@ contains
             return
          end if
       end do
-      call open_outputs(prefix, rec, mesh, report, out, err)
+      call open_outputs(prefix, rec, mesh, report, out, err, xt_rows)
       if (allocated(err)) return
       do k = 1, 4
          call copy_body(prefix, k, head(k), marks%body(k), out, err)
@@ -271,9 +272,11 @@ contains
       integer, intent(in) :: rows_xt           !! times to copy
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      integer, parameter :: width = 64
       real(wp), allocatable :: t(:), u(:, :), v(:, :), s(:, :)
-      integer :: c0, m, j
+      integer :: c0, m, j, width
+      ! as many times at once as the new file buffers (fewer when memory is short; spb_sim)
+      width = 64
+      if (allocated(out%h5%xt%tbuf)) width = size(out%h5%xt%tbuf)
       call h5_get(old, '/fields/xt/t', t)
       if (.not. allocated(t)) then
          call make_error(err, '--restart: ''' // prefix // '.h5'' has no /fields/xt', &

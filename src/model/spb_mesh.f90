@@ -5,7 +5,7 @@ module spb_mesh
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base
    implicit none
    private
-   public :: mesh_t, build_mesh, end_free, end_fixed, end_transmit, end_base, node_area
+   public :: mesh_t, build_mesh, mesh_size, end_free, end_fixed, end_transmit, end_base, node_area
    public :: mesh_fault_t, max_cells, max_steps, fault_none, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
 
@@ -63,29 +63,33 @@ module spb_mesh
 
 contains
 
-   !> Build the mesh of the problem; report holds one line per stretched segment. A problem
-   !> that no mesh can serve comes back as a fault (what and the numbers; the deck module
-   !> words it in the deck's terms) and no mesh.
-   subroutine build_mesh(prob, mesh, report, fault)
+   !> The number of cells of the problem's mesh (0 with a fault), found as build_mesh finds
+   !> it but without building anything: what a run needs can be checked before it allocates.
+   pure subroutine mesh_size(prob, n, fault)
       type(problem_t), intent(in) :: prob   !! the problem
-      type(mesh_t), intent(out) :: mesh    !! the mesh
-      character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
-      type(mesh_fault_t), intent(out) :: fault   !! why no mesh (fault_none: built)
-      integer :: j, nseg, k, r
+      integer, intent(out) :: n            !! cells of the mesh (0: fault)
+      type(mesh_fault_t), intent(out) :: fault   !! why no mesh (fault_none: it can be built)
       integer, allocatable :: cells(:)
-      real(wp), allocatable :: a(:), zz(:), ncont(:)
       real(wp) :: dt, steps_real
+      call plan_mesh(prob, dt, cells, steps_real, fault)
+      n = 0
+      if (fault%kind == fault_none) n = sum(cells)
+   end subroutine mesh_size
 
+   !> dt, the cells of each segment and t_end / dt of the problem, or its fault.
+   pure subroutine plan_mesh(prob, dt, cells, steps_real, fault)
+      type(problem_t), intent(in) :: prob   !! the problem
+      real(wp), intent(out) :: dt          !! the time step [s]
+      integer, allocatable, intent(out) :: cells(:)   !! cells of each segment
+      real(wp), intent(out) :: steps_real  !! t_end / dt [-]
+      type(mesh_fault_t), intent(out) :: fault   !! why no mesh (fault_none: it can be built)
+      integer :: j, nseg, r
+      real(wp) :: a(prob%nseg), ncont(prob%nseg)
       nseg = prob%nseg
-      mesh%nseg = nseg
-      allocate(report(0), a(nseg), zz(nseg), ncont(nseg))
+      allocate(cells(nseg), source=0)
+      dt = 0.0_wp
+      steps_real = 0.0_wp
       a = sqrt(prob%young / prob%density)
-      zz = prob%density * a
-      if (.not. allocated(prob%area)) then
-         mesh%seg_area = [(1.0_wp, j = 1, nseg)]
-      else
-         mesh%seg_area = prob%area
-      end if
       r = prob%ref_segment
       if (.not. (prob%dt > 0.0_wp) .and. prob%cells > max_cells) then
          fault%kind = fault_cells
@@ -98,7 +102,6 @@ contains
       end if
       fault%dt = dt
       ncont = prob%length / (a * dt)
-      allocate(cells(nseg))
       do j = 1, nseg
          fault%segment = j
          fault%cells = ncont(j)
@@ -129,12 +132,36 @@ contains
       fault%steps = steps_real
       if (steps_real < 0.5_wp) then
          fault%kind = fault_short_run
-         return
-      end if
-      if (steps_real > real(max_steps, wp)) then
+      else if (steps_real > real(max_steps, wp)) then
          fault%kind = fault_long_run
-         return
       end if
+   end subroutine plan_mesh
+
+   !> Build the mesh of the problem; report holds one line per stretched segment. A problem
+   !> that no mesh can serve comes back as a fault (what and the numbers; the deck module
+   !> words it in the deck's terms) and no mesh.
+   subroutine build_mesh(prob, mesh, report, fault)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(out) :: mesh    !! the mesh
+      character(len=200), allocatable, intent(out) :: report(:)   !! length changes (stretch)
+      type(mesh_fault_t), intent(out) :: fault   !! why no mesh (fault_none: built)
+      integer :: j, nseg, k
+      integer, allocatable :: cells(:)
+      real(wp), allocatable :: a(:), zz(:)
+      real(wp) :: dt, steps_real
+
+      nseg = prob%nseg
+      mesh%nseg = nseg
+      allocate(report(0))
+      a = sqrt(prob%young / prob%density)
+      zz = prob%density * a
+      if (.not. allocated(prob%area)) then
+         mesh%seg_area = [(1.0_wp, j = 1, nseg)]
+      else
+         mesh%seg_area = prob%area
+      end if
+      call plan_mesh(prob, dt, cells, steps_real, fault)
+      if (fault%kind /= fault_none) return
       mesh%dt = dt
       ! a t_end within round-off of a grid time is that grid time
       mesh%nsteps = max(1, ceiling(steps_real - 1.0e-9_wp))

@@ -7,12 +7,13 @@ module spb_sim
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
-   use spb_sys, only: stop_signal
+   use spb_sys, only: stop_signal, sys_memory_limit
    use spb_strings, only: itoa, rtoa
    use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record, mesh_fault_message
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
-   use spb_mesh, only: mesh_t, build_mesh, end_base, mesh_fault_t, fault_none, node_area
+   use spb_mesh, only: mesh_t, build_mesh, mesh_size, end_base, mesh_fault_t, fault_none, &
+      node_area
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
@@ -31,11 +32,32 @@ module spb_sim
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model, &
-      run_options_t
+      run_options_t, memory_text, run_base_bytes, run_cell_bytes
 
    !> The between-step actions run every check_every steps (finiteness, energy guard) and
    !> every progress_every steps (progress line, flush), besides the deck's own periods.
    integer, parameter :: check_every = 64, progress_every = 1024
+
+   !> Memory of a run, resident bytes (Release, /usr/bin/time -f %M): 204 MB with 1e6 cells,
+   !> 395 MB with 2e6, 778 MB with 4e6: 196 bytes per cell over about 13 MB. Counted: mesh
+   !> 76 (seg; dx, dm, z, stiff; x, ma, mb, inv_m, m_above), state 100 (ua, ub, dua, dub,
+   !> s, s_old, section, strength, cell_strength; joined, cracked, is_cut; the genealogy's
+   !> three integers; split), init_state's u, s, v 24: 200 per cell; the cells' areas (issue
+   !> 20) 8 more (measured 809 MB with 4e6 cells: 204 per cell).
+   real(wp), parameter :: run_base_bytes = 16.0e6_wp      !! program, libraries [bytes]
+   real(wp), parameter :: run_cell_bytes = 208.0_wp       !! per cell [bytes]
+   !> --restart reads the checkpoint's state beside the run's: measured 372 bytes per cell
+   !> (4e5 and 8e5 cells), 176 more than a run.
+   real(wp), parameter :: restart_cell_bytes = 200.0_wp   !! per cell [bytes]
+   !> hdf5 with field_every: per cell, write_field's u, v, s and /mesh/x_half (2 half nodes,
+   !> 8 bytes: 64), and per buffered time 64 (the buffer's u, v, stress: 48; write_xt's copy
+   !> of one of them: 16). Measured with 64 times (2e5 and 4e5 cells): 4130 bytes per cell
+   !> more than a run; counted 64 + 64 x 64 = 4160. A restart replays the old file's x-t
+   !> rows as many times at once: 48 more per time.
+   real(wp), parameter :: xt_cell_bytes = 64.0_wp          !! per cell [bytes]
+   real(wp), parameter :: xt_time_bytes = 64.0_wp          !! per cell and time [bytes]
+   real(wp), parameter :: replay_time_bytes = 48.0_wp      !! per cell and time [bytes]
+   integer, parameter :: xt_rows_max = 64                  !! x-t times buffered at most
 
    !> What a run carries from step to step besides the simulation: its outputs, the
    !> events of the step, the schedule, and the clock.
@@ -59,6 +81,8 @@ module spb_sim
       character(len=:), allocatable :: checkpoint    !! checkpoint file ('': none)
       integer :: checkpoint_every = 0                !! steps between checkpoints (0: at the end)
       real(wp) :: energy_guard = 0.5_wp              !! the energy guard's share (0: off) [-]
+      integer :: xt_rows = xt_rows_max               !! x-t times buffered (fewer when memory
+                                                     !! is short)
    end type run_options_t
 
    type :: sim_t
@@ -112,11 +136,14 @@ contains
       ov = max(ov, -1.0_wp)
    end function largest_overlap
 
-   !> Build mesh, load and initial state from a validated deck.
-   subroutine sim_setup(deck, sim, err)
+   !> Build mesh, load and initial state from a validated deck, once the memory they need
+   !> (and the outputs', a restart's) is known to fit.
+   subroutine sim_setup(deck, sim, err, restart, files)
       type(deck_t), intent(in) :: deck     !! the deck
       type(sim_t), intent(out) :: sim      !! the simulation
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      logical, intent(in), optional :: restart   !! it goes on from a checkpoint
+      logical, intent(in), optional :: files     !! it writes its outputs (default .true.)
       sim%record = deck_record(deck)
       sim%opt%history_every = deck%run%history_every
       sim%opt%field_every = deck%run%field_every
@@ -124,22 +151,44 @@ contains
       sim%opt%checkpoint = trim(deck%run%checkpoint)
       sim%opt%checkpoint_every = deck%run%checkpoint_every
       sim%opt%energy_guard = deck%run%energy_guard
-      call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err)
+      call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err, files=files, &
+                       restart=restart, xt_rows=sim%opt%xt_rows)
       if (allocated(err)) return
       call init_state(sim%prob, sim%mesh, sim%st)
    end subroutine sim_setup
 
    !> The problem of a validated deck, its mesh and its load (the load table read here, after
-   !> the mesh: a deck with faults in both reports the mesh's first).
-   subroutine setup_model(deck, prob, mesh, load, report, err)
+   !> the mesh: a deck with faults in both reports the mesh's first). Before the mesh is
+   !> built, the memory of the run is checked against the limit (plan_memory).
+   subroutine setup_model(deck, prob, mesh, load, report, err, files, restart, extra, xt_rows)
       type(deck_t), intent(in) :: deck     !! the deck
       type(problem_t), intent(out) :: prob   !! the problem
       type(mesh_t), intent(out) :: mesh    !! the mesh
       type(load_t), intent(out) :: load    !! the end load
       character(len=200), allocatable, intent(out) :: report(:)   !! mesh fit report
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      logical, intent(in), optional :: files     !! the run writes its outputs (default .true.)
+      logical, intent(in), optional :: restart   !! it goes on from a checkpoint
+      real(wp), intent(in), optional :: extra    !! memory needed besides (a sweep's tables)
+                                                 !! [bytes]
+      integer, intent(out), optional :: xt_rows  !! x-t times the run may buffer
       type(mesh_fault_t) :: fault
+      integer :: n, rows
+      logical :: with_files, restarted
+      real(wp) :: beside
+      with_files = .true.
+      if (present(files)) with_files = files
+      restarted = .false.
+      if (present(restart)) restarted = restart
+      beside = 0.0_wp
+      if (present(extra)) beside = extra
       prob = problem_from_deck(deck)
+      call mesh_size(prob, n, fault)
+      if (fault%kind == fault_none) then
+         call plan_memory(deck, n, with_files, restarted, beside, rows, err)
+         if (allocated(err)) return
+         if (present(xt_rows)) xt_rows = rows
+      end if
       call build_mesh(prob, mesh, report, fault)
       if (fault%kind /= fault_none) then
          call make_error(err, mesh_fault_message(fault, prob))
@@ -159,6 +208,62 @@ contains
       end if
       call build_load(prob, load)
    end subroutine setup_model
+
+   !> Whether a run of n cells fits in the memory this process may use (sys_memory_limit),
+   !> before anything of its size is allocated: the mesh and state (refused naming &mesh
+   !> cells or dt), then with hdf5 and field_every the x-t buffer, which holds 64 times or
+   !> as many as fit, at least one (refused naming field_every).
+   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      integer, intent(in) :: n             !! cells of the mesh
+      logical, intent(in) :: files         !! the run writes its outputs
+      logical, intent(in) :: restart       !! it goes on from a checkpoint
+      real(wp), intent(in) :: extra        !! memory needed besides [bytes]
+      integer, intent(out) :: xt_rows      !! x-t times it may buffer
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      real(wp) :: limit, need, per_time, one
+      character(len=:), allocatable :: what
+      limit = real(sys_memory_limit(), wp)
+      need = extra + run_base_bytes + real(n, wp) * run_cell_bytes
+      if (restart) need = need + real(n, wp) * restart_cell_bytes
+      xt_rows = xt_rows_max
+      if (deck%mesh%cells > 0) then
+         what = '&mesh: cells = ' // itoa(deck%mesh%cells)
+      else
+         what = '&mesh: dt = ' // rtoa(deck%mesh%dt) // ' s gives ' // itoa(n) // ' cells, which'
+      end if
+      if (need > limit) then
+         call make_error(err, what // ' needs about ' // memory_text(need) // &
+                         ' of memory; the limit here is ' // memory_text(limit))
+         return
+      end if
+      if (.not. (files .and. deck%run%hdf5 .and. deck%run%field_every > 0)) return
+      per_time = real(n, wp) * xt_time_bytes
+      if (restart) per_time = per_time + real(n, wp) * replay_time_bytes
+      need = need + real(n, wp) * xt_cell_bytes
+      one = need + per_time
+      if (one > limit) then
+         call make_error(err, '&run: field_every = ' // itoa(deck%run%field_every) // &
+            ' (hdf5 x-t rows of ' // itoa(n) // ' cells) needs about ' // memory_text(one) // &
+            ' of memory with one row buffered; the limit here is ' // memory_text(limit))
+         return
+      end if
+      xt_rows = int(min(real(xt_rows_max, wp), (limit - need) / per_time))
+   end subroutine plan_memory
+
+   !> An amount of memory for a message: '9.6 GB', '50.0 MB'.
+   function memory_text(bytes) result(text)
+      real(wp), intent(in) :: bytes        !! the amount [bytes]
+      character(len=:), allocatable :: text
+      character(len=24) :: buf
+      if (bytes >= 1.0e9_wp) then
+         write(buf, '(f24.1)') bytes / 1.0e9_wp
+         text = trim(adjustl(buf)) // ' GB'
+      else
+         write(buf, '(f24.1)') bytes / 1.0e6_wp
+         text = trim(adjustl(buf)) // ' MB'
+      end if
+   end function memory_text
 
    !> One step of the whole method: the trial update, collisions by the timing rule, then
    !> fracture and separation at t^{n+1}.
@@ -237,13 +342,14 @@ contains
          if (allocated(err)) return
          if (present(resume)) then
             call resume_outputs(prefix, sim%record, sim%mesh, sim%report, resume%marks, run%out, &
-                                err)
+                                err, xt_rows=opt%xt_rows)
             if (allocated(err)) return
             sim%st = resume%st
             summary = resume%summary
          else if (run%to_files) then
             call drop_set_aside(prefix)
-            call open_outputs(prefix, sim%record, sim%mesh, sim%report, run%out, err)
+            call open_outputs(prefix, sim%record, sim%mesh, sim%report, run%out, err, &
+                              xt_rows=opt%xt_rows)
             if (allocated(err)) return
          end if
          run%sched%n_end = sim%mesh%nsteps

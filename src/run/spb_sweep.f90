@@ -12,17 +12,18 @@ module spb_sweep
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
-   use spb_sys, only: stop_signal, sys_rename, sys_file_size
+   use spb_sys, only: stop_signal, sys_rename, sys_file_size, sys_memory_limit
    use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo, deck_record
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t
    use spb_problem, only: problem_t
    use spb_random, only: realization_seed
-   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model
+   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model, memory_text, &
+      run_base_bytes
    use spb_diag, only: frag_info_t, fragment_list
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
-   use spb_output, only: h5_deck_header, column_t, column_names
+   use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_max, par_any, &
       par_kind
    implicit none
@@ -65,7 +66,12 @@ module spb_sweep
       col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, &
       col_steps = 18, col_e_vib = 19, col_fracture_stress = 20, col_e_fracture = 21
    integer, parameter :: status_not_run = -1
-   integer, parameter :: tag_request = 1000000001, tag_work = 1000000002
+   integer, parameter :: tag_request = 1000000001, tag_work = 1000000002, tag_check = 1000000003
+   !> Memory of the sweep's tables per case, besides its runs [bytes]: a row (n_columns
+   !> reals) in run_sweep, and write_h5's column and its whole numbers (8 + 4); per case
+   !> and bin, a histogram count (default integer: 4 bytes).
+   real(wp), parameter :: case_bytes = 8.0_wp * real(n_columns, wp) + 12.0_wp
+   real(wp), parameter :: bin_bytes = real(storage_size(1) / 8, wp)
 
    !> What a sweep did (printed by the main program; the closing note's wall times).
    type :: sweep_summary_t
@@ -138,7 +144,7 @@ contains
       row(col_realization) = real(realization, wp)
       row(col_seed) = real(cdeck%field%seed, wp)
       if (allocated(err)) return              ! checked before any case runs
-      call sim_setup(cdeck, sim, err)
+      call sim_setup(cdeck, sim, err, files=.false.)
       if (allocated(err)) return
       call sim_run(sim, '', .false., summary, err, files=.false.)
       row(col_status) = 0.0_wp
@@ -177,7 +183,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       real(wp), allocatable :: rows(:, :)
       integer, allocatable :: hists(:, :)
-      real(wp) :: l_hist, t0
+      real(wp) :: l_hist, t0, tables
       integer :: nc, nbins, rank, nranks, c
 
       t0 = par_wtime()
@@ -185,7 +191,13 @@ contains
       nbins = deck%sweep%bins
       rank = par_rank()
       nranks = par_size()
-      call check_cases(deck, l_hist, err)
+      call check_tables(deck, tables, err)
+      if (.not. allocated(err)) call check_cases(deck, tables, l_hist, err)
+      if (nranks > 1) call agree(rank, nranks, err)
+      if (allocated(err)) return
+      ! the outputs once every rank can run the cases (PREFIX.lock is made last)
+      if (rank == 0) call claim_sweep_outputs(prefix, err)
+      if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
       allocate(rows(n_columns, nc), hists(nbins, nc))
       do c = 1, nc
@@ -333,8 +345,9 @@ contains
 
    !> Every value's deck and mesh must build (bad input: exit 2 before anything runs); the
    !> histogram range is the longest bar of the cases.
-   subroutine check_cases(deck, l_hist, err)
+   subroutine check_cases(deck, tables, l_hist, err)
       type(deck_t), intent(in) :: deck     !! the deck
+      real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
       real(wp), intent(out) :: l_hist      !! histogram range: the longest bar of the cases [m]
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(deck_t) :: cdeck
@@ -348,7 +361,8 @@ contains
       l_hist = 0.0_wp
       do iv = 1, max(1, deck%sweep%n_values)
          call case_deck(deck, (iv - 1) * nrep + 1, cdeck, value, realization, err)
-         if (.not. allocated(err)) call setup_model(cdeck, prob, mesh, load, report, err)
+         if (.not. allocated(err)) call setup_model(cdeck, prob, mesh, load, report, err, &
+                                                    files=.false., extra=tables)
          if (allocated(err)) then
             if (deck%sweep%n_values > 0) err%message = '&sweep: values(' // itoa(iv) // ') = ' &
                // rtoa(value) // ' for ' // trim(deck%sweep%vary) // ': ' // err%message
@@ -357,6 +371,55 @@ contains
          l_hist = max(l_hist, mesh%x(mesh%n) - mesh%x(0))
       end do
    end subroutine check_cases
+
+   !> The memory of the sweep's tables (a row and a histogram per case) against the limit
+   !> of this process, before they are allocated; the cases' runs are checked beside them
+   !> (check_cases).
+   subroutine check_tables(deck, tables, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      real(wp), intent(out) :: tables      !! memory of the tables [bytes]
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      real(wp) :: cases, limit
+      cases = real(max(1, deck%sweep%n_values), wp) * real(max(1, deck%sweep%realizations), wp)
+      tables = cases * (case_bytes + bin_bytes * real(deck%sweep%bins, wp))
+      limit = real(sys_memory_limit(), wp)
+      if (run_base_bytes + tables > limit) call make_error(err, '&sweep: realizations = ' // &
+         itoa(deck%sweep%realizations) // ' and bins = ' // itoa(deck%sweep%bins) // &
+         ' need about ' // memory_text(run_base_bytes + tables) // ' of memory (a row and ' // &
+         'a histogram for each of ' // itoa(sweep_case_count(deck)) // ' cases); the ' // &
+         'limit here is ' // memory_text(limit))
+   end subroutine check_tables
+
+   !> Every rank's checks must agree before any case runs (a rank that stopped alone would
+   !> leave the others waiting): the ranks send rank 0 their status, rank 0 answers with its
+   !> own or, when only another rank refused (its memory limit is lower), that one's.
+   subroutine agree(rank, nranks, err)
+      integer, intent(in) :: rank          !! this rank
+      integer, intent(in) :: nranks        !! ranks
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer :: k, code, other
+      code = 0
+      if (allocated(err)) code = err%code
+      if (rank /= 0) then
+         call par_send(code, 0, tag_check)
+         call par_recv(code, 0, tag_check)
+         if (code /= 0 .and. .not. allocated(err)) call make_error(err, &
+            'sweep: refused (rank 0 says why)', code=code)
+         return
+      end if
+      do k = 1, nranks - 1
+         call par_recv(other, k, tag_check)
+         if (other /= 0 .and. code == 0) then
+            code = other
+            call make_error(err, 'sweep: rank ' // itoa(k) // ' of ' // itoa(nranks) // &
+               ' refused the cases: they need more memory than its limit (&mesh cells, ' // &
+               '&sweep realizations and bins; run it alone to see the numbers)', code=other)
+         end if
+      end do
+      do k = 1, nranks - 1
+         call par_send(code, k, tag_check)
+      end do
+   end subroutine agree
 
    !> The sweep table's column names, blank-separated (the column line of PREFIX.sweep).
    pure function sweep_columns() result(line)
