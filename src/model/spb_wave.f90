@@ -327,7 +327,8 @@ contains
       ! held at both ends (a fixed top, and a fixed bottom or the base) with an odd cell count:
       ! the conserved gravity term is -2 g sum w_i m_i (u_i^n + u_i^{n+1})/2 with weights
       ! w_i = (-1)^(i-top-1) (1/2 - C_i/C), C_i the compliance (sum of dt/Z) of the cells
-      ! above node i (found from the affine one-step map; exact, layered included)
+      ! above node i (found from the affine one-step map; exact, layered included), plus the
+      ! bottom node's elastic position over C (held_weights)
       if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
           mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
           (mesh%bottom == end_base .and. st%ends%base_contact))) jprime = held_weights(mesh, st, top, bot)
@@ -336,27 +337,39 @@ contains
       end if
    end subroutine face_terms
 
-   !> (4/dt) sum_i w_i m_i (u_i - du_i/2) over the nodes of a fragment held at both ends,
-   !> w_i = (-1)^(i-top-1) (1/2 - C_i/C) with C_i the compliance of the cells above node i:
-   !> with -(g dt/2) in front, the exact gravity term of an odd cell count [kg/(m s)].
+   !> (4/dt) sum_i w_i m_i (u_i - du_i/2) + (u_bot - du_bot/2)/C over the nodes of a fragment
+   !> held at both ends, w_i = (-1)^(i-top-1) (1/2 - C_i/C) with C_i the compliance of the
+   !> cells above node i, C = sum 1/Z of all: with -(g dt/2) in front, the exact gravity term
+   !> of an odd cell count [kg/(m s)]. The positions u_i are the elastic ones, summed from the
+   !> top down from the cell stresses (u_i = u_{i-1} - s_i dt/Z_i): they differ from the
+   !> nodes' where a crack closed with a gap, which the dynamics does not see. The last term
+   !> (the bottom node's elastic position, 0 for an intact bar on a fixed bottom; where the
+   !> bar rests on the base, where its landing or the gaps it closed left it) keeps the term
+   !> exact and is constant while the bar is held: it is what makes a lift-off or a break
+   !> of a bar held at both ends change the measure by exactly what the g = 0 reading
+   !> changes (0): without it they booked g dt u_bot / (2C), of either sign (doc/method.md).
    pure real(wp) function held_weights(mesh, st, top, bot) result(jp)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      real(wp) :: c_total, c_above, sgn
+      real(wp) :: c_total, c_above, sgn, u_el
       integer :: i
       c_total = sum(1.0_wp / mesh%z(top+1:bot))
       c_above = 0.0_wp
       sgn = -1.0_wp
       jp = 0.0_wp
+      u_el = st%ub(top)
       do i = top, bot
-         if (i > top) c_above = c_above + 1.0_wp / mesh%z(i)
+         if (i > top) then
+            c_above = c_above + 1.0_wp / mesh%z(i)
+            u_el = u_el - st%s(i) / mesh%stiff(i)
+         end if
          jp = jp + sgn * (0.5_wp - c_above / c_total) * &
-              (mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i)) + mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i)))
+              (mesh%ma(i) * (u_el - 0.5_wp * st%dua(i)) + mesh%mb(i) * (u_el - 0.5_wp * st%dub(i)))
          sgn = -sgn
       end do
-      jp = 4.0_wp / mesh%dt * jp
+      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot)) / c_total
    end function held_weights
 
    !> m du / dt of node i as the fragment top..bot owns it [kg/(m s)].
