@@ -7,12 +7,12 @@ module spb_restart
    use spb_strings, only: itoa
    use spb_deck, only: deck_record_t
    use spb_hdf5, only: h5file_t, h5_close, h5_flush, h5_open_read, h5_get, h5_get_columns, &
-      h5_copy, h5_append, h5_append_xt, h5_read_size
+      h5_copy, h5_append, h5_append_xt, h5_read_size, xt_gauges
    use spb_sys, only: sys_rename
    use spb_mesh, only: mesh_t
    use spb_output, only: outputs_t, output_marks_t, open_outputs, text_extensions, tail_len, &
       history_columns, event_columns, find_header, column_line, text_unit, set_text_unit, &
-      no_unit, block_name, split
+      no_unit, block_name, split, text_count
    implicit none
    private
    public :: resume_outputs
@@ -35,23 +35,25 @@ contains
       type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      integer(int64) :: sz, head(4)
-      integer :: k, nrows, u, ios
+      integer(int64) :: sz, head(5)
+      integer :: k, nrows, u, ios, nt, ng
       logical :: there, ok
       character(len=tail_len) :: tail
       ! the previous outputs: a header, then at least the body the checkpoint counts, ending
       ! in the bytes it remembers
-      do k = 1, 4
+      nt = text_count(rec)
+      ng = size(rec%gauge_x)
+      do k = 1, nt
          associate (f => prefix // text_extensions(k))
             inquire(file=f, exist=there)
             if (.not. there) then
                call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
                return
             end if
-            call find_header(f, k, head(k), sz)
+            call find_header(f, k, head(k), sz, ng)
             if (head(k) < 0) then
                call make_error(err, '--restart: ''' // f // ''' has no header line ''' // &
-                  column_line(k) // ''': not a spallbar output' // hint)
+                  column_line(k, ng) // ''': not a spallbar output' // hint)
             else if (sz - head(k) < marks%body(k)) then
                call make_error(err, '--restart: ''' // f // ''' holds ' // &
                   itoa(sz - head(k)) // ' bytes after its header, the checkpoint counts ' // &
@@ -84,9 +86,9 @@ contains
             return
          end if
       end if
-      do k = 1, 5
-         if (k == 5 .and. .not. rec%hdf5) exit
-         associate (f => prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)))
+      do k = 1, nt + 1
+         if (k == nt + 1 .and. .not. rec%hdf5) exit
+         associate (f => prefix // trim(merge(text_extensions(min(k, nt)), '.h5 ', k <= nt)))
             call sys_rename(f, f // aside, ok)
             if (.not. ok) call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' &
                                           // f // aside // '''')
@@ -95,7 +97,7 @@ contains
       end do
       call open_outputs(prefix, rec, mesh, report, out, err)
       if (allocated(err)) return
-      do k = 1, 4
+      do k = 1, nt
          call copy_body(prefix, k, head(k), marks%body(k), out, err)
          if (allocated(err)) return
       end do
@@ -103,9 +105,10 @@ contains
          call replay_h5(prefix, mesh, marks, out, err)
          if (allocated(err)) return
       end if
-      do k = 1, 5
-         if (k == 5 .and. .not. rec%hdf5) exit
-         call remove_file(prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4)) // aside)
+      do k = 1, nt + 1
+         if (k == nt + 1 .and. .not. rec%hdf5) exit
+         call remove_file(prefix // trim(merge(text_extensions(min(k, nt)), '.h5 ', k <= nt)) // &
+                          aside)
       end do
    end subroutine resume_outputs
 
@@ -165,6 +168,8 @@ contains
       call replay_table(prefix, old, '/events', event_columns(), out, out%h_evt, marks%rows_evt, &
                         err)
       if (marks%rows_xt > 0) call replay_xt(prefix, old, mesh, marks%rows_xt, out, err)
+      if (marks%rows_gau > 0) call replay_gauges(prefix, old, out%n_gauges, marks%rows_gau, &
+                                                 out, err)
       do k = 1, marks%n_prof
          call h5_copy(old, '/fields/profiles/' // block_name(k), out%h5, &
                       '/fields/profiles/' // block_name(k))
@@ -252,6 +257,40 @@ contains
          end do
       end do
    end subroutine replay_xt
+
+   !> The first rows of the gauges (/gauges), in blocks of rows.
+   subroutine replay_gauges(prefix, old, n_gauges, rows, out, err)
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
+      integer, intent(in) :: n_gauges          !! gauges
+      integer, intent(in) :: rows              !! rows to copy
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer, parameter :: width = 64
+      real(wp), allocatable :: t(:), s(:, :), v(:, :), u(:, :)
+      integer :: c0, m, j
+      call h5_get(old, '/gauges/t', t)
+      if (.not. allocated(t)) then
+         call make_error(err, '--restart: ''' // prefix // '.h5'' has no /gauges', &
+                         code=exit_runtime)
+         return
+      end if
+      if (size(t) < rows) then
+         call make_error(err, '--restart: ''' // prefix // '.h5'' /gauges holds ' // &
+            itoa(size(t)) // ' rows, the checkpoint counts ' // itoa(rows), code=exit_runtime)
+         return
+      end if
+      allocate(s(n_gauges, width), v(n_gauges, width), u(n_gauges, width))
+      do c0 = 0, rows - 1, width
+         m = min(width, rows - c0)
+         call h5_get_columns(old, '/gauges/stress', c0, s(:, 1:m))
+         call h5_get_columns(old, '/gauges/velocity', c0, v(:, 1:m))
+         call h5_get_columns(old, '/gauges/u', c0, u(:, 1:m))
+         do j = 1, m
+            call h5_append_xt(out%h5, t(c0 + j), s(:, j), v(:, j), u(:, j), xt_gauges)
+         end do
+      end do
+   end subroutine replay_gauges
 
    !> Delete a file if it is there.
    subroutine remove_file(path)
