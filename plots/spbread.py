@@ -6,6 +6,8 @@
     run.profiles   list of dict(t, x, u, v, stress)       half-node rows (doc/outputs.md)
     run.fragments  list of dict(t, id, x_top, x_bottom, mass, velocity, ...)
     run.xt         dict(t, x, u, v, stress) with arrays (snapshots, rows), or None
+    run.gauges     dict(t, x, stress, velocity, u): t (rows), x (gauges), the others arrays
+                   (rows, gauges), or None without &gauges (PREFIX.gau, /gauges)
     run.source     'hdf5' or 'text'
 
 The HDF5 layout is in doc/outputs.md; h5py shows the Fortran x-t arrays (rows, snapshots)
@@ -27,6 +29,7 @@ class Run:
         self.prefix = prefix
         self.history, self.events, self.profiles, self.fragments = {}, {}, [], []
         self.xt, self.title, self.deck = None, "", {}
+        self.gauges = None
         if os.path.exists(prefix + ".h5"):
             self._read_h5()
         else:
@@ -60,6 +63,10 @@ class Run:
                 g = f["fields"]["xt"]
                 self.xt = dict(t=g["t"][:], x=x_half, u=g["u"][:], v=g["v"][:],
                                stress=g["stress"][:])
+            if "gauges" in f:
+                g = f["gauges"]
+                self.gauges = dict(t=g["t"][:], x=np.asarray(g.attrs["x"], dtype=float),
+                                   stress=g["stress"][:], velocity=g["velocity"][:], u=g["u"][:])
 
     # ------------------------------------------------------------------ text
     def _read_text(self):
@@ -85,6 +92,26 @@ class Run:
                 if line.startswith("# title:"):
                     self.title = line[len("# title:"):].strip()
                     break
+        if os.path.exists(self.prefix + ".gau"):
+            self.gauges = _gauges(self.prefix + ".gau")
+
+
+def _gauges(path):
+    """PREFIX.gau: t, the gauges' x (from the '# gauge k at x = X m' lines) and their columns."""
+    cols = _columns(path)
+    x = []
+    with open(path) as f:
+        for line in f:
+            if not line.startswith("#"):
+                break
+            if line.startswith("# gauge ") and " at x = " in line:
+                x.append(float(line.split(" at x = ")[1].split()[0]))
+    n = len(x)
+    out = dict(t=cols["t"], x=np.array(x))
+    for q in ("stress", "velocity", "u"):
+        out[q] = np.column_stack([cols[f"{q}_{k}"] for k in range(1, n + 1)]) if n else \
+            np.zeros((len(cols["t"]), 0))
+    return out
 
 
 def _columns(path, kinds=False):

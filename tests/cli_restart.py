@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Restart (issue 8, item 3): a restarted run is bit-identical to an uninterrupted one.
 
-For eight decks (the paper's Examples 1-3 with a transmitting end and table loads, the
+For nine decks (the paper's Examples 1-3 with a transmitting end and table loads, the
 Goupillaud bar, the suspended bar, Example 3 case 2 with the delay rule and with the
-full-mass model, a Weibull strength field) with PREFIX.h5, x-t fields and a history
-stride that does not divide the step count:
+full-mass model, a Weibull strength field, Example 2 with &gauges: PREFIX.gau and
+/gauges) with PREFIX.h5, x-t fields and a history stride that does not divide the step
+count:
 
   * extension: a run to about 45 % of t_end writes a checkpoint at its end; the full deck
     restarted from it (--restart, same --output) gives .his .prf .evt .frg identical byte
@@ -153,7 +154,8 @@ def h5_differences(a_path, b_path):
 
 
 def same_outputs(check, what, work, u, r, hdf5=True):
-    for ext in EXTS:
+    exts = EXTS + [".gau"] if os.path.exists(os.path.join(work, u + ".gau")) else EXTS
+    for ext in exts:
         a, b = os.path.join(work, u + ext), os.path.join(work, r + ext)
         check(os.path.exists(b) and sha(a) == sha(b), f"{what}: {r}{ext} equals {u}{ext}")
     if hdf5:
@@ -180,6 +182,10 @@ def main():
         "c2full": open(os.path.join(work, "example3_case2",
                                     "fullmass_accelerate_fragment_h19.nml")).read(),
         "weibull": WEIBULL,
+        # gauges on the top face, in a cell, on the interface and on the transmitting bottom,
+        # every 4 steps (neither a divisor of the step count nor of history_every)
+        "gauges": open(os.path.join(work, "example2.nml")).read() +
+        "&gauges\n  x = 0.0, 0.1, 0.84, 1.2, 2.89\n  every = 4\n/\n",
     }
     for name, text in decks.items():
         full = set_run(text, hdf5=".true.", field_every="7", history_every="3",

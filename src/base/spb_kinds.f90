@@ -4,12 +4,13 @@ module spb_kinds
    implicit none
    private
    public :: wp, version, max_segments, max_profiles, name_len, path_len, max_sweep_values, &
-      max_realizations
+      max_realizations, max_gauges
 
    integer, parameter :: wp = real64                  !! working precision
    character(len=*), parameter :: version = '0.1.0'   !! program version
    integer, parameter :: max_segments = 100           !! segments a deck may hold
    integer, parameter :: max_profiles = 100           !! profile_times a deck may hold
+   integer, parameter :: max_gauges = 100             !! &gauges positions a deck may hold
    integer, parameter :: max_sweep_values = 1000      !! &sweep values a deck may hold
    integer, parameter :: max_realizations = 1000000   !! &sweep realizations per value
    integer, parameter :: name_len = 32                !! keyword values ('free', ...)

@@ -19,7 +19,7 @@ module spb_checkpoint
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
    use spb_diag, only: run_summary_t
-   use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len
+   use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
       h5_write, h5_get, h5_get_attr
    use spb_sys, only: sys_rename
@@ -121,14 +121,14 @@ contains
       call summary_fields(cf, run_copy, .true.)
       ! how far the outputs reach (byte counts as float64: exact below 2^53)
       call h5_group(cf%h5, '/outputs')
-      do k = 1, 4
+      do k = 1, text_count(rec)
          call h5_attr(cf%h5, '/outputs', 'body' // text_extensions(k), real(marks%body(k), wp))
          call h5_attr(cf%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
          call h5_attr(cf%h5, '/outputs', 'tail' // text_extensions(k), &
                       marks%tail(k)(1:max(0, marks%tail_n(k))))
       end do
       marks_copy = marks
-      call count_fields(cf, marks_copy, .true.)
+      call count_fields(cf, marks_copy, .true., size(rec%gauge_x) > 0)
       call h5_attr(cf%h5, '/', 'checksum', checksum_text(cf))
       call h5_close(cf%h5)
       if (allocated(cf%h5%error)) then
@@ -467,7 +467,7 @@ contains
       end if
       ! the run's summary
       call summary_fields(cf, ck%summary, .false.)
-      why = read_marks(cf, ck%marks)
+      why = read_marks(cf, ck%marks, rec)
       if (len(why) > 0) then
          call refuse(why)
          return
@@ -579,15 +579,16 @@ contains
    end function identity_problem
 
    !> The marks of the outputs; why they cannot be used ('' when they can).
-   function read_marks(ck, marks) result(why)
+   function read_marks(ck, marks, rec) result(why)
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
+      type(deck_record_t), intent(in) :: rec   !! the deck's record (its gauges)
       character(len=:), allocatable :: why
       character(len=:), allocatable :: text
       real(wp) :: x
       integer :: k
       why = ''
-      do k = 1, 4
+      do k = 1, text_count(rec)
          call h5_get_attr(ck%h5, '/outputs', 'body' // text_extensions(k), x)
          marks%body(k) = int(x, kind(marks%body))
          call h5_get_attr(ck%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
@@ -600,22 +601,25 @@ contains
             return
          end if
       end do
-      call count_fields(ck, marks, .false.)
-      if (min(marks%rows_his, marks%rows_evt, marks%rows_xt, marks%n_prof, marks%n_frg) < 0 &
+      call count_fields(ck, marks, .false., size(rec%gauge_x) > 0)
+      if (min(marks%rows_his, marks%rows_evt, marks%rows_xt, marks%n_prof, marks%n_frg, &
+              marks%rows_gau) < 0 &
           .or. any(marks%body < 0)) why = 'is damaged: a count of its outputs is negative'
    end function read_marks
 
    !> The one list of the outputs' row and block counts a checkpoint keeps (attributes of
-   !> /outputs), written or read back.
-   subroutine count_fields(ck, marks, writing)
+   !> /outputs), written or read back; rows_gauges only by a run with gauges.
+   subroutine count_fields(ck, marks, writing, gauges)
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
       logical, intent(in) :: writing           !! write (else read back)
+      logical, intent(in) :: gauges            !! the run has gauges (PREFIX.gau, /gauges)
       call field(ck, writing, '/outputs', 'rows_history', marks%rows_his)
       call field(ck, writing, '/outputs', 'rows_events', marks%rows_evt)
       call field(ck, writing, '/outputs', 'rows_xt', marks%rows_xt)
       call field(ck, writing, '/outputs', 'profiles', marks%n_prof)
       call field(ck, writing, '/outputs', 'fragment_blocks', marks%n_frg)
+      if (gauges) call field(ck, writing, '/outputs', 'rows_gauges', marks%rows_gau)
    end subroutine count_fields
 
 

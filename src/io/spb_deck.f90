@@ -8,7 +8,7 @@
 module spb_deck
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp, max_segments, max_profiles, max_sweep_values, max_realizations, &
-      name_len
+      name_len, max_gauges
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, lower
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text, &
@@ -229,6 +229,11 @@ contains
                             'remove it from the sweep deck')
             return
          end if
+         if (deck%gauges%n > 0) then
+            call make_error(err, '&gauges: not used by --sweep (a sweep''s cases write no ' // &
+                            'files); remove it from the sweep deck')
+            return
+         end if
          if (len_trim(sw%vary) == 0) then
             if (sw%realizations == 0) then
                call make_error(err, '&sweep: nothing to sweep: give realizations > 0, or vary ' &
@@ -332,7 +337,52 @@ contains
       if (.not. allocated(err)) call validate_load(deck%load, deck%ends, err)
       if (.not. allocated(err)) call validate_initial(deck, err)
       if (.not. allocated(err)) call validate_field(deck, err)
+      if (.not. allocated(err)) call validate_gauges(deck, err)
    end subroutine validate_deck
+
+   !> &gauges: positions given in order x(1), x(2), ... (at most max_gauges), each finite and
+   !> within the bar [0, sum of the segment lengths] (to the round-off of that sum); every
+   !> >= 1, &run history_every when not given.
+   subroutine validate_gauges(deck, err)
+      type(deck_t), intent(inout) :: deck   !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      real(wp) :: total
+      integer :: k
+      associate (g => deck%gauges)
+         g%n = 0
+         do k = 1, size(g%x)
+            if (.not. is_set(g%x(k))) exit
+            g%n = k
+         end do
+         if (g%n == 0 .and. .not. has_group(deck%scan, 'gauges')) return
+         if (g%n == 0) then
+            call make_error(err, '&gauges: x is required (the positions of the gauges, m)')
+         else if (g%n > max_gauges) then
+            call make_error(err, '&gauges: x: at most ' // itoa(max_gauges) // &
+                            ' gauges, got more')
+         end if
+         do k = g%n + 1, size(g%x)
+            if (allocated(err)) return
+            if (is_set(g%x(k))) call make_error(err, '&gauges: x(' // itoa(k) // &
+               ') is given but x(' // itoa(g%n + 1) // ') is not')
+         end do
+         total = sum(deck%seg%length(1:deck%seg%n))
+         do k = 1, g%n
+            call need_finite(err, 'gauges', 'x(' // itoa(k) // ')', g%x(k))
+            if (allocated(err)) return
+            if (g%x(k) < 0.0_wp .or. g%x(k) > total * (1.0_wp + 1.0e-12_wp)) then
+               call make_error(err, '&gauges: x(' // itoa(k) // ') = ' // rtoa(g%x(k)) // &
+                  ' m is outside the bar [0, ' // rtoa(total) // '] m')
+               return
+            end if
+         end do
+         if (g%every == 0 .and. .not. has_var(deck%scan, 'gauges', 'every')) then
+            g%every = deck%run%history_every
+         end if
+         if (g%every < 1) call make_error(err, '&gauges: every must be >= 1, got ' // &
+                                          itoa(g%every))
+      end associate
+   end subroutine validate_gauges
 
    !> Error unless x is a finite number; name is the variable as the user writes it.
    subroutine need_finite(err, group, name, x)
@@ -822,6 +872,9 @@ contains
       rec%t_end = deck%run%t_end
       allocate(rec%profile_times(deck%run%n_profiles))
       rec%profile_times(:) = deck%run%profile_times(1:deck%run%n_profiles)
+      allocate(rec%gauge_x(deck%gauges%n))
+      rec%gauge_x(:) = deck%gauges%x(1:deck%gauges%n)
+      rec%gauge_every = max(deck%gauges%every, 1)
    end function deck_record
 
    !> Every deck variable (spallbar --deck-help): group by group, its default as the echo

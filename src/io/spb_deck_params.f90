@@ -19,7 +19,7 @@ module spb_deck_params
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, ltoa, lower
-   use spb_deck_types, only: deck_t, sweep_cfg, echo_item_t, is_set, timing_words, &
+   use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, echo_item_t, is_set, timing_words, &
       shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
       interface_words, kind_words, face_words, state_words, field_words, distribution_words
    implicit none
@@ -163,7 +163,19 @@ contains
          call param(p, 'strength_field', 'seed', '', 'generator seed', i=f%seed)
       end associate
       if (deck%is_sweep .or. pass%mode == pass_doc) call sweep_params(deck%sweep, pass)
+      ! echoed only by a deck that has gauges: the outputs of every other deck stay as they were
+      if (pass%mode /= pass_echo .or. deck%gauges%n > 0) call gauge_params(deck%gauges, pass)
    end subroutine deck_params
+
+   !> &gauges' variables (optional group: PREFIX.gau).
+   subroutine gauge_params(g, p)
+      type(gauges_cfg), intent(inout) :: g    !! &gauges values
+      type(param_pass_t), intent(inout) :: p  !! what this pass does
+      call param(p, 'gauges', 'x', 'm', 'reference positions of the gauges in [0, length], ' &
+                 // 'up to 100', ra=g%x, count=g%n, empty='(none)')
+      call param(p, 'gauges', 'every', 'steps', 'steps between rows of PREFIX.gau (not ' &
+                 // 'given: &run history_every)', i=g%every)
+   end subroutine gauge_params
 
    !> &sweep's variables (a sweep deck only: read with --sweep).
    subroutine sweep_params(sw, p)

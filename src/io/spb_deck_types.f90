@@ -5,12 +5,13 @@
 !> spb_deck_params; its checks against other variables in spb_deck.
 module spb_deck_types
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len, max_sweep_values
+   use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len, max_sweep_values, &
+      max_gauges
    use spb_prescan, only: deck_scan_t
    implicit none
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg, &
-      strength_field_cfg, sweep_cfg, deck_record_t, echo_item_t, known_groups, unset, is_set
+      strength_field_cfg, sweep_cfg, gauges_cfg, deck_record_t, echo_item_t, known_groups, unset, is_set
    public :: timing_words, shift_words, events_words, model_words, fit_words, top_words, &
       bottom_words, interface_words, kind_words, face_words, state_words, field_words, &
       distribution_words
@@ -38,8 +39,8 @@ module spb_deck_types
    character(len=*), parameter :: distribution_words(2) = [character(len=7) :: 'static', &
       'dynamic']
 
-   character(len=16), parameter :: known_groups(8) = [character(len=16) :: 'run', 'mesh', &
-      'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep']
+   character(len=16), parameter :: known_groups(9) = [character(len=16) :: 'run', 'mesh', &
+      'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep', 'gauges']
 
    !> One echoed deck value (write_echo, and the attributes of PREFIX.h5).
    type :: echo_item_t
@@ -133,6 +134,16 @@ module spb_deck_types
       integer :: bins = 50                             !! fragment-length histogram bins
    end type sweep_cfg
 
+   !> &gauges (optional): stress, velocity and displacement at reference positions, written
+   !> to PREFIX.gau (and /gauges of PREFIX.h5). One slot more than max_gauges, so that a
+   !> deck giving too many is told so by name.
+   type :: gauges_cfg
+      real(wp) :: x(max_gauges + 1) = unset            !! reference positions [m]
+      integer :: n = 0                                 !! how many x were given
+      integer :: every = 0                             !! steps between rows (not given:
+                                                       !! &run history_every)
+   end type gauges_cfg
+
    !> What the outputs and the checkpoints say of a deck (and need of it): where it came
    !> from, its title, every value as echoed, and the settings that shape the files.
    type :: deck_record_t
@@ -144,6 +155,8 @@ module spb_deck_types
       integer :: field_every = 0                      !! &run field_every [steps]
       real(wp) :: t_end = 0.0_wp                      !! &run t_end [s]
       real(wp), allocatable :: profile_times(:)       !! &run profile_times given [s]
+      real(wp), allocatable :: gauge_x(:)             !! &gauges x [m] (none: no PREFIX.gau)
+      integer :: gauge_every = 1                      !! &gauges every [steps]
    end type deck_record_t
 
    type :: deck_t
@@ -156,6 +169,7 @@ module spb_deck_types
       type(initial_cfg) :: init
       type(strength_field_cfg) :: field
       type(sweep_cfg) :: sweep
+      type(gauges_cfg) :: gauges
       logical :: is_sweep = .false.   !! read for --sweep: &sweep is required and echoed
       type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
    end type deck_t

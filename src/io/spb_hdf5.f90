@@ -3,7 +3,7 @@
 !> An opaque file type with open / write / flush / close. Tables (the history, the events)
 !> are groups of one extendible 1-D dataset per column, chunked and deflated, appended
 !> through a row buffer; the x-t fields are extendible 2-D datasets (rows of the half-node
-!> layout x snapshots). flush writes the buffers and calls H5Fflush: a run killed after a
+!> layout x snapshots; the gauges: gauges x rows). flush writes the buffers and calls H5Fflush: a run killed after a
 !> flush leaves a file that reads up to it. Every hdferr goes through check(), which names
 !> the operation, the file and the object. h5py sees a Fortran a(nx, nt) as (nt, nx).
 module spb_hdf5
@@ -24,9 +24,11 @@ module spb_hdf5
    public :: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, h5_table, &
       h5_append, h5_xt, h5_append_xt, h5_read, h5_read_size
    public :: h5_open_read, h5_get, h5_get_attr, h5_get_columns, h5_copy, h5_table_rows, &
-      h5_xt_rows
+      h5_xt_rows, xt_fields, xt_gauges
 
    integer, parameter :: buffer_rows = 1024     !! rows held before a table is written
+   integer, parameter :: xt_fields = 1          !! the x-t fields (/fields/xt)
+   integer, parameter :: xt_gauges = 2          !! the gauges (/gauges)
    integer, parameter :: deflate_level = 4
    integer(c_int), parameter :: fspace_strategy_none = 3   !! H5F_FSPACE_STRATEGY_NONE
 
@@ -54,10 +56,11 @@ module spb_hdf5
       integer(hsize_t) :: rows = 0              !! rows in the file
    end type table_t
 
-   !> The x-t fields: datasets t(nt), u, v, stress(nrow, nt).
+   !> Rows of a quantity at each time: datasets t(nt) and three (nrow, nt) ones (the x-t
+   !> fields u, v, stress; the gauges' stress, velocity, u).
    type :: xt_t
       integer(hid_t) :: dset(4) = -1
-      integer :: nrow = 0
+      integer :: nrow = 0                       !! rows per time (0: not created)
       real(wp), allocatable :: buf(:, :, :)     !! (nrow, 3, buffer) for u, v, stress
       real(wp), allocatable :: tbuf(:)
       integer :: nbuf = 0
@@ -68,14 +71,13 @@ module spb_hdf5
       character(len=:), allocatable :: path
       integer(hid_t) :: file = -1
       type(table_t), allocatable :: tables(:)
-      type(xt_t) :: xt
-      logical :: has_xt = .false.
+      type(xt_t) :: xt(2)                       !! xt_fields, xt_gauges
       logical :: read_only = .false.            !! opened by h5_open_read
       character(len=:), allocatable :: error    !! first failure, if any
    end type h5file_t
 
    interface h5_attr
-      module procedure attr_string, attr_real, attr_int
+      module procedure attr_string, attr_real, attr_int, attr_reals
    end interface h5_attr
 
    interface h5_write
@@ -215,6 +217,32 @@ contains
       call h5sclose_f(space, hdferr)
       call close_obj(obj)
    end subroutine attr_real
+
+   !> A 1-D real attribute of the object at path.
+   subroutine attr_reals(h5, path, name, values)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      real(wp), intent(in) :: values(:)    !! its values
+      integer(hid_t) :: obj, space, attr
+      integer(hsize_t) :: dims(1)
+      integer :: hdferr
+      logical :: is_dset
+      if (h5%file < 0) return
+      call open_obj(h5, path, obj, is_dset)
+      if (allocated(h5%error)) return
+      dims = size(values)
+      call h5screate_simple_f(1, dims, space, hdferr)
+      call h5acreate_f(obj, name, H5T_NATIVE_DOUBLE, space, attr, hdferr)
+      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
+      if (hdferr >= 0) then
+         call h5awrite_f(attr, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
+         call h5aclose_f(attr, hdferr)
+      end if
+      call h5sclose_f(space, hdferr)
+      call close_obj(obj)
+   end subroutine attr_reals
 
    !> An integer attribute of the object at path.
    subroutine attr_int(h5, path, name, value)
@@ -418,85 +446,108 @@ contains
       end associate
    end subroutine write_table
 
-   !> The x-t fields under path: t(nt) and u, v, stress(nrow, nt), with units; rows times
-   !> are buffered before they are written (64 unless memory is short; spb_sim).
-   subroutine h5_xt(h5, path, nrow, rows)
+   !> Rows per time under path: t(nt) and three (nrow, nt) datasets, with units: the x-t
+   !> fields (which = xt_fields: u, v, stress by default) or the gauges (xt_gauges); rows
+   !> times are buffered before they are written (64 unless memory is short; spb_sim).
+   subroutine h5_xt(h5, path, nrow, which, names, units, rows)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
-      integer, intent(in) :: nrow          !! half-node rows per time
-      integer, intent(in) :: rows          !! times buffered (>= 1)
-      character(len=6), parameter :: names(3) = [character(len=6) :: 'u', 'v', 'stress']
-      character(len=6), parameter :: units(3) = [character(len=6) :: 'm', 'm/s', 'Pa']
-      integer :: k
+      integer, intent(in) :: nrow          !! rows per time (half nodes, gauges)
+      integer, intent(in), optional :: which   !! xt_fields (default) or xt_gauges
+      character(len=*), intent(in), optional :: names(3)   !! the datasets' names
+      character(len=*), intent(in), optional :: units(3)   !! their units
+      integer, intent(in), optional :: rows    !! times buffered (>= 1; default 64)
+      character(len=8) :: nm(3), un(3)
+      integer :: k, w, nb
       if (h5%file < 0) return
+      w = xt_fields
+      if (present(which)) w = which
+      nm = [character(len=8) :: 'u', 'v', 'stress']
+      un = [character(len=8) :: 'm', 'm/s', 'Pa']
+      if (present(names)) nm = names
+      if (present(units)) un = units
       call h5_group(h5, path)
-      h5%has_xt = .true.
-      h5%xt%nrow = nrow
-      allocate(h5%xt%buf(nrow, 3, max(1, rows)), h5%xt%tbuf(max(1, rows)))
-      call create_extendible(h5, path // '/t', H5T_NATIVE_DOUBLE, 0, h5%xt%dset(4))
-      call attr_string(h5, path // '/t', 'units', 's')
-      do k = 1, 3
-         call create_extendible(h5, path // '/' // trim(names(k)), H5T_NATIVE_DOUBLE, nrow, &
-                                h5%xt%dset(k))
-         call attr_string(h5, path // '/' // trim(names(k)), 'units', trim(units(k)))
-      end do
+      nb = 64
+      if (present(rows)) nb = max(1, rows)
+      associate (xt => h5%xt(w))
+         xt%nrow = nrow
+         allocate(xt%buf(nrow, 3, nb), xt%tbuf(nb))
+         call create_extendible(h5, path // '/t', H5T_NATIVE_DOUBLE, 0, xt%dset(4))
+         call attr_string(h5, path // '/t', 'units', 's')
+         do k = 1, 3
+            call create_extendible(h5, path // '/' // trim(nm(k)), H5T_NATIVE_DOUBLE, nrow, &
+                                   xt%dset(k))
+            call attr_string(h5, path // '/' // trim(nm(k)), 'units', trim(un(k)))
+         end do
+      end associate
    end subroutine h5_xt
 
-   !> Append one x-t row (time, u, v, stress of every half node).
-   subroutine h5_append_xt(h5, t, u, v, s)
+   !> Append one row of times (time, and the three quantities of every row).
+   subroutine h5_append_xt(h5, t, u, v, s, which)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       real(wp), intent(in) :: t                !! [s]
-      real(wp), intent(in) :: u(:)             !! displacement per half-node row [m]
-      real(wp), intent(in) :: v(:)             !! velocity per half-node row [m/s]
-      real(wp), intent(in) :: s(:)             !! stress per half-node row [Pa]
-      if (h5%file < 0 .or. .not. h5%has_xt) return
-      h5%xt%nbuf = h5%xt%nbuf + 1
-      h5%xt%tbuf(h5%xt%nbuf) = t
-      h5%xt%buf(:, 1, h5%xt%nbuf) = u
-      h5%xt%buf(:, 2, h5%xt%nbuf) = v
-      h5%xt%buf(:, 3, h5%xt%nbuf) = s
-      if (h5%xt%nbuf == size(h5%xt%tbuf)) call write_xt(h5)
+      real(wp), intent(in) :: u(:)             !! displacement per half-node row [m] (gauges:
+                                               !! stress [Pa])
+      real(wp), intent(in) :: v(:)             !! velocity per row [m/s]
+      real(wp), intent(in) :: s(:)             !! stress per half-node row [Pa] (gauges:
+                                               !! displacement [m])
+      integer, intent(in), optional :: which   !! xt_fields (default) or xt_gauges
+      integer :: w
+      w = xt_fields
+      if (present(which)) w = which
+      if (h5%file < 0 .or. h5%xt(w)%nrow == 0) return
+      associate (xt => h5%xt(w))
+         xt%nbuf = xt%nbuf + 1
+         xt%tbuf(xt%nbuf) = t
+         xt%buf(:, 1, xt%nbuf) = u
+         xt%buf(:, 2, xt%nbuf) = v
+         xt%buf(:, 3, xt%nbuf) = s
+      end associate
+      if (h5%xt(w)%nbuf == size(h5%xt(w)%tbuf)) call write_xt(h5, w)
    end subroutine h5_append_xt
 
-   !> Write the buffered x-t rows.
-   subroutine write_xt(h5)
+   !> Write the buffered rows of one set of x-t datasets.
+   subroutine write_xt(h5, w)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      integer, intent(in) :: w             !! xt_fields or xt_gauges
       integer(hid_t) :: fspace, mspace
       integer(hsize_t) :: off2(2), cnt2(2), size2(2), off1(1), cnt1(1)
       integer :: k, hdferr, nb
-      real(wp) :: block(h5%xt%nrow, h5%xt%nbuf), tcol(h5%xt%nbuf)
-      nb = h5%xt%nbuf
-      if (nb == 0) return
-      size2 = [int(h5%xt%nrow, hsize_t), h5%xt%rows + nb]
-      off2 = [0_hsize_t, h5%xt%rows]
-      cnt2 = [int(h5%xt%nrow, hsize_t), int(nb, hsize_t)]
-      do k = 1, 3
-         call h5dset_extent_f(h5%xt%dset(k), size2, hdferr)
-         call check(h5, hdferr, 'h5dset_extent_f x-t field')
-         call h5dget_space_f(h5%xt%dset(k), fspace, hdferr)
-         call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off2, cnt2, hdferr)
-         call h5screate_simple_f(2, cnt2, mspace, hdferr)
-         block = h5%xt%buf(:, k, 1:nb)
-         call h5dwrite_f(h5%xt%dset(k), H5T_NATIVE_DOUBLE, block, cnt2, hdferr, &
+      real(wp) :: block(h5%xt(w)%nrow, h5%xt(w)%nbuf), tcol(h5%xt(w)%nbuf)
+      associate (xt => h5%xt(w))
+         nb = xt%nbuf
+         if (nb == 0) return
+         size2 = [int(xt%nrow, hsize_t), xt%rows + nb]
+         off2 = [0_hsize_t, xt%rows]
+         cnt2 = [int(xt%nrow, hsize_t), int(nb, hsize_t)]
+         do k = 1, 3
+            call h5dset_extent_f(xt%dset(k), size2, hdferr)
+            call check(h5, hdferr, 'h5dset_extent_f x-t field')
+            call h5dget_space_f(xt%dset(k), fspace, hdferr)
+            call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off2, cnt2, hdferr)
+            call h5screate_simple_f(2, cnt2, mspace, hdferr)
+            block = xt%buf(:, k, 1:nb)
+            call h5dwrite_f(xt%dset(k), H5T_NATIVE_DOUBLE, block, cnt2, hdferr, &
+                            mem_space_id=mspace, file_space_id=fspace)
+            call check(h5, hdferr, 'h5dwrite_f x-t field')
+            call h5sclose_f(mspace, hdferr)
+            call h5sclose_f(fspace, hdferr)
+         end do
+         off1 = xt%rows
+         cnt1 = nb
+         call h5dset_extent_f(xt%dset(4), [xt%rows + nb], hdferr)
+         call h5dget_space_f(xt%dset(4), fspace, hdferr)
+         call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off1, cnt1, hdferr)
+         call h5screate_simple_f(1, cnt1, mspace, hdferr)
+         tcol = xt%tbuf(1:nb)
+         call h5dwrite_f(xt%dset(4), H5T_NATIVE_DOUBLE, tcol, cnt1, hdferr, &
                          mem_space_id=mspace, file_space_id=fspace)
-         call check(h5, hdferr, 'h5dwrite_f x-t field')
+         call check(h5, hdferr, 'h5dwrite_f x-t times')
          call h5sclose_f(mspace, hdferr)
          call h5sclose_f(fspace, hdferr)
-      end do
-      off1 = h5%xt%rows
-      cnt1 = nb
-      call h5dset_extent_f(h5%xt%dset(4), [h5%xt%rows + nb], hdferr)
-      call h5dget_space_f(h5%xt%dset(4), fspace, hdferr)
-      call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, off1, cnt1, hdferr)
-      call h5screate_simple_f(1, cnt1, mspace, hdferr)
-      tcol = h5%xt%tbuf(1:nb)
-      call h5dwrite_f(h5%xt%dset(4), H5T_NATIVE_DOUBLE, tcol, cnt1, hdferr, &
-                      mem_space_id=mspace, file_space_id=fspace)
-      call check(h5, hdferr, 'h5dwrite_f x-t times')
-      call h5sclose_f(mspace, hdferr)
-      call h5sclose_f(fspace, hdferr)
-      h5%xt%rows = h5%xt%rows + nb
-      h5%xt%nbuf = 0
+         xt%rows = xt%rows + nb
+         xt%nbuf = 0
+      end associate
    end subroutine write_xt
 
    !> Write every buffer and flush the file: it then reads up to here if the run dies.
@@ -507,7 +558,9 @@ contains
       do k = 1, size(h5%tables)
          call write_table(h5, k)
       end do
-      if (h5%has_xt) call write_xt(h5)
+      do k = 1, size(h5%xt)
+         if (h5%xt(k)%nrow > 0) call write_xt(h5, k)
+      end do
       call h5fflush_f(h5%file, H5F_SCOPE_GLOBAL_F, hdferr)
       call check(h5, hdferr, 'h5fflush_f')
    end subroutine h5_flush
@@ -523,11 +576,11 @@ contains
             if (h5%tables(k)%dset(j) >= 0) call h5dclose_f(h5%tables(k)%dset(j), hdferr)
          end do
       end do
-      if (h5%has_xt) then
+      do j = 1, size(h5%xt)
          do k = 1, 4
-            if (h5%xt%dset(k) >= 0) call h5dclose_f(h5%xt%dset(k), hdferr)
+            if (h5%xt(j)%dset(k) >= 0) call h5dclose_f(h5%xt(j)%dset(k), hdferr)
          end do
-      end if
+      end do
       call h5fclose_f(h5%file, hdferr)
       call check(h5, hdferr, 'h5fclose_f')
       h5%file = -1
@@ -772,11 +825,15 @@ contains
       rows = int(h5%tables(handle)%rows) + h5%tables(handle)%nbuf
    end function h5_table_rows
 
-   !> Rows (times) of the x-t fields, buffered ones included.
-   integer function h5_xt_rows(h5) result(rows)
+   !> Rows (times) of the x-t fields or the gauges, buffered ones included.
+   integer function h5_xt_rows(h5, which) result(rows)
       type(h5file_t), intent(in) :: h5     !! the HDF5 file
+      integer, intent(in), optional :: which   !! xt_fields (default) or xt_gauges
+      integer :: w
+      w = xt_fields
+      if (present(which)) w = which
       rows = 0
-      if (h5%has_xt) rows = int(h5%xt%rows) + h5%xt%nbuf
+      if (h5%xt(w)%nrow > 0) rows = int(h5%xt(w)%rows) + h5%xt(w)%nbuf
    end function h5_xt_rows
 
    !> Length of a 1-D dataset (or the last dimension) in an existing file; -1 if absent.

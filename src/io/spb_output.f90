@@ -1,4 +1,5 @@
-!> Outputs (INTERFACE.md): the column text files PREFIX.his, .prf, .evt, .frg and, with
+!> Outputs (INTERFACE.md): the column text files PREFIX.his, .prf, .evt, .frg (and .gau with
+!> &gauges) and, with
 !> &run hdf5 = .true., PREFIX.h5 holding the same (layout in doc/outputs.md).
 !>
 !> Each text file starts with '#' header lines (version, title, the full echoed deck, the
@@ -11,19 +12,21 @@ module spb_output
    use spb_deck, only: deck_record_t, write_echo
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
-      h5_table_rows, h5_xt_rows, h5_read_size
+      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges
    use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
    use spb_events, only: event_list_t, event_kind_names
    use spb_diag, only: frag_info_t
+   use spb_gauge, only: gauge_t, locate_gauges
    implicit none
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
-   public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, claim_sweep_outputs, &
+   public :: write_gauge_row, gauge_columns, text_count, claim_sweep_outputs
+   public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
       check_written
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
@@ -107,29 +110,32 @@ module spb_output
    type :: outputs_t
       character(len=:), allocatable :: prefix
       integer :: his = no_unit, prf = no_unit, evt = no_unit, frg = no_unit   !! units
+      integer :: gau = no_unit                            !! PREFIX.gau's unit (no gauges: none)
+      integer :: n_gauges = 0                             !! gauges (columns 3 n_gauges + 1)
       logical :: hdf5 = .false.                           !! PREFIX.h5 is written
       logical :: per_area = .true.                        !! every area 1: units per unit area
       type(h5file_t) :: h5
       integer :: h_his = 0, h_evt = 0                     !! its table handles
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
-      integer(int64) :: head(4) = 0                       !! header bytes of .his .prf .evt .frg
+      integer(int64) :: head(5) = 0                       !! header bytes of each text file
    end type outputs_t
 
-   !> The text files, in the order of outputs_t%head and output_marks_t.
-   character(len=4), parameter :: text_extensions(4) = ['.his', '.prf', '.evt', '.frg']
+   !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
+   character(len=4), parameter :: text_extensions(5) = ['.his', '.prf', '.evt', '.frg', '.gau']
 
    integer, parameter :: tail_len = 240   !! bytes of each text file a mark remembers
 
    !> How far the outputs reach at one step: what a restart keeps of them.
    type :: output_marks_t
-      integer(int64) :: body(4) = 0      !! bytes after the header of each text file
-      character(len=tail_len) :: tail(4) = ''   !! the last bytes of each body ...
-      integer :: tail_n(4) = 0           !! ... so many of them (a restart checks them)
+      integer(int64) :: body(5) = 0      !! bytes after the header of each text file
+      character(len=tail_len) :: tail(5) = ''   !! the last bytes of each body ...
+      integer :: tail_n(5) = 0           !! ... so many of them (a restart checks them)
       integer :: rows_his = 0            !! rows of PREFIX.h5 /history
       integer :: rows_evt = 0            !! rows of /events
       integer :: rows_xt = 0             !! times of /fields/xt
       integer :: n_prof = 0              !! groups under /fields/profiles
       integer :: n_frg = 0               !! groups under /fragments
+      integer :: rows_gau = 0            !! times of /gauges (with &gauges)
    end type output_marks_t
 
 contains
@@ -149,6 +155,8 @@ contains
       if (.not. allocated(err)) call open_one('.prf', out%prf)
       if (.not. allocated(err)) call open_one('.evt', out%evt)
       if (.not. allocated(err)) call open_one('.frg', out%frg)
+      out%n_gauges = size(rec%gauge_x)
+      if (.not. allocated(err) .and. out%n_gauges > 0) call open_one('.gau', out%gau)
       if (allocated(err)) then
          call close_outputs(out)
          return
@@ -188,6 +196,10 @@ contains
       write(out%frg, '(a)') '# units: ' // bar_units('birth_t [s]; x_* [m]; mass [kg/m^2]; ' &
          // 'velocity [m/s]; e_vib [J/m^2]; ids and nodes [-]', mesh)
       write(out%frg, '(a)') '# ' // fragment_columns
+      if (out%gau /= no_unit) then
+         call header(out%gau, 'gauges: one row every &gauges every steps')
+         call gauge_header(out%gau, rec, mesh)
+      end if
       call text_sizes(out, out%head)
       if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err, xt_rows)
    contains
@@ -214,6 +226,83 @@ contains
          call write_mesh_summary(u, mesh, report, '# ')
       end subroutine header
    end subroutine open_outputs
+
+   !> The header lines of PREFIX.gau after the common ones: where each gauge is, what it
+   !> reads, units, the column line.
+   subroutine gauge_header(u, rec, mesh)
+      integer, intent(in) :: u             !! open formatted unit
+      type(deck_record_t), intent(in) :: rec   !! the deck's record (its gauges)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(gauge_t) :: g(size(rec%gauge_x))
+      character(len=:), allocatable :: where
+      integer :: k
+      call locate_gauges(mesh, rec%gauge_x, g)
+      do k = 1, size(g)
+         where = '# gauge ' // itoa(k) // ' at x = ' // rtoa(g(k)%x) // ' m '
+         if (g(k)%node == 0) then
+            write(u, '(a)') where // 'is on node 0, the top end: the support''s section ' // &
+               'stress (a free face: the load on it, its mean over the step)'
+         else if (g(k)%node == mesh%n) then
+            write(u, '(a)') where // 'is on node ' // itoa(mesh%n) // ', the bottom end: the ' &
+               // 'support''s section stress (a free face: the load on it, its mean over the step)'
+         else if (g(k)%node > 0) then
+            write(u, '(a)') where // 'is on node ' // itoa(g(k)%node) // ': its section ' // &
+               'stress; at a crack it reports 0 and, for velocity and u, the mean of the two halves'
+         else
+            write(u, '(a)') where // 'is inside cell ' // itoa(g(k)%cell) // ': its stress; ' // &
+               'velocity and u interpolated linearly between nodes ' // itoa(g(k)%cell - 1) // &
+               ' and ' // itoa(g(k)%cell) // ' (their halves in this cell)'
+         end if
+      end do
+      write(u, '(a)') '# stress_k: at a node the section stress S (3.1)-(3.2) that holds over ' // &
+         'the step ending at t, 0 where the node is split; inside a cell the cell''s stress at t'
+      write(u, '(a)') '# velocity_k: du/dt over the step ending at t; u_k: displacement at t'
+      write(u, '(a)') '# units: t [s]; stress_k [Pa] (compression > 0); velocity_k [m/s] ' // &
+         'along +x (down); u_k [m]'
+      write(u, '(a)') '# ' // gauge_columns(size(g))
+   end subroutine gauge_header
+
+   !> The column names of PREFIX.gau: t, then stress_k velocity_k u_k for k = 1..n.
+   pure function gauge_columns(n) result(line)
+      integer, intent(in) :: n             !! gauges
+      character(len=:), allocatable :: line
+      integer :: k
+      line = 't'
+      do k = 1, n
+         line = line // ' stress_' // itoa(k) // ' velocity_' // itoa(k) // ' u_' // itoa(k)
+      end do
+   end function gauge_columns
+
+   !> One row of PREFIX.gau (and /gauges): the gauges' readings at time t.
+   subroutine write_gauge_row(out, t, stress, velocity, u)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      real(wp), intent(in) :: t            !! time of the row [s]
+      real(wp), intent(in) :: stress(:)    !! stress of each gauge [Pa]
+      real(wp), intent(in) :: velocity(:)  !! velocity of each gauge [m/s]
+      real(wp), intent(in) :: u(:)         !! displacement of each gauge [m]
+      character(len=21 * (3 * size(stress) + 1)) :: line
+      integer :: k, at
+      if (out%gau == no_unit) return
+      line = ' '
+      line(2:21) = es20_12(t)
+      at = 21
+      do k = 1, size(stress)
+         line(at + 2:at + 21) = es20_12(stress(k))
+         line(at + 23:at + 42) = es20_12(velocity(k))
+         line(at + 44:at + 63) = es20_12(u(k))
+         at = at + 63
+      end do
+      write(out%gau, '(a)') line
+      if (out%hdf5) call h5_append_xt(out%h5, t, stress, velocity, u, xt_gauges)
+   end subroutine write_gauge_row
+
+   !> How many text files a run writes (PREFIX.gau with gauges): the first so many of
+   !> text_extensions.
+   pure integer function text_count(rec)
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      text_count = 4
+      if (size(rec%gauge_x) > 0) text_count = 5
+   end function text_count
 
    !> The mesh as built: dt, cells, steps, and each segment's cells and lengths.
    subroutine write_mesh_summary(u, mesh, report, prefix)
@@ -292,24 +381,29 @@ contains
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
-      character(len=len(prefix) + 5) :: files(6)
-      integer :: k, n
+      character(len=len(prefix) + 5) :: files(7)
+      integer :: k, n, nt
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
                          'such as ''' // prefix // '/run''')
          return
       end if
-      do k = 1, 4
+      ! the text files, PREFIX.h5 when written, then the lock
+      nt = text_count(rec)
+      do k = 1, nt
          files(k) = prefix // text_extensions(k)
       end do
-      files(5) = prefix // '.h5'
-      files(6) = prefix // '.lock'
-      n = merge(5, 4, rec%hdf5)
+      n = nt
+      if (rec%hdf5) then
+         n = n + 1
+         files(n) = prefix // '.h5'
+      end if
+      files(n + 1) = prefix // '.lock'
       do k = 1, n
          call check_writable('--output', trim(files(k)), err)
          if (allocated(err)) return
       end do
-      call claim_checkpoint(checkpoint, rec, files, err)
+      call claim_checkpoint(checkpoint, rec, files(1:n + 1), err)
       if (allocated(err)) return
       call hold_lock(prefix, err)
    end subroutine claim_outputs
@@ -320,14 +414,13 @@ contains
    subroutine claim_checkpoint(checkpoint, rec, files, err)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
-      character(len=*), intent(in) :: files(:)     !! the run's 4 text files, .h5, .lock
+      character(len=*), intent(in) :: files(:)     !! the run's text files, .h5, .lock
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
       character(len=:), allocatable :: ck
       integer :: k
       if (len(checkpoint) == 0) return
       ck = sys_real_path(checkpoint)
-      do k = 1, 6
-         if (k == 5 .and. .not. rec%hdf5) cycle
+      do k = 1, size(files)
          if (ck == sys_real_path(trim(files(k)))) then
             call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is an ' // &
                'output of this run (''' // trim(files(k)) // '''); give the checkpoint a ' // &
@@ -422,7 +515,7 @@ contains
       integer(int64) :: wrote, have
       integer :: k, u
       if (allocated(err)) return
-      do k = 1, 4
+      do k = 1, size(text_extensions)
          u = text_unit(out, k)
          if (u == no_unit) cycle
          flush(u)
@@ -451,7 +544,9 @@ contains
       if (out%prf /= no_unit) close(out%prf)
       if (out%evt /= no_unit) close(out%evt)
       if (out%frg /= no_unit) close(out%frg)
+      if (out%gau /= no_unit) close(out%gau)
       out%frg = no_unit
+      out%gau = no_unit
       out%his = no_unit
       out%prf = no_unit
       out%evt = no_unit
@@ -469,17 +564,18 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       if (out%his /= no_unit) flush(out%his)
       if (out%evt /= no_unit) flush(out%evt)
+      if (out%gau /= no_unit) flush(out%gau)
       if (out%hdf5) call h5_flush(out%h5)
    end subroutine flush_outputs
 
    !> Bytes in each text file now (written through to the file first).
    subroutine text_sizes(out, bytes)
       type(outputs_t), intent(in) :: out   !! the outputs
-      integer(int64), intent(out) :: bytes(4)   !! .his, .prf, .evt, .frg (0: not open)
-      integer :: k, u(4)
-      u = [out%his, out%prf, out%evt, out%frg]
+      integer(int64), intent(out) :: bytes(5)   !! .his, .prf, .evt, .frg, .gau (0: not open)
+      integer :: k, u(5)
+      u = [out%his, out%prf, out%evt, out%frg, out%gau]
       bytes = 0
-      do k = 1, 4
+      do k = 1, 5
          if (u(k) == no_unit) cycle
          flush(u(k))
          inquire(unit=u(k), size=bytes(k))
@@ -491,12 +587,12 @@ contains
    subroutine mark_outputs(out, marks)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(output_marks_t), intent(out) :: marks   !! how far the outputs reach
-      integer(int64) :: bytes(4)
+      integer(int64) :: bytes(5)
       integer :: k, u, r, ios
       call flush_outputs(out)
       call text_sizes(out, bytes)
       marks%body = bytes - out%head
-      do k = 1, 4
+      do k = 1, size(text_extensions)
          ! the tail is read back through a second connection: close, read, reopen
          u = text_unit(out, k)
          if (u == no_unit) cycle
@@ -520,14 +616,15 @@ contains
       marks%rows_xt = h5_xt_rows(out%h5)
       marks%n_prof = out%n_prof
       marks%n_frg = out%n_frg
+      marks%rows_gau = h5_xt_rows(out%h5, xt_gauges)
    end subroutine mark_outputs
 
    !> The unit of text file k (text_extensions order).
    pure integer function text_unit(out, k) result(u)
       type(outputs_t), intent(in) :: out   !! the outputs
       integer, intent(in) :: k             !! text file (text_extensions)
-      integer :: units(4)
-      units = [out%his, out%prf, out%evt, out%frg]
+      integer :: units(5)
+      units = [out%his, out%prf, out%evt, out%frg, out%gau]
       u = units(k)
    end function text_unit
 
@@ -543,14 +640,17 @@ contains
          out%prf = u
       case (3)
          out%evt = u
-      case default
+      case (4)
          out%frg = u
+      case default
+         out%gau = u
       end select
    end subroutine set_text_unit
 
    !> The column line that ends the header of text file k.
-   pure function column_line(k) result(line)
+   pure function column_line(k, n_gauges) result(line)
       integer, intent(in) :: k             !! text file (text_extensions)
+      integer, intent(in), optional :: n_gauges   !! PREFIX.gau: its gauges
       character(len=:), allocatable :: line
       select case (k)
       case (1)
@@ -559,18 +659,22 @@ contains
          line = '# x u v stress'
       case (3)
          line = '# ' // event_columns()
-      case default
+      case (4)
          line = '# ' // fragment_columns
+      case default
+         line = '# ' // gauge_columns(0)
+         if (present(n_gauges)) line = '# ' // gauge_columns(n_gauges)
       end select
    end function column_line
 
    !> Bytes of the header of a text output (up to its column line), -1 if there is none in
    !> its first MiBs, and the file's size.
-   subroutine find_header(path, k, head, size_bytes)
+   subroutine find_header(path, k, head, size_bytes, n_gauges)
       character(len=*), intent(in) :: path   !! file path
       integer, intent(in) :: k             !! text file (text_extensions)
       integer(int64), intent(out) :: head         !! bytes of the header (-1: not found)
       integer(int64), intent(out) :: size_bytes   !! bytes of the file
+      integer, intent(in), optional :: n_gauges   !! PREFIX.gau: its gauges
       integer, parameter :: scan_max = 4194304
       character(len=:), allocatable :: buf
       character(len=:), allocatable :: line
@@ -586,7 +690,7 @@ contains
       read(u, pos=1, iostat=ios) buf
       close(u)
       if (ios /= 0) return
-      line = column_line(k) // new_line('a')
+      line = column_line(k, n_gauges) // new_line('a')
       if (len(buf) >= len(line)) then
          if (buf(1:len(line)) == line) then
             head = len(line)
@@ -687,10 +791,19 @@ contains
       if (rec%field_every > 0) then
          k = 64
          if (present(xt_rows)) k = xt_rows
-         call h5_xt(out%h5, '/fields/xt', 2 * n, k)
+         call h5_xt(out%h5, '/fields/xt', 2 * n, rows=k)
          call h5_attr(out%h5, '/fields/xt', 'every', rec%field_every)
       end if
       call h5_group(out%h5, '/fragments')
+      if (size(rec%gauge_x) > 0) then
+         call h5_xt(out%h5, '/gauges', size(rec%gauge_x), xt_gauges, &
+                    [character(len=8) :: 'stress', 'velocity', 'u'], &
+                    [character(len=8) :: 'Pa', 'm/s', 'm'])
+         call h5_attr(out%h5, '/gauges', 'x', rec%gauge_x)
+         call h5_attr(out%h5, '/gauges', 'every', rec%gauge_every)
+         call h5_attr(out%h5, '/gauges', 'layout', 'as PREFIX.gau: Fortran (gauges, rows); ' // &
+                      'h5py/numpy see (rows, gauges); x [m] the gauges'' reference positions')
+      end if
       call h5_flush(out%h5)
       if (allocated(out%h5%error)) call make_error(err, '--output: ' // out%h5%error, &
                                                    code=exit_runtime)

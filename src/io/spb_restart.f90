@@ -7,12 +7,12 @@ module spb_restart
    use spb_strings, only: itoa
    use spb_deck, only: deck_record_t
    use spb_hdf5, only: h5file_t, h5_close, h5_flush, h5_open_read, h5_get, h5_get_columns, &
-      h5_copy, h5_append, h5_append_xt, h5_read_size
+      h5_copy, h5_append, h5_append_xt, h5_read_size, xt_gauges, xt_fields
    use spb_sys, only: sys_rename
    use spb_mesh, only: mesh_t
    use spb_output, only: outputs_t, output_marks_t, open_outputs, text_extensions, tail_len, &
       history_columns, event_columns, find_header, column_line, text_unit, set_text_unit, &
-      no_unit, block_name, split
+      no_unit, block_name, split, text_count
    implicit none
    private
    public :: resume_outputs, drop_set_aside
@@ -42,36 +42,38 @@ contains
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
-      integer(int64) :: head(4)
-      integer :: k, nrows
-      logical :: aside_there(5), ok
+      integer(int64) :: head(5)
+      integer :: k, nrows, nt, ng
+      logical :: aside_there(6), ok
       character(len=:), allocatable :: f   !! one output's path
-      character(len=len(prefix) + 12) :: prev(5)   !! the previous outputs (PREFIX.ext[.restart])
+      character(len=len(prefix) + 12) :: prev(6)   !! the previous outputs (PREFIX.ext[.restart])
       ! the previous outputs (set aside by a restart that did not finish, or not yet): a
       ! header, then at least the body the checkpoint counts, ending in the bytes it remembers
-      do k = 1, 5
-         f = output_file(prefix, k)
+      nt = text_count(rec)            ! 4, or 5 with gauges (.gau)
+      ng = size(rec%gauge_x)
+      do k = 1, nt + 1
+         f = output_file(prefix, k, nt)
          inquire(file=f // aside, exist=aside_there(k))
          if (aside_there(k)) f = f // aside
          prev(k) = f
       end do
-      do k = 1, 4
-         call check_text(trim(prev(k)), k, marks, head(k), err)
+      do k = 1, nt
+         call check_text(trim(prev(k)), k, ng, marks, head(k), err)
          if (allocated(err)) return
       end do
       if (rec%hdf5) then
-         call h5_read_size(trim(prev(5)), '/history/t', nrows)
+         call h5_read_size(trim(prev(nt + 1)), '/history/t', nrows)
          if (nrows < marks%rows_his) then
-            call make_error(err, '--restart: ''' // trim(prev(5)) // ''' holds ' // &
+            call make_error(err, '--restart: ''' // trim(prev(nt + 1)) // ''' holds ' // &
                itoa(max(nrows, 0)) // ' history rows, the checkpoint counts ' // &
                itoa(marks%rows_his) // hint)
             return
          end if
       end if
-      do k = 1, 5
-         if (k == 5 .and. .not. rec%hdf5) exit
+      do k = 1, nt + 1
+         if (k == nt + 1 .and. .not. rec%hdf5) exit
          if (aside_there(k)) cycle
-         f = output_file(prefix, k)
+         f = output_file(prefix, k, nt)
          call sys_rename(f, f // aside, ok)
          if (.not. ok) then
             call make_error(err, '--restart: cannot rename ''' // f // ''' to ''' // f // &
@@ -81,7 +83,7 @@ contains
       end do
       call open_outputs(prefix, rec, mesh, report, out, err, xt_rows)
       if (allocated(err)) return
-      do k = 1, 4
+      do k = 1, nt
          call copy_body(prefix, k, head(k), marks%body(k), out, err)
          if (allocated(err)) return
       end do
@@ -94,9 +96,10 @@ contains
 
    !> Refuse a previous text output k that lacks the header, the body the checkpoint counts
    !> or the bytes it remembers at the end of that body.
-   subroutine check_text(f, k, marks, head, err)
+   subroutine check_text(f, k, ng, marks, head, err)
       character(len=*), intent(in) :: f   !! the previous output
       integer, intent(in) :: k            !! text file (text_extensions)
+      integer, intent(in) :: ng           !! gauges of the deck (the .gau columns)
       type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
       integer(int64), intent(out) :: head   !! its header bytes
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
@@ -110,10 +113,10 @@ contains
          call make_error(err, '--restart: ''' // f // ''' is missing' // hint)
          return
       end if
-      call find_header(f, k, head, sz)
+      call find_header(f, k, head, sz, ng)
       if (head < 0) then
          call make_error(err, '--restart: ''' // f // ''' has no header line ''' // &
-            column_line(k) // ''': not a spallbar output' // hint)
+            column_line(k, ng) // ''': not a spallbar output' // hint)
       else if (sz - head < marks%body(k)) then
          call make_error(err, '--restart: ''' // f // ''' holds ' // &
             itoa(sz - head) // ' bytes after its header, the checkpoint counts ' // &
@@ -142,17 +145,19 @@ contains
    subroutine drop_set_aside(prefix)
       character(len=*), intent(in) :: prefix   !! output path prefix
       integer :: k
-      do k = 1, 5
-         call remove_file(output_file(prefix, k) // aside)
+      do k = 1, size(text_extensions) + 1
+         call remove_file(output_file(prefix, k, size(text_extensions)) // aside)
       end do
    end subroutine drop_set_aside
 
-   !> PREFIX.ext of output k (text_extensions, 5: PREFIX.h5).
-   pure function output_file(prefix, k) result(f)
+   !> PREFIX.ext of output k of a run with nt text files (text_extensions(k), nt + 1:
+   !> PREFIX.h5).
+   pure function output_file(prefix, k, nt) result(f)
       character(len=*), intent(in) :: prefix   !! output path prefix
-      integer, intent(in) :: k   !! file (text_extensions, 5: PREFIX.h5)
+      integer, intent(in) :: k   !! file (text_extensions, nt + 1: PREFIX.h5)
+      integer, intent(in) :: nt  !! text files of the run (text_count)
       character(len=:), allocatable :: f
-      f = prefix // trim(merge(text_extensions(min(k, 4)), '.h5 ', k <= 4))
+      f = prefix // trim(merge(text_extensions(min(k, nt)), '.h5 ', k <= nt))
    end function output_file
 
    !> Append the body up to the mark of the set-aside file k to the fresh one.
@@ -211,6 +216,8 @@ contains
       call replay_table(prefix, old, '/events', event_columns(), out, out%h_evt, marks%rows_evt, &
                         err)
       if (marks%rows_xt > 0) call replay_xt(prefix, old, mesh, marks%rows_xt, out, err)
+      if (marks%rows_gau > 0) call replay_gauges(prefix, old, out%n_gauges, marks%rows_gau, &
+                                                 out, err)
       do k = 1, marks%n_prof
          call h5_copy(old, '/fields/profiles/' // block_name(k), out%h5, &
                       '/fields/profiles/' // block_name(k))
@@ -276,7 +283,7 @@ contains
       integer :: c0, m, j, width
       ! as many times at once as the new file buffers (fewer when memory is short; spb_sim)
       width = 64
-      if (allocated(out%h5%xt%tbuf)) width = size(out%h5%xt%tbuf)
+      if (allocated(out%h5%xt(xt_fields)%tbuf)) width = size(out%h5%xt(xt_fields)%tbuf)
       call h5_get(old, '/fields/xt/t', t)
       if (.not. allocated(t)) then
          call make_error(err, '--restart: ''' // prefix // '.h5'' has no /fields/xt', &
@@ -300,6 +307,40 @@ contains
          end do
       end do
    end subroutine replay_xt
+
+   !> The first rows of the gauges (/gauges), in blocks of rows.
+   subroutine replay_gauges(prefix, old, n_gauges, rows, out, err)
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(h5file_t), intent(inout) :: old     !! the previous PREFIX.h5
+      integer, intent(in) :: n_gauges          !! gauges
+      integer, intent(in) :: rows              !! rows to copy
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer, parameter :: width = 64
+      real(wp), allocatable :: t(:), s(:, :), v(:, :), u(:, :)
+      integer :: c0, m, j
+      call h5_get(old, '/gauges/t', t)
+      if (.not. allocated(t)) then
+         call make_error(err, '--restart: ''' // prefix // '.h5'' has no /gauges', &
+                         code=exit_runtime)
+         return
+      end if
+      if (size(t) < rows) then
+         call make_error(err, '--restart: ''' // prefix // '.h5'' /gauges holds ' // &
+            itoa(size(t)) // ' rows, the checkpoint counts ' // itoa(rows), code=exit_runtime)
+         return
+      end if
+      allocate(s(n_gauges, width), v(n_gauges, width), u(n_gauges, width))
+      do c0 = 0, rows - 1, width
+         m = min(width, rows - c0)
+         call h5_get_columns(old, '/gauges/stress', c0, s(:, 1:m))
+         call h5_get_columns(old, '/gauges/velocity', c0, v(:, 1:m))
+         call h5_get_columns(old, '/gauges/u', c0, u(:, 1:m))
+         do j = 1, m
+            call h5_append_xt(out%h5, t(c0 + j), s(:, j), v(:, j), u(:, j), xt_gauges)
+         end do
+      end do
+   end subroutine replay_gauges
 
    !> Delete a file if it is there.
    subroutine remove_file(path)

@@ -59,6 +59,10 @@ module spb_mesh
       real(wp), allocatable :: mb(:)         !! lower half mass (cell below) [kg/m^2]
       real(wp), allocatable :: inv_m(:)      !! 1/(ma + mb) [m^2/kg]
       real(wp), allocatable :: m_above(:)    !! mass of cells 1..i, sum of dm [kg/m^2]
+      ! observation
+      integer :: n_watch = 0                 !! interior nodes whose section stress every step
+      integer, allocatable :: watch(:)       !! keeps although they cannot break (gauges on
+                                             !! them; spb_gauge), first n_watch used
    end type mesh_t
 
 contains

@@ -159,6 +159,15 @@ contains
             st%section(i) = section_stress_a(st%s(i), st%section(i), st%dua(i) / dt, d / dt, &
                                              mesh%z(i), mesh%dm(i), g)
          end do
+      else if (mesh%n_watch > 0) then
+         ! the same for the nodes gauges read (mesh%watch), breakable or not
+         do c = 1, mesh%n_watch
+            i = mesh%watch(c)
+            d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+                * mesh%inv_m(i) * dt2
+            st%section(i) = section_stress_a(st%s(i), st%section(i), st%dua(i) / dt, d / dt, &
+                                             mesh%z(i), mesh%dm(i), g)
+         end do
       end if
       call joined_increments(mesh, g, st%s, st%dua, 0, n)
       st%dub = st%dua
@@ -207,12 +216,14 @@ contains
 
    !> advance_joined may stand in for nsteps calls of the whole step (advance, contact_step,
    !> fracture_step): every node is joined, none can break (no node, no spring), no rigid
-   !> base to land on or leave, and no support is being hit.
+   !> base to land on or leave, no support is being hit, and no gauge reads a node's section
+   !> stress (mesh%watch: the blocked steps do not keep it).
    pure logical function joined_only(mesh, st)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%fm%n_cut == 0 .and. &
-                    mesh%bottom /= end_base .and. .not. (st%ends%landing_top .or. st%ends%landing_bot)
+                    mesh%bottom /= end_base .and. .not. (st%ends%landing_top .or. st%ends%landing_bot) &
+                    .and. mesh%n_watch == 0
    end function joined_only
 
    !> nsteps steps of a bar that is joined_only, bit-identical to as many calls of advance,

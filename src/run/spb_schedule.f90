@@ -9,12 +9,13 @@ module spb_schedule
    implicit none
    private
    public :: schedule_t, schedule_every, schedule_at, is_due, next_due
-   public :: act_row, act_check, act_field, act_checkpoint, act_progress
+   public :: act_row, act_check, act_field, act_checkpoint, act_progress, act_gauge
 
    !> The actions: a history row; the finiteness and energy-guard check between rows; a
-   !> profile; an x-t field row; a checkpoint; the progress line and the flush of the outputs.
+   !> profile; an x-t field row; a checkpoint; the progress line and the flush of the outputs;
+   !> a row of the gauges.
    integer, parameter :: act_row = 1, act_check = 2, act_profile = 3, act_field = 4, &
-                         act_checkpoint = 5, act_progress = 6, n_actions = 6
+                         act_checkpoint = 5, act_progress = 6, act_gauge = 7, n_actions = 7
 
    type :: schedule_t
       integer :: n_end = 0                       !! the last step of the run

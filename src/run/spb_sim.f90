@@ -22,13 +22,14 @@ module spb_sim
    use spb_events, only: event_list_t, ev_fracture
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step
+   use spb_gauge, only: gauge_t, locate_gauges, watch_gauges, read_gauges
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
-      claim_outputs, check_written
+      claim_outputs, check_written, write_gauge_row
    use spb_restart, only: resume_outputs, drop_set_aside
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
-      act_check, act_field, act_checkpoint, act_progress
+      act_check, act_field, act_checkpoint, act_progress, act_gauge
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model, &
@@ -83,6 +84,7 @@ module spb_sim
       real(wp) :: energy_guard = 0.5_wp              !! the energy guard's share (0: off) [-]
       integer :: xt_rows = xt_rows_max               !! x-t times buffered (fewer when memory
                                                      !! is short)
+      integer :: gauge_every = 1                     !! steps between gauge rows
    end type run_options_t
 
    type :: sim_t
@@ -93,6 +95,7 @@ module spb_sim
       type(mesh_t) :: mesh
       type(load_t) :: load
       type(state_t) :: st
+      type(gauge_t), allocatable :: gauges(:)        !! &gauges (none: no PREFIX.gau)
       character(len=200), allocatable :: report(:)   !! mesh fit report
    end type sim_t
 
@@ -151,9 +154,13 @@ contains
       sim%opt%checkpoint = trim(deck%run%checkpoint)
       sim%opt%checkpoint_every = deck%run%checkpoint_every
       sim%opt%energy_guard = deck%run%energy_guard
+      sim%opt%gauge_every = sim%record%gauge_every
       call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err, files=files, &
                        restart=restart, xt_rows=sim%opt%xt_rows)
       if (allocated(err)) return
+      allocate(sim%gauges(size(sim%record%gauge_x)))
+      call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges)
+      call watch_gauges(sim%mesh, sim%gauges)
       call init_state(sim%prob, sim%mesh, sim%st)
    end subroutine sim_setup
 
@@ -313,6 +320,8 @@ contains
       ! checkpoint: a run extended from there does not have it)
       if (.not. allocated(err) .and. sim%st%step == sim%mesh%nsteps .and. &
           .not. is_due(run%sched, act_row, sim%mesh%nsteps)) call row(sim, run, summary, err)
+      if (.not. allocated(err) .and. sim%st%step == sim%mesh%nsteps .and. size(sim%gauges) > 0 &
+          .and. .not. is_due(run%sched, act_gauge, sim%mesh%nsteps)) call gauge_row(sim, run)
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
       if (run%to_files) then
@@ -357,6 +366,8 @@ contains
          call schedule_every(run%sched, act_check, check_every)
          call schedule_every(run%sched, act_field, opt%field_every)
          if (run%ck_on) call schedule_every(run%sched, act_checkpoint, opt%checkpoint_every)
+         if (size(sim%gauges) > 0 .and. run%to_files) call schedule_every(run%sched, act_gauge, &
+                                                                          opt%gauge_every)
          call schedule_every(run%sched, act_progress, progress_every)
          call schedule_at(run%sched, nint(opt%profile_times / sim%mesh%dt))
       end associate
@@ -389,6 +400,7 @@ contains
       summary%ledger_w0 = summary%e_mech0 - w_w + e_l
       summary%max_reaction_bottom = sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n)
       call row(sim, run, summary, err)
+      if (run%sched%every(act_gauge) > 0) call gauge_row(sim, run)
       call profiles(sim, run)
       if (run%sched%every(act_field) > 0 .and. run%to_files) then
          call write_field(run%out, sim%mesh, sim%st)
@@ -458,6 +470,7 @@ contains
          call check_between_rows(sim, run, summary, err)
          if (allocated(err)) return
       end if
+      if (is_due(run%sched, act_gauge, n)) call gauge_row(sim, run)
       call profiles(sim, run)
       if (is_due(run%sched, act_field, n) .and. run%to_files) then
          call write_field(run%out, sim%mesh, sim%st)
@@ -473,6 +486,9 @@ contains
       if (sig /= 0) then
          ! SIGTERM/SIGINT: end here with the outputs complete up to this step
          if (.not. wrote_row) call row(sim, run, summary, err)
+         if (run%sched%every(act_gauge) > 0 .and. .not. is_due(run%sched, act_gauge, n)) then
+            call gauge_row(sim, run)
+         end if
          call make_error(err, 'run: stopped by signal ' // itoa(sig) // &
             ' at step ' // itoa(sim%st%step) // ' (t = ' // &
             rtoa(real(sim%st%step, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
@@ -615,6 +631,16 @@ contains
          end if
       end associate
    end subroutine guard
+
+   !> One row of the gauges (PREFIX.gau, /gauges) at the state's time.
+   subroutine gauge_row(sim, run)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
+      real(wp), dimension(size(sim%gauges)) :: stress, velocity, u
+      if (.not. run%to_files) return
+      call read_gauges(sim%mesh, sim%load, sim%st, sim%gauges, stress, velocity, u)
+      call write_gauge_row(run%out, real(sim%st%step, wp) * sim%mesh%dt, stress, velocity, u)
+   end subroutine gauge_row
 
    !> The profiles (and fragment lists) due at this step.
    subroutine profiles(sim, run)
