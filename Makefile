@@ -11,6 +11,7 @@
 #   make golden REF=REV  every output of the Release program against revision REV's (scripts/golden.py)
 #   make archive-check   every deck of input/ against the results archive (archive/, doc/archive.md)
 #   make rebaseline WHY="..."  rewrite archive/ with this program; WHY goes to archive/CHANGES.md
+#   make install PREFIX=DIR  install spallbar, spallbar-compare, plots, example decks, man page
 #   make clean     remove build/
 SHELL := /bin/bash
 BUILD_RELEASE ?= build/release
@@ -30,12 +31,14 @@ RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
 
-.PHONY: all setup build debug debug-configure run test test-translator figures bench fragmentation golden archive-check rebaseline clean help
+PREFIX ?= /usr/local
+
+.PHONY: install all setup build debug debug-configure run test test-translator figures bench fragmentation golden archive-check rebaseline clean help
 
 all: build
 
 help:
-	@sed -n '1,14p' Makefile
+	@sed -n '1,15p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -85,6 +88,9 @@ clean:
 	rm -rf build
 
 REF ?= HEAD
+install: build
+	cmake --install $(BUILD_RELEASE) --prefix $(PREFIX)
+
 archive-check: build
 	python3 scripts/archive.py check --exe $(BUILD_RELEASE)/bin/spallbar --compare $(BUILD_RELEASE)/bin/spallbar-compare
 

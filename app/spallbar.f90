@@ -5,7 +5,7 @@
 !> 3: a run that went wrong; 128 + signal: stopped by SIGTERM/SIGINT (outputs complete to
 !> that step); 0: success.
 program spallbar
-   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, compiler_version, compiler_options
    use spb_kinds, only: wp, version, path_len
    use spb_error, only: spb_error_t, make_error, exit_input
    use spb_strings, only: itoa
@@ -13,6 +13,7 @@ program spallbar
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, checkpoint_t
    use spb_checkpoint, only: read_checkpoint
    use spb_output, only: write_mesh_summary
+   use spb_hdf5, only: h5_library_version
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
    use spb_par, only: par_init, par_finalize, par_barrier, par_rank, par_kind
@@ -24,9 +25,11 @@ program spallbar
    type(spb_error_t), allocatable :: err
    character(len=:), allocatable :: deck_path, prefix, restart_path
    logical :: quiet, sweep
+   real(wp) :: batch   ! seconds between progress lines when stderr is not a terminal (0: none)
 
    call heap_for_large_arrays()
-   call parse_command_line(deck_path, prefix, quiet, sweep, restart_path, err)
+   call parse_command_line(deck_path, prefix, quiet, sweep, restart_path, batch, err)
+   if (quiet .or. stderr_is_terminal()) batch = 0.0_wp
    if (allocated(err)) call fail(err)
    if (sweep) call sweep_main()
    call read_deck(deck_path, deck, err)
@@ -46,7 +49,7 @@ program spallbar
          end if
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                      resume=ck)
+                      resume=ck, batch_seconds=batch)
       end block
    else
       if (.not. quiet) then
@@ -54,7 +57,8 @@ program spallbar
          call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
       end if
       call catch_stop_signals()
-      call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err)
+      call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
+                   batch_seconds=batch)
    end if
    if (allocated(err)) call fail(err)
    if (.not. quiet) then
@@ -132,7 +136,9 @@ contains
    !> The usage lines of --help, on standard output.
    subroutine usage()
       write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet] ' // &
-         '[--restart CHECKPOINT.h5]'
+         '[--progress SECONDS] [--restart CHECKPOINT.h5]'
+      write(output_unit, '(a)') '       (--progress: when stderr is not a terminal, a ' // &
+         'progress line every SECONDS, default 30, 0 none; on a terminal it updates in place)'
       write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
          'PREFIX] [--quiet]   (PREFIX.sweep, PREFIX_sweep.h5; ' // par_kind // ')'
       write(output_unit, '(a)') '       spallbar --version | --help | --deck-help   (--deck-help: ' // &
@@ -142,20 +148,70 @@ contains
       write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
    end subroutine usage
 
+   !> --version: the program and how it was built (compiler and its options, sweeps on MPI or
+   !> serial, the HDF5 library), so that a result can name the build that made it.
+   subroutine print_version()
+      write(output_unit, '(a)') 'spallbar ' // version
+      write(output_unit, '(a)') '  compiler: ' // compiler_version()
+      write(output_unit, '(a)') '  options:  ' // build_options(compiler_options())
+      write(output_unit, '(a)') '  sweeps:   ' // par_kind
+      write(output_unit, '(a)') '  HDF5:     ' // h5_library_version()
+   end subroutine print_version
+
+   !> The compiler options that decide the numbers: every word of all but include paths (-I
+   !> and the path after it), the machine's instruction-set switches (-m..., --param, which
+   !> -march=native expands to: its -march= word stays) and the pre-include.
+   function build_options(all) result(text)
+      character(len=*), intent(in) :: all   !! compiler_options()
+      character(len=:), allocatable :: text
+      character(len=:), allocatable :: word
+      integer :: i, j
+      logical :: skip_next
+      text = ''
+      skip_next = .false.
+      i = 1
+      do while (i <= len_trim(all))
+         j = index(all(i:), ' ')
+         if (j == 0) then
+            j = len_trim(all) + 1
+         else
+            j = i + j - 1
+         end if
+         word = all(i:j - 1)
+         i = j + 1
+         if (len(word) == 0) cycle
+         if (skip_next) then
+            skip_next = .false.
+            cycle
+         end if
+         if (word == '-I') then
+            skip_next = .true.
+            cycle
+         end if
+         if (index(word, '-I') == 1 .or. index(word, '--param') == 1 .or. &
+             index(word, '-fpre-include') == 1) cycle
+         if (index(word, '-m') == 1 .and. index(word, '-march=') /= 1) cycle
+         text = text // ' ' // word
+      end do
+      text = trim(adjustl(text))
+   end function build_options
+
    !> Read the command line: the deck, --output, --quiet, --sweep and --restart (--help,
    !> --version and --deck-help print and exit 0); the prefix defaults to the deck path
    !> without .nml.
-   subroutine parse_command_line(path, pre, q, sw, rst, e)
+   subroutine parse_command_line(path, pre, q, sw, rst, every, e)
       character(len=:), allocatable, intent(out) :: path   !! the deck path
       character(len=:), allocatable, intent(out) :: pre    !! output path prefix
       character(len=:), allocatable, intent(out) :: rst   !! --restart FILE ('' none)
       logical, intent(out) :: q                !! --quiet
       logical, intent(out) :: sw               !! --sweep
+      real(wp), intent(out) :: every           !! --progress SECONDS (default 30)
       type(spb_error_t), allocatable, intent(out) :: e   !! the error (allocated: it failed)
       integer :: k, nargs, lenarg
       character(len=path_len) :: arg
       q = .false.
       sw = .false.
+      every = 30.0_wp
       path = ''
       pre = ''
       rst = ''
@@ -173,7 +229,7 @@ contains
             call usage()
             call sys_exit(0)
          case ('--version')
-            write(output_unit, '(a)') 'spallbar ' // version
+            call print_version()
             call sys_exit(0)
          case ('--deck-help')
             call write_deck_help(output_unit)
@@ -186,6 +242,18 @@ contains
             pre = trim(arg)
          case ('--sweep')
             sw = .true.
+         case ('--progress')
+            call option_value(k, nargs, arg, e, '--progress needs SECONDS (0: no lines)')
+            if (allocated(e)) return
+            block
+               integer :: ios
+               read(arg, *, iostat=ios) every
+               if (ios /= 0 .or. .not. (every >= 0.0_wp .and. every <= 1.0e6_wp)) then
+                  call make_error(e, 'command line: --progress needs SECONDS in 0 .. 1e6, ' // &
+                                  'got ''' // trim(arg) // '''')
+                  return
+               end if
+            end block
          case ('--restart')
             call option_value(k, nargs, arg, e, '--restart needs a CHECKPOINT file')
             if (allocated(e)) return

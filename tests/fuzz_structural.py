@@ -71,11 +71,13 @@ KINDS = {
     ("strength_field", "scale"): "real", ("strength_field", "seed"): "int",
     ("sweep", "realizations"): "int", ("sweep", "seed"): "int", ("sweep", "vary"): "text",
     ("sweep", "values"): "real", ("sweep", "distribution"): "word", ("sweep", "bins"): "int",
+    ("gauges", "x"): "real", ("gauges", "every"): "int",
 }
 ARRAYS = {("run", "profile_times"): 100, ("segments", "length"): 100,
           ("segments", "young"): 100, ("segments", "density"): 100, ("segments", "area"): 100,
           ("segments", "strength"): 100, ("segments", "interface"): 100,
-          ("segments", "velocity"): 100, ("segments", "gap"): 100, ("sweep", "values"): 1000}
+          ("segments", "velocity"): 100, ("segments", "gap"): 100, ("sweep", "values"): 1000,
+          ("gauges", "x"): 100}
 
 # Valid base decks, small and short (a few steps of 20-40 cells). The units are scaled so
 # that a wave speed is ~1 m/s and a step ~0.1 s: an integer put into any real (t_end = 1)
@@ -98,6 +100,7 @@ BASES = [
                   ("exponent", "1.0"), ("t_cut", "0.2")]),
         ("initial", [("state", "'unstressed'"), ("strain_rate", "0.0")]),
         ("strength_field", [("kind", "'uniform'"), ("seed", "1")]),
+        ("gauges", [("x", "0.5, 1.0, 1.2"), ("every", "1")]),
     ], {}, []),
     ("table_base_hdf5", [
         ("run", [("title", "'structural table'"), ("t_end", "0.4"), ("gravity", "9.81"),

@@ -30,7 +30,7 @@ module spb_deck
    private
    public :: deck_t, deck_record_t, known_groups
    public :: read_deck, validate_deck, write_echo, set_deck_value, problem_from_deck, &
-      deck_record, mesh_fault_message, write_deck_help
+      deck_record, mesh_fault_message, write_deck_help, deck_file
 
 
 contains
@@ -346,8 +346,8 @@ contains
    subroutine validate_gauges(deck, err)
       type(deck_t), intent(inout) :: deck   !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      real(wp) :: total
       integer :: k
+      real(wp) :: total   ! the bar's length [m]
       associate (g => deck%gauges)
          g%n = 0
          do k = 1, size(g%x)
@@ -865,7 +865,7 @@ contains
       type(deck_record_t) :: rec
       rec%path = trim(deck%path)
       rec%title = trim(deck%run%title)
-      rec%table = trim(deck%load%table)
+      rec%table = deck_file(deck, deck%load%table)
       call deck_items(deck, rec%items)
       rec%hdf5 = deck%run%hdf5
       rec%field_every = deck%run%field_every
@@ -941,4 +941,19 @@ contains
       character(len=max(len(s), n)) :: r
       r = s
    end function pad
+
+   !> A file named in the deck (&load table, &run checkpoint) as the program opens it: a
+   !> relative name is relative to the deck's folder (INTERFACE.md, "Paths in a deck"), so a
+   !> deck runs the same from any working directory; '' stays ''.
+   function deck_file(deck, name) result(path)
+      type(deck_t), intent(in) :: deck         !! the deck (its path)
+      character(len=*), intent(in) :: name     !! the name as the deck gives it
+      character(len=:), allocatable :: path
+      integer :: k
+      path = trim(name)
+      if (len(path) == 0) return
+      if (path(1:1) == '/') return
+      k = index(trim(deck%path), '/', back=.true.)
+      if (k > 0 .and. deck%path /= '(built in memory)') path = deck%path(1:k) // path
+   end function deck_file
 end module spb_deck

@@ -14,13 +14,15 @@ module spb_hdf5
       h5dset_extent_f, h5sget_simple_extent_dims_f, h5acreate_f, h5awrite_f, h5aclose_f, &
       h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
       h5aopen_f, h5aread_f, h5aget_type_f, h5tget_size_f, h5aexists_f, h5ocopy_f, &
-      H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
+      h5get_libversion_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
       H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       H5T_NATIVE_CHARACTER, H5P_FILE_CREATE_F
    use, intrinsic :: iso_c_binding, only: c_int, c_bool, c_int64_t, c_long_long
    use spb_kinds, only: wp
+   use spb_strings, only: itoa
    implicit none
    private
+   public :: h5_library_version
    public :: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, h5_table, &
       h5_append, h5_xt, h5_append_xt, h5_read, h5_read_size
    public :: h5_open_read, h5_get, h5_get_attr, h5_get_columns, h5_copy, h5_table_rows, &
@@ -883,4 +885,16 @@ contains
       end if
       call h5fclose_f(file, hdferr)
    end subroutine h5_read
+
+   !> The HDF5 library's version, 'major.minor.release' (h5get_libversion_f).
+   function h5_library_version() result(text)
+      character(len=:), allocatable :: text
+      integer :: major, minor, release, hdferr
+      call h5get_libversion_f(major, minor, release, hdferr)
+      if (hdferr /= 0) then
+         text = 'unknown'
+      else
+         text = itoa(major) // '.' // itoa(minor) // '.' // itoa(release)
+      end if
+   end function h5_library_version
 end module spb_hdf5

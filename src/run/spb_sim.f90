@@ -9,7 +9,8 @@ module spb_sim
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_sys, only: stop_signal, sys_memory_limit
    use spb_strings, only: itoa, rtoa
-   use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record, mesh_fault_message
+   use spb_deck, only: deck_t, problem_from_deck, deck_record_t, deck_record, mesh_fault_message, &
+      deck_file
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
    use spb_mesh, only: mesh_t, build_mesh, mesh_size, end_base, mesh_fault_t, fault_none, &
@@ -68,6 +69,9 @@ module spb_sim
       type(schedule_t) :: sched
       logical :: to_files = .true.                   !! write the outputs
       logical :: progress = .false.                  !! show a progress line on stderr
+      real(wp) :: batch_seconds = 0.0_wp             !! a progress line every so many seconds
+                                                     !! (stderr not a terminal; 0: none)
+      integer(int64) :: c_batch = 0                  !! system_clock at the last batch line
       logical :: ck_on = .false.                     !! write checkpoints
       integer :: next_profile = 1                    !! index of the next profile in sched%at
       integer(int64) :: c0 = 0, c_last = 0, rate = 1 !! system_clock at the start, at the
@@ -151,7 +155,7 @@ contains
       sim%opt%history_every = deck%run%history_every
       sim%opt%field_every = deck%run%field_every
       sim%opt%profile_times = deck%run%profile_times(1:deck%run%n_profiles)
-      sim%opt%checkpoint = trim(deck%run%checkpoint)
+      sim%opt%checkpoint = deck_file(deck, deck%run%checkpoint)
       sim%opt%checkpoint_every = deck%run%checkpoint_every
       sim%opt%energy_guard = deck%run%energy_guard
       sim%opt%gauge_every = sim%record%gauge_every
@@ -202,14 +206,14 @@ contains
          return
       end if
       if (prob%load_kind == load_table) then
-         call read_table(deck%load%table, prob%table_t, prob%table_p, err)
+         call read_table(deck_file(deck, deck%load%table), prob%table_t, prob%table_p, err)
          if (allocated(err)) return
       else if (len_trim(deck%load%table) > 0) then
          ! a table given with another kind is not used, but a missing or malformed one is a
          ! mistake in the deck all the same (doc/deck.md)
          block
             real(wp), allocatable :: t_unused(:), p_unused(:)
-            call read_table(deck%load%table, t_unused, p_unused, err)
+            call read_table(deck_file(deck, deck%load%table), t_unused, p_unused, err)
             if (allocated(err)) return
          end block
       end if
@@ -293,14 +297,17 @@ contains
    !> outputs continuing those of the run that wrote it (bit-identical to one run).
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
    !> signal stops the run. What happens between steps is the schedule's (spb_schedule).
-   subroutine sim_run(sim, prefix, progress, summary, err, files, resume)
+   subroutine sim_run(sim, prefix, progress, summary, err, files, resume, batch_seconds)
       type(sim_t), intent(inout) :: sim    !! the simulation
       character(len=*), intent(in) :: prefix   !! output path prefix
-      logical, intent(in) :: progress          !! show a progress line on stderr
+      logical, intent(in) :: progress          !! show a progress line on stderr (a terminal)
       type(run_summary_t), intent(out) :: summary   !! the run's summary
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       logical, intent(in), optional :: files   !! write the outputs (default .true.)
       type(checkpoint_t), intent(in), optional :: resume   !! continue from this checkpoint
+      real(wp), intent(in), optional :: batch_seconds   !! a progress line every so many
+                                                        !! seconds, each on its own line (a
+                                                        !! batch log; 0 or absent: none)
       type(run_t) :: run
       integer(int64) :: c_now
       logical :: stop_now
@@ -308,6 +315,7 @@ contains
       run%to_files = .true.
       if (present(files)) run%to_files = files
       run%progress = progress
+      if (present(batch_seconds)) run%batch_seconds = batch_seconds
       call start_run(sim, run, summary, prefix, err, resume)
       if (allocated(err)) return
       if (.not. present(resume)) call first_rows(sim, run, summary, err)
@@ -381,6 +389,7 @@ contains
       end if
       call system_clock(run%c0, run%rate)
       run%c_last = run%c0
+      run%c_batch = run%c0
    end subroutine start_run
 
    !> The energy references and the rows, profiles and fields of t = 0.
@@ -505,6 +514,12 @@ contains
             if (allocated(err)) return
             if (run%progress) call show_progress(sim, n, real(c_now - run%c0, wp) / &
                                                  real(run%rate, wp))
+         end if
+         if (run%batch_seconds > 0.0_wp .and. real(c_now - run%c_batch, wp) >= &
+             run%batch_seconds * real(run%rate, wp)) then
+            run%c_batch = c_now
+            call show_progress(sim, n, real(c_now - run%c0, wp) / real(run%rate, wp), &
+                               batch=.true.)
          end if
       end if
       stop_now = .false.
@@ -659,18 +674,28 @@ contains
       end do
    end subroutine profiles
 
-   !> The progress line on stderr: share done, speed, time to go.
-   subroutine show_progress(sim, n_done, elapsed)
+   !> The progress line on stderr: share done, speed, time to go; on a terminal it rewrites
+   !> itself, in a batch log (batch) it is a line of its own with the step and the time.
+   subroutine show_progress(sim, n_done, elapsed, batch)
       type(sim_t), intent(in) :: sim       !! the simulation
       integer, intent(in) :: n_done            !! steps done
       real(wp), intent(in) :: elapsed          !! wall time so far [s]
+      logical, intent(in), optional :: batch   !! a line of its own (stderr is not a terminal)
+      character(len=16) :: wall
       real(wp) :: frac, speed
       character(len=120) :: line
       frac = real(n_done, wp) / real(sim%mesh%nsteps, wp)
       speed = real(n_done, wp) / max(elapsed, 1.0e-9_wp)
       write(line, '(a,f6.1,a,es9.2,a,f9.1,a)') 'spallbar: ', 100.0_wp * frac, '%  ', speed, &
          ' steps/s  ETA ', real(sim%mesh%nsteps - n_done, wp) / speed, ' s'
-      write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+      if (present(batch)) then
+         write(wall, '(f16.1)') elapsed
+         write(error_unit, '(a,i0,a,i0,a,es10.3,a)') trim(line) // '  (step ', n_done, &
+            ' of ', sim%mesh%nsteps, ', t = ', real(n_done, wp) * sim%mesh%dt, ' s, ' // &
+            trim(adjustl(wall)) // ' s wall)'
+      else
+         write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+      end if
       flush(error_unit)
    end subroutine show_progress
 end module spb_sim
