@@ -53,7 +53,9 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "scripts"))
+sys.path.insert(0, os.path.join(HERE, "..", "tests"))
 from make_case2_decks import BODY          # the decks of input/example3_case2/  # noqa: E402
+from cli_case2 import means_to             # window means up to t_max  # noqa: E402
 
 H = 0.95                                   # bar height [m]
 A = (20.0e6 / 1765.8) ** 0.5               # wave speed [m/s]
@@ -75,18 +77,6 @@ def deck_text(cells, eps=0.0, t_end=0.6):
     extra = "  history_every = 1\n  events = 'admissible'\n"
     return "\n".join(l for l in text.splitlines() if not l.strip().startswith("profile_times")) \
         .replace("&run\n", "&run\n" + extra, 1) + "\n"
-
-
-def means_to(t, r, width, t_max):
-    """Means of r over consecutive windows [k width, (k+1) width) that end by t_max (the
-    rows in each window; tests/cli_case2.py's means_to)."""
-    sums, counts = {}, {}
-    for tk, rk in zip(t, r):
-        k = int(tk / width)
-        if (k + 1) * width <= t_max + 1e-12:
-            sums[k] = sums.get(k, 0.0) + rk
-            counts[k] = counts.get(k, 0) + 1
-    return [sums[k] / counts[k] for k in sorted(sums)]
 
 
 def sample(t, y, dt, t_max):
