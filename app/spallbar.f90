@@ -9,11 +9,13 @@ program spallbar
    use spb_kinds, only: wp, version, path_len
    use spb_error, only: spb_error_t, make_error, exit_input
    use spb_strings, only: itoa
-   use spb_deck, only: deck_t, read_deck, write_deck_help
+   use spb_deck, only: deck_t, read_deck, write_deck_help, deck_warnings
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, checkpoint_t
    use spb_checkpoint, only: read_checkpoint
    use spb_output, only: write_mesh_summary
    use spb_hdf5, only: h5_library_version
+   use spb_diag, only: frag_info_t, fragment_list
+   use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
    use spb_par, only: par_init, par_finalize, par_barrier, par_rank, par_kind
@@ -49,7 +51,7 @@ program spallbar
          end if
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                      resume=ck, batch_seconds=batch)
+                      resume=ck, batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps))
       end block
    else
       if (.not. quiet) then
@@ -58,7 +60,7 @@ program spallbar
       end if
       call catch_stop_signals()
       call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                   batch_seconds=batch)
+                   batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps))
    end if
    if (allocated(err)) call fail(err)
    if (.not. quiet) then
@@ -70,13 +72,47 @@ program spallbar
          'over initial + work: ', summary%max_excess, ' of the energy scale'
       write(output_unit, '(a,es9.2,a,es9.2,a)') '  wave energy ledger drift ', summary%wave_drift, &
          ' J/m^2; largest Jordan amplitude ', summary%max_jordan, ' (events must leave none: round-off)'
-      write(output_unit, '(a)') '  events: ' // itoa(summary%events) // '; wrote ' // prefix // &
-         '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
-      if (summary%checkpoints > 0) write(output_unit, '(a)') '  checkpoint: ' // &
-         trim(deck%run%checkpoint) // ' (step ' // itoa(summary%steps) // ')'
+      call write_outcome()
    end if
 
 contains
+
+   !> The end of the summary: the events by kind, the fragments at the end (the first few:
+   !> where, how long, how fast), and every file the run wrote.
+   subroutine write_outcome()
+      type(frag_info_t), allocatable :: list(:)
+      character(len=:), allocatable :: files
+      integer :: k
+      character(len=200) :: line
+      write(output_unit, '(a)') '  events: ' // itoa(summary%events) // ' (fractures ' // &
+         itoa(summary%n_kind(ev_fracture)) // ', collisions ' // &
+         itoa(summary%n_kind(ev_collision)) // ', separations ' // &
+         itoa(summary%n_kind(ev_separation)) // ', base collisions ' // &
+         itoa(summary%n_kind(ev_base_collision)) // ')'
+      if (summary%first_fracture_t >= 0.0_wp) then
+         write(line, '(a,es10.3,a)') '  first fracture at t = ', summary%first_fracture_t, ' s'
+         write(output_unit, '(a)') trim(line)
+      end if
+      call fragment_list(sim%mesh, sim%st, list)
+      write(output_unit, '(a)') '  fragments at the end: ' // itoa(size(list)) // &
+         ' (x of the faces now, length, mean velocity):'
+      do k = 1, min(size(list), 5)
+         write(line, '(a,i0,a,es11.4,a,es11.4,a,es10.3,a,es10.3,a)') '    ', list(k)%id, ': x = ', &
+            list(k)%x_top, ' .. ', list(k)%x_bot, ' m, length ', list(k)%x_bot - list(k)%x_top, &
+            ' m, velocity ', list(k)%velocity, ' m/s'
+         write(output_unit, '(a)') trim(line)
+      end do
+      if (size(list) > 5) write(output_unit, '(a)') '    ... and ' // itoa(size(list) - 5) // &
+         ' more (PREFIX.frg at the profile times)'
+      files = prefix // '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
+      if (allocated(sim%record%gauge_x)) then
+         if (size(sim%record%gauge_x) > 0) files = files // ', ' // prefix // '.gau'
+      end if
+      if (sim%record%hdf5) files = files // ', ' // prefix // '.h5'
+      if (summary%checkpoints > 0) files = files // ', checkpoint ' // sim%opt%checkpoint // &
+         ' (step ' // itoa(summary%steps) // ')'
+      write(output_unit, '(a)') '  wrote ' // files
+   end subroutine write_outcome
 
    !> Write the error's message to standard error and exit with its code.
    subroutine fail(e)
@@ -99,6 +135,7 @@ contains
       if (.not. allocated(err)) then
          if (rank == 0 .and. .not. quiet) write(output_unit, '(a)') 'spallbar ' // version // &
             ' sweep: ' // trim(deck%run%title)
+         if (rank == 0) call warn(warnings(deck, 0))
          call catch_stop_signals()
          call run_sweep(deck, prefix, rank == 0 .and. (.not. quiet) .and. stderr_is_terminal(), &
                         ssum, err)
@@ -147,6 +184,30 @@ contains
          'PREFIX.evt (PREFIX defaults to the deck path without .nml).'
       write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
    end subroutine usage
+
+   !> Plausibility warnings on stderr (--quiet keeps them; &run warnings = .false. has none).
+   subroutine warn(lines)
+      character(len=*), intent(in) :: lines(:)   !! the warnings, as warnings() gives them
+      integer :: k
+      do k = 1, size(lines)
+         write(error_unit, '(a)') trim(lines(k))
+      end do
+   end subroutine warn
+
+   !> The deck's plausibility warnings as stderr lines ('spallbar: warning: ...'); steps: the
+   !> run's step count.
+   function warnings(d, steps) result(lines)
+      type(deck_t), intent(in) :: d        !! the deck
+      integer, intent(in) :: steps         !! steps of the run
+      character(len=320), allocatable :: lines(:)
+      integer :: k
+      associate (w => deck_warnings(d, steps))
+         allocate(lines(size(w)))
+         do k = 1, size(w)
+            lines(k) = 'spallbar: warning: ' // trim(w(k))
+         end do
+      end associate
+   end function warnings
 
    !> --version: the program and how it was built (compiler and its options, sweeps on MPI or
    !> serial, the HDF5 library), so that a result can name the build that made it.

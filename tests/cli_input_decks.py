@@ -113,6 +113,17 @@ def main():
         _, there = read_table(os.path.join(work, "example1.his"))
         check(here == there, "example1 run from another folder: other numbers")
         print("ok   example1.nml run from another folder finds its table: the same history")
+    # the end-of-run summary (issue 21): events by kind, the fragments at the end, every file
+    r = run(exe, ["example2.nml", "--output", os.path.join(work, "sum2")], indir)
+    out = r.stdout
+    frag = [l for l in out.splitlines() if l.startswith("    ") and ": x = " in l]
+    check(r.returncode == 0 and "events: 12 (fractures 4, collisions 4, separations 4, " in out
+          and "first fracture at t =  4.320E-04 s" in out
+          and "fragments at the end: 5 (" in out and len(frag) == 5
+          and "length  1.600E+00 m" in frag[-1] and ("wrote " + os.path.join(work, "sum2") +
+                                                     ".his") in out,
+          f"example2's summary: {out}")
+    print("ok   example2's summary lists events by kind, 5 fragments and the files written")
     return check.finish()
 
 

@@ -54,7 +54,7 @@ KINDS = {
     ("run", "eps_rel"): "real", ("run", "history_every"): "int",
     ("run", "profile_times"): "real", ("run", "hdf5"): "logical",
     ("run", "field_every"): "int", ("run", "model"): "word", ("run", "energy_guard"): "real",
-    ("run", "checkpoint"): "text", ("run", "checkpoint_every"): "int",
+    ("run", "checkpoint"): "text", ("run", "checkpoint_every"): "int", ("run", "warnings"): "logical",
     ("mesh", "cells"): "int", ("mesh", "ref_segment"): "int", ("mesh", "dt"): "real",
     ("mesh", "fit"): "word",
     ("segments", "n"): "int", ("segments", "length"): "real", ("segments", "young"): "real",
@@ -371,6 +371,9 @@ def variable_cases(rng, variables):
                 exp, why = 2, "doc: unterminated strings are refused"
             elif (group, var) == ("run", "title") and title_ok:
                 exp, why = 0, "doc: a group's text ends at '/' outside strings; any title runs"
+            elif (group, var) == ("segments", "interface") and label == "empty":
+                # an interface element left empty is one not given: 'bonded' (doc/deck.md)
+                exp, why = None, "doc: an empty interface element is the default"
             elif kind == "word" and label not in ("unquoted",):
                 exp, why = 2, "doc: choices outside their lists are refused"
             else:

@@ -30,7 +30,7 @@ module spb_deck
    private
    public :: deck_t, deck_record_t, known_groups
    public :: read_deck, validate_deck, write_echo, set_deck_value, problem_from_deck, &
-      deck_record, mesh_fault_message, write_deck_help, deck_file
+      deck_record, mesh_fault_message, write_deck_help, deck_file, deck_warnings
 
 
 contains
@@ -850,13 +850,32 @@ contains
                ' cells; the limit is ' // itoa(max_cells)
       case (fault_short_run)
          msg = '&run: t_end = ' // rtoa(prob%t_end) // ' s is shorter than half a step of ' // &
-               'dt = ' // rtoa(fault%dt) // ' s'
+               'dt = ' // rtoa(fault%dt) // ' s' // speed_hint(prob)
       case (fault_long_run)
          msg = '&run: t_end = ' // rtoa(prob%t_end) // ' s needs ' // rtoa(fault%steps) // &
                ' steps of dt = ' // rtoa(fault%dt) // ' s; the limit is ' // itoa(max_steps)
       case default
          msg = ''
       end select
+   contains
+      !> '' or, where a segment's wave speed is outside the solids' 20..20000 m/s, a hint at
+      !> a unit slip in its young or density (young = 30 meant in GPa makes dt huge).
+      function speed_hint(prob) result(hint)
+         type(problem_t), intent(in) :: prob   !! the problem
+         character(len=:), allocatable :: hint
+         real(wp) :: a
+         integer :: j
+         hint = ''
+         do j = 1, prob%nseg
+            a = sqrt(prob%young(j) / prob%density(j))
+            if (a < 20.0_wp .or. a > 20000.0_wp) then
+               hint = ' (young(' // itoa(j) // ') and density(' // itoa(j) // ') give a wave ' &
+                      // 'speed of ' // rtoa(a) // ' m/s, outside the solids'' 20..20000 m/s: ' &
+                      // 'Pa and kg/m^3 meant?)'
+               return
+            end if
+         end do
+      end function speed_hint
    end function mesh_fault_message
 
    !> The record of a validated deck for the outputs and checkpoints.
@@ -956,4 +975,92 @@ contains
       k = index(trim(deck%path), '/', back=.true.)
       if (k > 0 .and. deck%path /= '(built in memory)') path = deck%path(1:k) // path
    end function deck_file
+
+   !> Plausibility warnings (issue 21): values a deck may give (they are valid) that lie
+   !> outside the ranges of engineering materials and loads, each naming the variable, its
+   !> value and the unit slip it suggests; steps: the run's step count. Empty when &run
+   !> warnings = .false.
+   function deck_warnings(deck, steps) result(lines)
+      type(deck_t), intent(in) :: deck     !! a validated deck
+      integer, intent(in) :: steps         !! steps of the run
+      character(len=300), allocatable :: lines(:)
+      real(wp) :: a
+      integer :: j
+      character(len=:), allocatable :: sj
+      allocate(lines(0))
+      if (.not. deck%run%warnings) return
+      associate (seg => deck%seg)
+         do j = 1, seg%n
+            sj = '(' // itoa(j) // ')'
+            if (seg%density(j) < 100.0_wp) then
+               call add('&segments: density' // sj // ' = ' // rtoa(seg%density(j)) // &
+                  ' kg/m^3 is below any solid''s (100..25000 kg/m^3): g/cm^3 meant? (' // &
+                  rtoa(seg%density(j)) // ' g/cm^3 = ' // rtoa(1000.0_wp * seg%density(j)) // &
+                  ' kg/m^3)')
+            else if (seg%density(j) > 25000.0_wp) then
+               call add('&segments: density' // sj // ' = ' // rtoa(seg%density(j)) // &
+                  ' kg/m^3 is above any solid''s (100..25000 kg/m^3)')
+            end if
+            if (seg%young(j) < 1.0e5_wp) then
+               call add('&segments: young' // sj // ' = ' // rtoa(seg%young(j)) // &
+                  ' Pa is below any solid''s (1e5..1.2e12 Pa): ' // &
+                  unit_guess(seg%young(j), .true.) // ' meant?')
+            else if (seg%young(j) > 1.2e12_wp) then
+               call add('&segments: young' // sj // ' = ' // rtoa(seg%young(j)) // &
+                  ' Pa is above any solid''s (1e5..1.2e12 Pa)')
+            end if
+            a = sqrt(seg%young(j) / seg%density(j))
+            if (a < 20.0_wp .or. a > 20000.0_wp) call add('&segments: young' // sj // &
+               ' and density' // sj // ' give a wave speed of ' // itoa(nint(min(a, 1.0e9_wp))) // &
+               ' m/s, outside ' &
+               // 'the solids'' 20..20000 m/s: check their units (Pa, kg/m^3)')
+            if (seg%strength(j) > 0.0_wp .and. seg%strength(j) < 1.0e3_wp) then
+               call add('&segments: strength' // sj // ' = ' // rtoa(seg%strength(j)) // &
+                  ' Pa is below any solid''s tensile strength (1e3..1e10 Pa): ' // &
+                  unit_guess(seg%strength(j), .false.) // ' meant?')
+            else if (seg%strength(j) > 1.0e10_wp) then
+               call add('&segments: strength' // sj // ' = ' // rtoa(seg%strength(j)) // &
+                  ' Pa is above any solid''s tensile strength (1e3..1e10 Pa)')
+            end if
+         end do
+      end associate
+      associate (ld => deck%load)
+         if ((ld%kind == 'power' .or. ld%kind == 'exponential') .and. is_set(ld%p0)) then
+            if (ld%p0 /= 0.0_wp .and. abs(ld%p0) < 1.0e3_wp) call add('&load: p0 = ' // &
+               rtoa(ld%p0) // ' Pa is a very small pressure (below 1 kPa): ' // &
+               unit_guess(abs(ld%p0), .false.) // ' meant?')
+         end if
+         if (is_set(ld%t_k)) then
+            if (ld%t_k > 10.0_wp) call add('&load: t_k = ' // rtoa(ld%t_k) // ' s is a pulse ' &
+               // 'of more than 10 s: ms or us meant? (' // rtoa(ld%t_k) // ' us = ' // &
+               rtoa(ld%t_k / 1.0e6_wp) // ' s)')
+         end if
+         if (is_set(ld%t_cut)) then
+            if (ld%t_cut > 10.0_wp) call add('&load: t_cut = ' // rtoa(ld%t_cut) // ' s is ' // &
+               'more than 10 s: ms or us meant?')
+         end if
+      end associate
+      if (steps > 10000000) call add('&mesh: the run takes ' // itoa(steps) // ' steps, a ' // &
+         'long run: t_end, dt or cells in other units than meant?')
+   contains
+      !> Append one warning.
+      subroutine add(text)
+         character(len=*), intent(in) :: text   !! the warning
+         lines = [character(len=300) :: lines, text]
+      end subroutine add
+   end function deck_warnings
+
+   !> The unit a value given in Pa was likely meant in: GPa (a modulus below 1e4) or MPa
+   !> ('30 GPa = 3e10 Pa').
+   function unit_guess(x, modulus) result(text)
+      real(wp), intent(in) :: x   !! a value in Pa that looks too small
+      logical, intent(in) :: modulus   !! a modulus (GPa likely), else a stress (MPa)
+      character(len=:), allocatable :: text
+      if (modulus .and. x < 1.0e4_wp .and. x >= 1.0_wp) then
+         text = rtoa(x) // ' GPa = ' // rtoa(1.0e9_wp * x) // ' Pa or ' // rtoa(x) // &
+                ' MPa = ' // rtoa(1.0e6_wp * x) // ' Pa'
+      else
+         text = rtoa(x) // ' MPa = ' // rtoa(1.0e6_wp * x) // ' Pa'
+      end if
+   end function unit_guess
 end module spb_deck

@@ -99,6 +99,8 @@ contains
                     // 'written at t_end', t=r%checkpoint)
          call param(p, 'run', 'checkpoint_every', 'steps (0: at t_end)', 'also write the ' &
                     // 'checkpoint every so many steps', i=r%checkpoint_every)
+         call param(p, 'run', 'warnings', '', 'warn on stderr of values outside the ranges ' &
+                    // 'of engineering materials (a unit slip?)', l=r%warnings)
       end associate
       associate (p => pass, m => deck%mesh)
          call param(p, 'mesh', 'cells', '', 'cells in segment ref_segment (or dt)', i=m%cells)

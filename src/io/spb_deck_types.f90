@@ -69,6 +69,7 @@ module spb_deck_types
                                                         !! exceeds initial + work by this share
       character(len=path_len) :: checkpoint = ''        !! restart file written at t_end ('': none)
       integer :: checkpoint_every = 0                   !! and every so many steps (0: at the end)
+      logical :: warnings = .true.                      !! plausibility warnings on stderr
    end type run_cfg
 
    type :: mesh_cfg

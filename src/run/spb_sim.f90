@@ -297,7 +297,7 @@ contains
    !> outputs continuing those of the run that wrote it (bit-identical to one run).
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
    !> signal stops the run. What happens between steps is the schedule's (spb_schedule).
-   subroutine sim_run(sim, prefix, progress, summary, err, files, resume, batch_seconds)
+   subroutine sim_run(sim, prefix, progress, summary, err, files, resume, batch_seconds, notes)
       type(sim_t), intent(inout) :: sim    !! the simulation
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! show a progress line on stderr (a terminal)
@@ -308,6 +308,9 @@ contains
       real(wp), intent(in), optional :: batch_seconds   !! a progress line every so many
                                                         !! seconds, each on its own line (a
                                                         !! batch log; 0 or absent: none)
+      character(len=*), intent(in), optional :: notes(:)   !! lines for stderr once the run
+                                                           !! is sure to start (warnings): a
+                                                           !! refusal stays one line
       type(run_t) :: run
       integer(int64) :: c_now
       logical :: stop_now
@@ -318,6 +321,14 @@ contains
       if (present(batch_seconds)) run%batch_seconds = batch_seconds
       call start_run(sim, run, summary, prefix, err, resume)
       if (allocated(err)) return
+      if (present(notes)) then
+         block
+            integer :: k
+            do k = 1, size(notes)
+               write(error_unit, '(a)') trim(notes(k))
+            end do
+         end block
+      end if
       if (.not. present(resume)) call first_rows(sim, run, summary, err)
       do while (sim%st%step < sim%mesh%nsteps)
          call take_steps(sim, run, summary)

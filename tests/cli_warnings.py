@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""Plausibility warnings (issue 21): a value outside the ranges of engineering materials and
+loads gets a warning on stderr naming the variable, its value and the likely unit slip; the
+run still runs (exit 0); --quiet keeps the warnings; &run warnings = .false. silences them;
+the decks of input/ get none.
+
+usage: cli_warnings.py SPALLBAR INPUT_DIR WORKDIR
+"""
+import glob
+import os
+import shutil
+import sys
+
+from clitools import Checks, run
+
+BASE = """&run t_end = {t_end} {extra}/
+&mesh cells = 10 /
+&segments n = 1, length = 0.1, young = {young}, density = {density}, strength = {strength} /
+&load kind = 'power', p0 = {p0}, t_k = {t_k} /
+"""
+GOOD = dict(t_end="2e-4", extra="", young="30e9", density="2400", strength="2e6", p0="1e6", t_k="1e-4")
+CASES = [  # (what changes, the words every warning line must hold)
+    (dict(density="2.4"), ["&segments: density(1) = 2.4 kg/m^3", "g/cm^3 meant?",
+                           "2400 kg/m^3", "wave speed of 111803 m/s"]),
+    (dict(young="5e4", density="120", t_end="2e-2"), ["&segments: young(1) = 50000 Pa",
+                                                      "50000 MPa = 5e10 Pa meant?"]),
+    (dict(p0="20"), ["&load: p0 = 20 Pa", "20 MPa = 2e7 Pa meant?"]),
+    (dict(t_k="50"), ["&load: t_k = 50 s", "us meant?", "50 us = 5e-5 s"]),
+    (dict(strength="20"), ["&segments: strength(1) = 20 Pa", "20 MPa = 2e7 Pa meant?"]),
+]
+
+
+def main():
+    exe, indir, work = sys.argv[1:4]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    check = Checks()
+    for change, words in CASES:
+        deck = BASE.format(**dict(GOOD, **change))
+        with open(os.path.join(work, "w.nml"), "w") as f:
+            f.write(deck)
+        r = run(exe, ["w.nml", "--quiet"], work)
+        text = r.stderr
+        check(r.returncode == 0, f"{change}: exit {r.returncode}")
+        check(all(l.startswith("spallbar: warning: ") for l in text.splitlines()) and text,
+              f"{change}: {text!r}")
+        for w in words:
+            check(w in text, f"{change}: no {w!r} in {text!r}")
+        print(f"ok   {change}: {text.splitlines()[0] if text else ''}")
+        with open(os.path.join(work, "w.nml"), "w") as f:
+            f.write(BASE.format(**dict(GOOD, **change, extra=", warnings = .false. ")))
+        r = run(exe, ["w.nml", "--quiet"], work)
+        check(r.returncode == 0 and r.stderr == "", f"{change} with warnings = .false.: "
+              f"{r.stderr!r}")
+    # young = 30 (GPa meant) makes dt larger than t_end: refused (exit 2), and the one line
+    # says why
+    with open(os.path.join(work, "w.nml"), "w") as f:
+        f.write(BASE.format(**dict(GOOD, young="30")))
+    r = run(exe, ["w.nml", "--quiet"], work)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and "shorter than half a step" in lines[0] and
+          "young(1) and density(1) give a wave speed of 0.11" in lines[0] and
+          "Pa and kg/m^3 meant?" in lines[0], f"young = 30: exit {r.returncode} {r.stderr!r}")
+    print(f"ok   young = 30: {lines[0] if lines else ''}")
+    with open(os.path.join(work, "w.nml"), "w") as f:
+        f.write(BASE.format(**GOOD))
+    r = run(exe, ["w.nml", "--quiet"], work)
+    check(r.returncode == 0 and r.stderr == "", f"a plausible deck: {r.stderr!r}")
+    print("ok   warnings = .false. silences them; a plausible deck has none")
+    decks = sorted(glob.glob(os.path.join(indir, "*.nml")) +
+                   glob.glob(os.path.join(indir, "example3_case2", "*.nml")))
+    for d in decks:
+        r = run(exe, [os.path.abspath(d), "--output", os.path.join(work, "in"), "--quiet"], work)
+        check(r.returncode == 0 and r.stderr == "", f"{d}: {r.stderr!r}")
+    print(f"ok   the {len(decks)} decks of input/: no warning")
+    return check.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
