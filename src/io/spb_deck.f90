@@ -992,36 +992,19 @@ contains
       associate (seg => deck%seg)
          do j = 1, seg%n
             sj = '(' // itoa(j) // ')'
-            if (seg%density(j) < 100.0_wp) then
-               call add('&segments: density' // sj // ' = ' // rtoa(seg%density(j)) // &
-                  ' kg/m^3 is below any solid''s (100..25000 kg/m^3): g/cm^3 meant? (' // &
-                  rtoa(seg%density(j)) // ' g/cm^3 = ' // rtoa(1000.0_wp * seg%density(j)) // &
-                  ' kg/m^3)')
-            else if (seg%density(j) > 25000.0_wp) then
-               call add('&segments: density' // sj // ' = ' // rtoa(seg%density(j)) // &
-                  ' kg/m^3 is above any solid''s (100..25000 kg/m^3)')
-            end if
-            if (seg%young(j) < 1.0e5_wp) then
-               call add('&segments: young' // sj // ' = ' // rtoa(seg%young(j)) // &
-                  ' Pa is below any solid''s (1e5..1.2e12 Pa): ' // &
-                  unit_guess(seg%young(j), .true.) // ' meant?')
-            else if (seg%young(j) > 1.2e12_wp) then
-               call add('&segments: young' // sj // ' = ' // rtoa(seg%young(j)) // &
-                  ' Pa is above any solid''s (1e5..1.2e12 Pa)')
-            end if
+            call out_of_range('&segments: density' // sj, seg%density(j), 100.0_wp, &
+               25000.0_wp, 'kg/m^3', 'any solid''s', 'g/cm^3 meant? (' // &
+               rtoa(seg%density(j)) // ' g/cm^3 = ' // rtoa(1000.0_wp * seg%density(j)) // &
+               ' kg/m^3)')
+            call out_of_range('&segments: young' // sj, seg%young(j), 1.0e5_wp, 1.2e12_wp, &
+               'Pa', 'any solid''s', unit_guess(seg%young(j), .true.) // ' meant?')
             a = sqrt(seg%young(j) / seg%density(j))
             if (a < 20.0_wp .or. a > 20000.0_wp) call add('&segments: young' // sj // &
                ' and density' // sj // ' give a wave speed of ' // itoa(nint(min(a, 1.0e9_wp))) // &
-               ' m/s, outside ' &
-               // 'the solids'' 20..20000 m/s: check their units (Pa, kg/m^3)')
-            if (seg%strength(j) > 0.0_wp .and. seg%strength(j) < 1.0e3_wp) then
-               call add('&segments: strength' // sj // ' = ' // rtoa(seg%strength(j)) // &
-                  ' Pa is below any solid''s tensile strength (1e3..1e10 Pa): ' // &
-                  unit_guess(seg%strength(j), .false.) // ' meant?')
-            else if (seg%strength(j) > 1.0e10_wp) then
-               call add('&segments: strength' // sj // ' = ' // rtoa(seg%strength(j)) // &
-                  ' Pa is above any solid''s tensile strength (1e3..1e10 Pa)')
-            end if
+               ' m/s, outside the solids'' 20..20000 m/s: check their units (Pa, kg/m^3)')
+            if (seg%strength(j) > 0.0_wp) call out_of_range('&segments: strength' // sj, &
+               seg%strength(j), 1.0e3_wp, 1.0e10_wp, 'Pa', 'any solid''s tensile strength', &
+               unit_guess(seg%strength(j), .false.) // ' meant?')
          end do
       end associate
       associate (ld => deck%load)
@@ -1048,6 +1031,24 @@ contains
          character(len=*), intent(in) :: text   !! the warning
          lines = [character(len=300) :: lines, text]
       end subroutine add
+      !> A warning when x is below lo (with the hint) or above hi.
+      subroutine out_of_range(name, x, lo, hi, unit, what, hint)
+         character(len=*), intent(in) :: name   !! '&group: variable(j)'
+         real(wp), intent(in) :: x              !! the value
+         real(wp), intent(in) :: lo             !! the range's low end
+         real(wp), intent(in) :: hi             !! its high end
+         character(len=*), intent(in) :: unit   !! the value's unit
+         character(len=*), intent(in) :: what   !! whose range, e.g. 'any solid''s'
+         character(len=*), intent(in) :: hint   !! the unit slip a low value suggests
+         character(len=:), allocatable :: range
+         range = ' (' // rtoa(lo) // '..' // rtoa(hi) // ' ' // unit // ')'
+         if (x < lo) then
+            call add(name // ' = ' // rtoa(x) // ' ' // unit // ' is below ' // what // range &
+                     // ': ' // hint)
+         else if (x > hi) then
+            call add(name // ' = ' // rtoa(x) // ' ' // unit // ' is above ' // what // range)
+         end if
+      end subroutine out_of_range
    end function deck_warnings
 
    !> The unit a value given in Pa was likely meant in: GPa (a modulus below 1e4) or MPa
