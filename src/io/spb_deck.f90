@@ -1009,7 +1009,7 @@ contains
       end associate
       associate (ld => deck%load)
          if ((ld%kind == 'power' .or. ld%kind == 'exponential') .and. is_set(ld%p0)) then
-            if (ld%p0 /= 0.0_wp .and. abs(ld%p0) < 1.0e3_wp) call add('&load: p0 = ' // &
+            if (abs(ld%p0) > 0.0_wp .and. abs(ld%p0) < 1.0e3_wp) call add('&load: p0 = ' // &
                rtoa(ld%p0) // ' Pa is a very small pressure (below 1 kPa): ' // &
                unit_guess(abs(ld%p0), .false.) // ' meant?')
          end if
