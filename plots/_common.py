@@ -22,6 +22,21 @@ def parser(doc):
     return p
 
 
+def stress_scale(values):
+    """(divisor, unit) that shows stresses of this size with 1-3 digits before the point:
+    Pa, kPa, MPa or GPa by the largest magnitude."""
+    top = max((abs(float(v)) for v in values), default=0.0)
+    for scale, unit in ((1.0e9, "GPa"), (1.0e6, "MPa"), (1.0e3, "kPa")):
+        if top >= scale:
+            return scale, unit
+    return 1.0, "Pa"
+
+
+def nothing_to_draw(what):
+    """Say on stderr that a plot has nothing of what it is for (it still writes the figure)."""
+    sys.stderr.write(f"{os.path.basename(sys.argv[0])}: warning: nothing to draw: {what}\n")
+
+
 def save(fig, path):
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -10,7 +10,9 @@
 usage: figures.py --exe SPALLBAR --input INPUT_DIR --out OUT_DIR
 """
 import argparse
+import glob
 import os
+import shutil
 import re
 import subprocess
 
@@ -43,6 +45,9 @@ def run_deck(exe, deck, out_dir, name, overrides):
     copy = os.path.join(out_dir, name + ".nml")
     with open(copy, "w") as f:
         f.write("\n".join(lines) + "\n")
+    # file names in a deck are relative to the deck's folder: its load tables go beside the copy
+    for table in glob.glob(os.path.join(os.path.dirname(os.path.abspath(deck)), "*.txt")):
+        shutil.copy(table, out_dir)
     prefix = os.path.join(out_dir, name)
     subprocess.run([exe, copy, "--quiet", "--output", prefix], check=True,
                    cwd=os.path.dirname(os.path.abspath(deck)))
@@ -64,16 +69,16 @@ def fig07c(exe, indir, out):
     ref_vib = (-1.0) ** n * (del1 + 0.5 * dm * g) * dt / dm
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True)
     sel = steps >= -2
-    a1.plot(steps[sel], vt[sel], "-", color="tab:blue", label="model: translation V")
-    a1.plot(steps[sel], vv[sel], "-", color="tab:orange", label="model: vibration V~")
-    a1.plot(n, ref_v, "o", mfc="none", color="tab:blue", label="paper: V^n (closed form)")
-    a1.plot(n, ref_vib, "s", mfc="none", color="tab:orange", label="paper: V~^n (closed form)")
+    a1.plot(steps[sel], vt[sel], "-", color="tab:blue", label=r"model: translation $V$")
+    a1.plot(steps[sel], vv[sel], "-", color="tab:orange", label=r"model: vibration $\tilde V$")
+    a1.plot(n, ref_v, "o", mfc="none", color="tab:blue", label=r"paper: $V^n$ (closed form)")
+    a1.plot(n, ref_vib, "s", mfc="none", color="tab:orange", label=r"paper: $\tilde V^n$ (closed form)")
     a1.set_ylabel("velocity [m/s] (down > 0)")
     a1.legend(fontsize=7, ncol=2)
     a1.set_title("Fig. 7c - Example 1: one-cell splinter at the free end", fontsize=9)
     a2.step(steps[sel], s[sel, 2 * cells - 1] / 1e3, where="post", color="k")
     a2.set_ylabel("splinter spring stress [kPa]")
-    a2.set_xlabel("step n (the paper's t^0: the front one cell from the free end)")
+    a2.set_xlabel(r"step $n$ (the paper's $t^0$: the front one cell from the free end)")
     save(fig, os.path.join(out, "fig07c.png"))
 
 
@@ -112,8 +117,9 @@ def fig11(exe, indir, out):
         ax.step(p["x"] + p["u"], p["stress"] / 1e3, where="post", color="k", lw=0.9)
         ax.text(0.01, 0.8, f"t = {p['t']:.3f} s, {len(f['id'])} fragments",
                 transform=ax.transAxes, fontsize=8)
-        ax.set_ylabel("kPa", fontsize=8)
-    np.atleast_1d(axes)[-1].set_xlabel("position x + u [m] (grey spans: fragments)")
+        ax.set_ylabel("stress [kPa]", fontsize=8)
+    np.atleast_1d(axes)[-1].set_xlabel("position x + u [m] (shaded spans: the fragments, "
+                                       "alternately light and dark grey)")
     np.atleast_1d(axes)[0].set_title("Fig. 11 - Example 3, case 2: fragments and stress "
                                      "profiles (accelerate, fragment shifts, h/19)", fontsize=9)
     save(fig, os.path.join(out, "fig11.png"))

@@ -13,7 +13,8 @@ def plot(run, ax):
         c = cmap(k / n)
         for j in range(len(b["id"])):
             ax.plot([b["x_top"][j], b["x_bottom"][j]], [b["velocity"][j]] * 2, color=c, lw=2)
-        ax.plot([], [], color=c, lw=2, label=f"t = {b['t'] * 1e3:.4g} ms, {len(b['id'])} pieces")
+        ax.plot([], [], color=c, lw=2, label=f"t = {b['t'] * 1e3:.4g} ms, {len(b['id'])} "
+                f"{'piece' if len(b['id']) == 1 else 'pieces'}")
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("position x + u [m]")
     ax.set_ylabel("mean velocity [m/s] (down > 0)")

@@ -2,18 +2,25 @@
 
 usage: reaction.py PREFIX [PREFIX ...] [--label L ...] -o reaction.png
 """
-from _common import parser, plt, save, spbread
+import numpy as np
+
+from _common import nothing_to_draw, parser, plt, save, spbread, stress_scale
 
 STYLES = ["-", ":", "--", "-."]
 
 
-def plot(runs, labels, ax, column="reaction_bottom", scale=1.0e3, unit="kPa"):
+def plot(runs, labels, ax, column="reaction_bottom", scale=None, unit=None):
+    """Overlay the runs' column; its unit (Pa, kPa, MPa, GPa) chosen by its largest value."""
+    if scale is None:
+        scale, unit = stress_scale(np.concatenate([np.asarray(r.history[column]) for r in runs]))
+    if not any(np.any(np.asarray(r.history[column]) != 0.0) for r in runs):
+        nothing_to_draw(f"{column} is 0 in every row (no support at that end?)")
     for k, (run, label) in enumerate(zip(runs, labels)):
         h = run.history
         ax.plot(h["t"], h[column] / scale, STYLES[k % len(STYLES)], lw=0.9, label=label)
     ax.set_xlabel("t [s]")
     ax.set_ylabel(f"{column.replace('_', ' ')} [{unit}]")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best", framealpha=0.85)
 
 
 def main():

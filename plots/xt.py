@@ -5,14 +5,17 @@ usage: xt.py PREFIX -o xt.png
 """
 import numpy as np
 
-from _common import parser, plt, save, spbread
+from _common import nothing_to_draw, parser, plt, save, spbread
 
 MARKERS = {"fracture": ("x", "k"), "collision": ("o", "tab:red"),
            "separation": ("^", "tab:blue"), "base-collision": ("s", "tab:green")}
 
 
 def plot(run, ax):
-    if run.xt is not None and len(run.xt["t"]) > 1:
+    if run.xt is None or len(run.xt["t"]) <= 1:
+        nothing_to_draw("no x-t stress field (run with &run hdf5 = .true., field_every = N): "
+                        "only the events are drawn")
+    else:
         s = run.xt["stress"]
         lim = np.max(np.abs(s)) or 1.0
         mesh = ax.pcolormesh(run.xt["x"], run.xt["t"] * 1e3, s / 1e6, cmap="RdBu_r",
