@@ -14,7 +14,7 @@ program spallbar
    use spb_checkpoint, only: read_checkpoint
    use spb_output, only: write_mesh_summary
    use spb_hdf5, only: h5_library_version
-   use spb_diag, only: frag_info_t, fragment_list
+   use spb_diag, only: frag_info_t, fragment_list, first_fractures
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
@@ -82,17 +82,23 @@ contains
    subroutine write_outcome()
       type(frag_info_t), allocatable :: list(:)
       character(len=:), allocatable :: files
-      integer :: k
+      integer :: k, nf
       character(len=200) :: line
       write(output_unit, '(a)') '  events: ' // itoa(summary%events) // ' (fractures ' // &
          itoa(summary%n_kind(ev_fracture)) // ', collisions ' // &
          itoa(summary%n_kind(ev_collision)) // ', separations ' // &
          itoa(summary%n_kind(ev_separation)) // ', base collisions ' // &
          itoa(summary%n_kind(ev_base_collision)) // ')'
-      if (summary%first_fracture_t >= 0.0_wp) then
-         write(line, '(a,es10.3,a)') '  first fracture at t = ', summary%first_fracture_t, ' s'
+      nf = summary%n_kind(ev_fracture)
+      if (nf > 0) write(output_unit, '(a)') '  fractures: ' // itoa(nf) // ' (time, place, ' // &
+         'section stress; compression > 0):'
+      do k = 1, min(nf, first_fractures)
+         write(line, '(a,es11.4,a,es11.4,a,es11.4,a)') '    t = ', summary%fracture_t(k), &
+            ' s at x = ', summary%fracture_x(k), ' m, stress ', summary%fracture_s(k), ' Pa'
          write(output_unit, '(a)') trim(line)
-      end if
+      end do
+      if (nf > first_fractures) write(output_unit, '(a)') '    ... and ' // &
+         itoa(nf - first_fractures) // ' more (' // prefix // '.evt)'
       call fragment_list(sim%mesh, sim%st, list)
       write(output_unit, '(a)') '  fragments at the end: ' // itoa(size(list)) // &
          ' (x of the faces now, length, mean velocity):'
@@ -103,12 +109,12 @@ contains
          write(output_unit, '(a)') trim(line)
       end do
       if (size(list) > 5) write(output_unit, '(a)') '    ... and ' // itoa(size(list) - 5) // &
-         ' more (PREFIX.frg at the profile times)'
+         ' more (' // prefix // '.frg at the profile times)'
       files = prefix // '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
       if (allocated(sim%record%gauge_x)) then
          if (size(sim%record%gauge_x) > 0) files = files // ', ' // prefix // '.gau'
       end if
-      if (sim%record%hdf5) files = files // ', ' // prefix // '.h5'
+      if (sim%record%hdf5) files = files // ', ' // prefix // '.h5, ' // prefix // '.xmf'
       if (summary%checkpoints > 0) files = files // ', checkpoint ' // sim%opt%checkpoint // &
          ' (step ' // itoa(summary%steps) // ')'
       write(output_unit, '(a)') '  wrote ' // files

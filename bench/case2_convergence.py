@@ -58,14 +58,14 @@ def run_one(exe, work, cells, timing, shift, events, eps=0.0, reuse=False):
     name = f"{timing}_{shift}_h{cells}" + (f"_p{eps:g}" if eps else "")
     deck = os.path.join(work, name + ".nml")
     if reuse and os.path.exists(os.path.join(work, name + ".evt")):
-        nev = sum(1 for l in open(os.path.join(work, name + ".evt")) if not l.startswith("#"))
+        nev = sum(1 for l in open(os.path.join(work, name + ".evt")) if l.startswith(" "))
         return name, 0, "", float("nan"), nev
     with open(deck, "w") as f:
         f.write(deck_text(cells, timing, shift, events, eps))
     t0 = time.perf_counter()
     p = subprocess.run([exe, deck, "-q"], cwd=work, capture_output=True, text=True)
     wall = time.perf_counter() - t0
-    nev = sum(1 for l in open(os.path.join(work, name + ".evt")) if not l.startswith("#"))
+    nev = sum(1 for l in open(os.path.join(work, name + ".evt")) if l.startswith(" "))
     return name, p.returncode, p.stderr.strip(), wall, nev
 
 

@@ -103,7 +103,7 @@ def reduce_history(path, t_end):
             if line.startswith("# t "):
                 names = line[2:].split()
                 idx = [names.index(c) for c in cols]
-            elif not line.startswith("#") and line.strip():
+            elif line.startswith(" ") and line.strip():
                 w = line.split()
                 for c, i in zip(cols, idx):
                     data[c].append(float(w[i]))
@@ -139,7 +139,7 @@ def run_one(exe, work, cells, k, eps, t_end, reuse, keep):
     d = reduce_history(os.path.join(work, name + ".his"), t_end)
     nev = None
     if keep:
-        nev = sum(1 for l in open(os.path.join(work, name + ".evt")) if not l.startswith("#"))
+        nev = sum(1 for l in open(os.path.join(work, name + ".evt")) if l.startswith(" "))
     else:
         for ext in (".his", ".evt", ".prf", ".frg", ".lock"):
             try:

@@ -114,7 +114,7 @@ def linear_fit(x, y):
 
 def count_events(prefix):
     with open(prefix + ".evt") as f:
-        return sum(1 for line in f if not line.startswith("#"))
+        return sum(1 for line in f if line.startswith(" "))
 
 
 def no_history(work, deck, name):

@@ -74,7 +74,8 @@ class Run:
         self.history = _columns(self.prefix + ".his")
         self.events = _columns(self.prefix + ".evt", kinds=True)
         for t, rows in _blocks(self.prefix + ".prf"):
-            a = np.array(rows, dtype=float).reshape(-1, 4)
+            # x u v stress, and t since the column-name first line (doc/migration.md)
+            a = np.array(rows, dtype=float).reshape(len(rows), -1)
             self.profiles.append(dict(t=t, x=a[:, 0], u=a[:, 1], v=a[:, 2], stress=a[:, 3]))
         names = None
         with open(self.prefix + ".frg") as f:
@@ -100,12 +101,11 @@ def _gauges(path):
     """PREFIX.gau: t, the gauges' x (from the '# gauge k at x = X m' lines) and their columns."""
     cols = _columns(path)
     x = []
-    with open(path) as f:
-        for line in f:
-            if not line.startswith("#"):
-                break
-            if line.startswith("# gauge ") and " at x = " in line:
-                x.append(float(line.split(" at x = ")[1].split()[0]))
+    for line in _lines(path):
+        if not line.startswith("#"):
+            break
+        if line.startswith("# gauge ") and " at x = " in line:
+            x.append(float(line.split(" at x = ")[1].split()[0]))
     n = len(x)
     out = dict(t=cols["t"], x=np.array(x))
     for q in ("stress", "velocity", "u"):
@@ -114,15 +114,33 @@ def _gauges(path):
     return out
 
 
+def _is_number(word):
+    try:
+        float(word)
+    except ValueError:
+        return False
+    return True
+
+
+def _lines(path):
+    """The lines of a text output without its column-name first line (&run header =
+    'names': the names again, without '#'; older outputs and header = 'comments' have none)."""
+    with open(path) as f:
+        for k, line in enumerate(f):
+            if k == 0 and not line.startswith("#") and line.split() \
+                    and not _is_number(line.split()[0]):
+                continue
+            yield line
+
+
 def _columns(path, kinds=False):
     """Columns of a text table by the names on its last header line."""
     names, rows = None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                names = line[1:].split()
-                continue
-            rows.append(line.split())
+    for line in _lines(path):
+        if line.startswith("#"):
+            names = line[1:].split()
+            continue
+        rows.append(line.split())
     out = {}
     for k, n in enumerate(names):
         col = [r[k] for r in rows]
@@ -136,14 +154,13 @@ def _columns(path, kinds=False):
 def _blocks(path):
     """(t, rows) for each '# t = T' block of a text file."""
     blocks, t, rows = [], None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("# t = "):
-                if t is not None:
-                    blocks.append((t, rows))
-                t, rows = float(line[6:]), []
-            elif not line.startswith("#") and t is not None:
-                rows.append(line.split())
+    for line in _lines(path):
+        if line.startswith("# t = "):
+            if t is not None:
+                blocks.append((t, rows))
+            t, rows = float(line[6:]), []
+        elif not line.startswith("#") and t is not None:
+            rows.append(line.split())
     if t is not None:
         blocks.append((t, rows))
     return blocks

@@ -100,8 +100,11 @@ def thin(src, dst, rows):
     first and the last among them."""
     with open(src) as f:
         lines = f.read().splitlines(keepends=True)
-    head = [l for l in lines if l.startswith("#")]
-    body = [l for l in lines if not l.startswith("#") and l.strip()]
+    # the header: the '#' lines, and the column-name first line of &run header = 'names'
+    first = lines[:1] if lines and not lines[0].startswith("#") \
+        and not lines[0].split()[0].lstrip("+-")[:1].isdigit() else []
+    head = first + [l for l in lines[len(first):] if l.startswith("#")]
+    body = [l for l in lines[len(first):] if not l.startswith("#") and l.strip()]
     if len(body) > rows:
         keep = sorted({round(k * (len(body) - 1) / (rows - 1)) for k in range(rows)})
         body = [body[k] for k in keep]

@@ -42,8 +42,8 @@ def history(prefix):
     names, rows = None, []
     with open(prefix + ".his") as f:
         for line in f:
-            if line.startswith("#"):
-                words = line[1:].split()
+            if not line.startswith(" "):          # '#' lines, the column-name first line
+                words = line.lstrip("#").split()
                 if words and words[0] == "t" and "reaction_bottom" in words:
                     names = words
                 continue
@@ -55,7 +55,7 @@ def events(prefix):
     kinds = {}
     with open(prefix + ".evt") as f:
         for line in f:
-            if not line.startswith("#"):
+            if line.startswith(" "):
                 kind = line.split()[2]
                 kinds[kind] = kinds.get(kind, 0) + 1
     return kinds

@@ -37,7 +37,7 @@ def compare(tool, args, cwd):
 
 
 def history_times(path):
-    return [float(l.split()[0]) for l in open(path) if l.strip() and not l.startswith("#")]
+    return [float(l.split()[0]) for l in open(path) if l.strip() and l.startswith(" ")]
 
 
 def fixed_bar_reaction(t, p0=1e6, transit=1e-3, period_transits=4):
@@ -76,7 +76,7 @@ def changed_column(tool, work, check):
     j = names.index("e_kin")
     out = []
     for l in lines:
-        if l.startswith("#"):
+        if not l.startswith(" "):           # '#' lines, the column-name first line
             out.append(l)
             continue
         w = l.split()

@@ -64,7 +64,7 @@ def his(path):
     for line in open(path):
         if line.startswith("# t "):
             names = line[2:].split()
-        elif not line.startswith("#") and line.strip():
+        elif line.startswith(" ") and line.strip():
             rows.append([float(x) for x in line.split()])
     d = np.array(rows)
     return {n: d[:, k] for k, n in enumerate(names)}
@@ -72,13 +72,13 @@ def his(path):
 
 def events(path):
     return [(int(l.split()[1]), l.split()[2], int(l.split()[3]))
-            for l in open(path) if not l.startswith("#") and l.strip()]
+            for l in open(path) if l.startswith(" ") and l.strip()]
 
 
 def profiles(path):
     """Stress column of every profile block, concatenated."""
     return np.array([float(l.split()[3]) for l in open(path)
-                     if not l.startswith("#") and len(l.split()) == 4])
+                     if l.startswith(" ") and len(l.split()) in (4, 5)])
 
 
 def mesh_cells(his_path):
@@ -88,7 +88,7 @@ def mesh_cells(his_path):
         m = re.search(r"(\d+) cells", line)
         if m:
             return int(m.group(1))
-        if not line.startswith("#"):
+        if line.startswith(" "):
             break
     raise ValueError("no cell count in " + his_path)
 
@@ -289,7 +289,7 @@ def held_ends_stay(check, work, name, deck):
             if cur:
                 blocks.append(cur)
             cur = []
-        elif not line.startswith("#") and len(line.split()) == 4:
+        elif line.startswith(" ") and len(line.split()) in (4, 5):
             cur.append(float(line.split()[1]))
     if cur:
         blocks.append(cur)

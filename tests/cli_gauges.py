@@ -35,7 +35,7 @@ EVERY = 5
 
 def body_rows(path):
     with open(path) as f:
-        return [line for line in f if not line.startswith("#")]
+        return [line for line in f if line.startswith(" ")]
 
 
 def header(path):
@@ -109,7 +109,7 @@ def main():
     check(np.allclose(rows[:, 0], np.array(steps) * dt, rtol=1e-12, atol=0),
           f"rows at t = 0, every {EVERY} steps, t_end ({len(rows)} rows)")
     with open(gau) as f:
-        widths = {len(line.rstrip("\n")) for line in f if not line.startswith("#")}
+        widths = {len(line.rstrip("\n")) for line in f if line.startswith(" ")}
     check(widths == {21 * (1 + 3 * len(xs))}, f"fixed-width rows ({widths})")
     # the top face carries the load; the crack node reads 0 once split, and its halves' means
     load = rows[:, 1]

@@ -23,7 +23,7 @@ def text_table(path):
     for line in open(path):
         if line.startswith("#"):
             names = line[1:].split()
-        else:
+        elif line.startswith(" "):          # not the column-name first line
             rows.append(line.split())
     return names, rows
 
@@ -35,7 +35,7 @@ def blocks(path):
             if t is not None:
                 out.append((t, rows))
             t, rows = float(line[6:]), []
-        elif not line.startswith("#") and t is not None:
+        elif line.startswith(" ") and t is not None:
             rows.append([float(x) for x in line.split()])
     if t is not None:
         out.append((t, rows))
@@ -77,10 +77,12 @@ def main():
         names, rows = text_table(prefix + ".evt")
         kinds = {1: "fracture", 2: "collision", 3: "separation", 4: "base-collision"}
         check(len(rows) > 3, f"events: {len(rows)} rows")
-        for k, n in enumerate(names):
+        for k, n in enumerate(names[:-1]):                # the text's last: kind_code
             col = f["events"][n][:]
             if n == "kind":
                 check([kinds[int(c)] for c in col] == [row[k] for row in rows], "/events/kind")
+                check([str(int(c)) for c in col] == [row[-1] for row in rows],
+                      "kind_code (text) = /events/kind")
             else:
                 check(close(col, [float(row[k]) for row in rows]), f"/events/{n} = text")
         prf = blocks(prefix + ".prf")

@@ -22,7 +22,7 @@ def read_table(path):
         for line in f:
             if line.startswith("#"):
                 header.append(line)
-            elif line.strip():
+            elif line.startswith(" "):      # not the column-name first line
                 rows.append([float(x) for x in line.split()])
     return header, rows
 
@@ -65,7 +65,7 @@ def main():
             for l in lines[i + 1:]:
                 if l.startswith("# t = "):
                     break
-                if not l.startswith("#"):
+                if l.startswith(" "):
                     block.append(l)
             check(len(block) == 2 * nodes, f"{name}: profile block of {len(block)} rows, expected {2 * nodes}")
         # fragments: one block per profile; each block lists as many fragments as the
@@ -82,11 +82,11 @@ def main():
                 if l.startswith("# t = "):
                     t = l
                     masses[t] = 0.0
-                elif not l.startswith("#") and l.strip():
+                elif l.startswith(" ") and l.strip():
                     masses[t] += float(l.split()[fcols.index("mass")])
         check(len(set(round(m, 9) for m in masses.values())) <= 1, f"{name}: fragment mass changes {masses}")
         with open(prefix + ".evt") as f:
-            ev = [l.split() for l in f if not l.startswith("#") and l.strip()]
+            ev = [l.split() for l in f if l.startswith(" ") and l.strip()]
         ecols = [l for l in open(prefix + ".evt") if l.startswith("#")][-1][1:].split()
         check(ecols[:6] == ["t", "step", "kind", "node", "x", "stress"], f"{name}: event columns {ecols}")
         check(all(len(e) == len(ecols) for e in ev), f"{name}: event row widths")
@@ -118,12 +118,28 @@ def main():
     out = r.stdout
     frag = [l for l in out.splitlines() if l.startswith("    ") and ": x = " in l]
     check(r.returncode == 0 and "events: 12 (fractures 4, collisions 4, separations 4, " in out
-          and "first fracture at t =  4.320E-04 s" in out
+          and "fractures: 4 (time, place, section stress" in out
+          and "    t =  4.3200E-04 s at x =  1.9600E-01 m, stress -1.2240E+06 Pa" in out
+          and len([l for l in out.splitlines() if l.startswith("    t = ")]) == 4
           and "fragments at the end: 5 (" in out and len(frag) == 5
           and "length  1.600E+00 m" in frag[-1] and ("wrote " + os.path.join(work, "sum2") +
                                                      ".his") in out,
           f"example2's summary: {out}")
     print("ok   example2's summary lists events by kind, 5 fragments and the files written")
+    # more fractures than the summary lists: the first five, and how many more (the .evt's
+    # first five fracture rows, the count from it)
+    deck = os.path.join("example3_case2", "accelerate_above_h19.nml")
+    r = run(exe, [deck, "--output", os.path.join(work, "sum3")], indir)
+    with open(os.path.join(work, "sum3.evt")) as f:
+        fr = [l.split() for l in f if l.startswith(" ") and l.split()[2] == "fracture"]
+    listed = [l for l in r.stdout.splitlines() if l.startswith("    t = ")]
+    check(r.returncode == 0 and len(fr) > 5 and len(listed) == 5
+          and all(abs(float(l.split()[2]) - float(e[0])) <= 1e-4 * float(e[0]) and
+                  abs(float(l.split()[7]) - float(e[4])) <= 1e-4 * abs(float(e[4])) + 1e-12
+                  for l, e in zip(listed, fr))
+          and f"    ... and {len(fr) - 5} more (" in r.stdout,
+          f"case 2's summary: {len(fr)} fractures in the .evt; listed {listed}\n{r.stdout}")
+    print("ok   case 2's summary lists the first 5 fractures as in the .evt, and the count of the rest")
     return check.finish()
 
 

@@ -75,7 +75,7 @@ def text_rows(path):
     tail = lines.pop()                  # after the last newline: '' when complete
     partial = tail != ""
     for line in lines:
-        if line.startswith("#"):
+        if not line.startswith(" "):        # '#' lines, the column-name first line
             continue
         vals = line.split()
         if len(vals) != 31:

@@ -81,6 +81,12 @@ WEIBULL = """&run
 """
 
 
+
+def summary_events(stdout, prefix):
+    """The run summary's lines on events and fractures (the prefix taken out)."""
+    keep = ("  events:", "  fractures:", "    t = ", "    ... and")
+    return [l.replace(prefix, "PREFIX") for l in stdout.splitlines() if l.startswith(keep)]
+
 def set_run(text, **values):
     """Put name = value lines into &run (replacing those given in the deck)."""
     lines = text.splitlines()
@@ -194,8 +200,9 @@ def main():
             f.write(full)
         with open(os.path.join(work, name + "_short.nml"), "w") as f:
             f.write(short_deck(full, 0.45, f"{name}.ck.h5"))
-        p = run(exe, [name + "_full.nml", "--output", name + "_U", "-q"], work)
+        p = run(exe, [name + "_full.nml", "--output", name + "_U"], work)
         check(p.returncode == 0, f"{name}: uninterrupted run exits 0 ({p.stderr.strip()})")
+        told_u = summary_events(p.stdout, name + "_U")
         p = run(exe, [name + "_short.nml", "--output", name + "_R", "-q"], work)
         check(p.returncode == 0, f"{name}: short run exits 0 ({p.stderr.strip()})")
         check(os.path.exists(os.path.join(work, name + ".ck.h5")),
@@ -204,6 +211,9 @@ def main():
                 work)
         check(p.returncode == 0, f"{name}: restart exits 0 ({p.stderr.strip()})")
         check("restart from" in p.stdout, f"{name}: restart says where it starts")
+        told_r = summary_events(p.stdout, name + "_R")
+        check(told_r == told_u and told_u, f"{name}: the summary's events and first fractures "
+              f"after the restart = uninterrupted:\n{told_r}\n{told_u}")
         same_outputs(check, f"{name} extended", work, name + "_U", name + "_R")
         # the checkpoint at t_end is the same whichever way the run got there
         with h5py.File(os.path.join(work, name + "_end.ck.h5"), "r") as ck:

@@ -50,7 +50,7 @@ if mpiexec != "-":
                        cwd=work, env=dict(env, SLURM_NTASKS="2", MPIRUN=mpiexec),
                        capture_output=True, text=True, timeout=300, stdin=subprocess.DEVNULL)
     check(p.returncode == 0, f"sweep script: exit {p.returncode}: {p.stderr.strip()[:300]}")
-    rows = lambda f: [l for l in open(os.path.join(work, f)) if not l.startswith("#")]
+    rows = lambda f: [l for l in open(os.path.join(work, f)) if l.startswith(" ")]
     check(os.path.isfile(os.path.join(work, "mpi.sweep")) and rows("mpi.sweep") == rows("serial.sweep"),
           "the sweep script's table equals the serial sweep's")
     # the sweep script stopped by SIGTERM (as --signal=B:TERM@60 does): it passes the signal

@@ -65,8 +65,8 @@ def main():
     rc, rss = run(exe, work, "soak")
     check(rc_s == 0 and rc == 0, f"exit {rc_s}, {rc}: see {work}/*.log")
     rows = [list(map(float, line.split())) for line in open(os.path.join(work, "soak.his"))
-            if not line.startswith("#")]
-    events = sum(1 for line in open(os.path.join(work, "soak.evt")) if not line.startswith("#"))
+            if line.startswith(" ")]
+    events = sum(1 for line in open(os.path.join(work, "soak.evt")) if line.startswith(" "))
     steps = int(rows[-1][COL["step"]])
     r0 = rows[0]
     e_scale = max(max(abs(r[COL[k]]) for k in ("e_kin", "e_strain", "e_pot", "w_ext"))

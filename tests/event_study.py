@@ -267,8 +267,8 @@ def read_prf(path):
             if line.startswith("#"):
                 continue
             tok = line.split()
-            if cur is not None and len(tok) == 4:
-                cur.append([float(x) for x in tok])
+            if cur is not None and len(tok) in (4, 5):     # x u v stress [t]
+                cur.append([float(x) for x in tok[:4]])
     if cur is not None:
         blocks.append((t, step, cur))
     return [(t, s, np.array(r, dtype=float).reshape(-1, 4)) for t, s, r in blocks]

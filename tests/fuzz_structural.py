@@ -55,6 +55,7 @@ KINDS = {
     ("run", "profile_times"): "real", ("run", "hdf5"): "logical",
     ("run", "field_every"): "int", ("run", "model"): "word", ("run", "energy_guard"): "real",
     ("run", "checkpoint"): "text", ("run", "checkpoint_every"): "int", ("run", "warnings"): "logical",
+    ("run", "header"): "word",
     ("mesh", "cells"): "int", ("mesh", "ref_segment"): "int", ("mesh", "dt"): "real",
     ("mesh", "fit"): "word",
     ("segments", "n"): "int", ("segments", "length"): "real", ("segments", "young"): "real",
@@ -558,7 +559,7 @@ def echoed_title(folder):
             for line in fh:
                 if line.startswith("# title: "):
                     return line[len("# title: "):].rstrip("\n")
-                if not line.startswith("#"):
+                if line.startswith(" "):
                     break
     except OSError:
         pass

@@ -18,10 +18,10 @@ module spb_checkpoint
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
-   use spb_diag, only: run_summary_t
+   use spb_diag, only: run_summary_t, first_fractures
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
-      h5_write, h5_get, h5_get_attr
+      h5_write, h5_get, h5_get_attr, h5_has_attr
    use spb_sys, only: sys_rename
    implicit none
    private
@@ -225,7 +225,25 @@ contains
       call field(ck, writing, '/run', 'max_jordan', summary%max_jordan)
       call field(ck, writing, '/run', 'jordan_scale', summary%jordan_scale)
       call field(ck, writing, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
+      ! added later (a checkpoint without them restarts; its summary lists fewer fractures)
+      do k = 1, first_fractures
+         call later_field(ck, writing, 'fracture_t_' // itoa(k), summary%fracture_t(k))
+         call later_field(ck, writing, 'fracture_x_' // itoa(k), summary%fracture_x(k))
+         call later_field(ck, writing, 'fracture_stress_' // itoa(k), summary%fracture_s(k))
+      end do
    end subroutine summary_fields
+
+   !> A real attribute of /run added after checkpoints existed: always written; read back
+   !> (and counted in the checksum) only where the checkpoint has it, so that one written
+   !> before it still matches its checksum.
+   subroutine later_field(ck, writing, name, v)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
+      logical, intent(in) :: writing       !! write (else read back)
+      character(len=*), intent(in) :: name   !! field name
+      real(wp), intent(inout) :: v         !! the value
+      if (writing .or. h5_has_attr(ck%h5, '/run', name)) call field_real(ck, writing, '/run', &
+                                                                        name, v)
+   end subroutine later_field
 
    !> A scalar field: an attribute of group, written or read back.
    subroutine field_int(ck, writing, group, name, v)
@@ -634,7 +652,7 @@ contains
       do k = 1, size(items)
          if (items(k)%group == 'run') then
             select case (items(k)%name)
-            case ('title', 't_end', 'checkpoint', 'checkpoint_every', 'profile_times')
+            case ('title', 't_end', 'checkpoint', 'checkpoint_every', 'profile_times', 'header')
                cycle
             case default
                ! every other value identifies the run

@@ -16,7 +16,7 @@ module spb_deck
    use spb_deck_types, only: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, &
       deck_record_t, echo_item_t, known_groups, is_set, timing_words, shift_words, &
       events_words, model_words, fit_words, top_words, bottom_words, interface_words, &
-      kind_words, face_words, state_words, field_words, distribution_words
+      kind_words, face_words, state_words, field_words, distribution_words, header_words
    use spb_deck_params, only: param_pass_t, deck_params, pass_read, pass_echo, pass_find, &
       pass_set, pass_doc, huge_real
    use spb_random, only: weibull_log_min, weibull_log_max
@@ -471,6 +471,7 @@ contains
       call need_choice(err, 'run', 'shift', run%shift, shift_words)
       call need_choice(err, 'run', 'events', run%events, events_words)
       call need_choice(err, 'run', 'model', run%model, model_words)
+      call need_choice(err, 'run', 'header', run%header, header_words)
       call need_finite(err, 'run', 'eps_rel', run%eps_rel)
       if (allocated(err)) return
       if (run%eps_rel < 0.0_wp .or. run%eps_rel > 1.0e-3_wp) then
@@ -887,6 +888,7 @@ contains
       rec%table = deck_file(deck, deck%load%table)
       call deck_items(deck, rec%items)
       rec%hdf5 = deck%run%hdf5
+      rec%names_first = deck%run%header == 'names'
       rec%field_every = deck%run%field_every
       rec%t_end = deck%run%t_end
       allocate(rec%profile_times(deck%run%n_profiles))

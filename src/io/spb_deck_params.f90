@@ -21,7 +21,8 @@ module spb_deck_params
    use spb_strings, only: itoa, rtoa, ltoa, lower
    use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, echo_item_t, is_set, timing_words, &
       shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
-      interface_words, kind_words, face_words, state_words, field_words, distribution_words
+      interface_words, kind_words, face_words, state_words, field_words, distribution_words, &
+      header_words
    implicit none
    private
    public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc, &
@@ -101,6 +102,9 @@ contains
                     // 'checkpoint every so many steps', i=r%checkpoint_every)
          call param(p, 'run', 'warnings', '', 'warn on stderr of values outside the ranges ' &
                     // 'of engineering materials (a unit slip?)', l=r%warnings)
+         call param(p, 'run', 'header', '', 'text outputs: ''names'': the first line names ' &
+                    // 'the columns (numpy, pandas); ''comments'': every header line starts ' &
+                    // 'with #', t=r%header, choices=header_words)
       end associate
       associate (p => pass, m => deck%mesh)
          call param(p, 'mesh', 'cells', '', 'cells in segment ref_segment (or dt)', i=m%cells)

@@ -14,7 +14,7 @@ module spb_deck_types
       strength_field_cfg, sweep_cfg, gauges_cfg, deck_record_t, echo_item_t, known_groups, unset, is_set
    public :: timing_words, shift_words, events_words, model_words, fit_words, top_words, &
       bottom_words, interface_words, kind_words, face_words, state_words, field_words, &
-      distribution_words
+      distribution_words, header_words
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
@@ -38,6 +38,7 @@ module spb_deck_types
    character(len=*), parameter :: field_words(2) = [character(len=7) :: 'uniform', 'weibull']
    character(len=*), parameter :: distribution_words(2) = [character(len=7) :: 'static', &
       'dynamic']
+   character(len=*), parameter :: header_words(2) = [character(len=8) :: 'names', 'comments']
 
    character(len=16), parameter :: known_groups(9) = [character(len=16) :: 'run', 'mesh', &
       'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep', 'gauges']
@@ -70,6 +71,9 @@ module spb_deck_types
       character(len=path_len) :: checkpoint = ''        !! restart file written at t_end ('': none)
       integer :: checkpoint_every = 0                   !! and every so many steps (0: at the end)
       logical :: warnings = .true.                      !! plausibility warnings on stderr
+      character(len=name_len) :: header = 'names'       !! text headers: 'names' (first line
+                                                        !! names the columns, no '#') |
+                                                        !! 'comments' (every line '#')
    end type run_cfg
 
    type :: mesh_cfg
@@ -158,6 +162,7 @@ module spb_deck_types
       real(wp), allocatable :: profile_times(:)       !! &run profile_times given [s]
       real(wp), allocatable :: gauge_x(:)             !! &gauges x [m] (none: no PREFIX.gau)
       integer :: gauge_every = 1                      !! &gauges every [steps]
+      logical :: names_first = .true.                 !! &run header = 'names'
    end type deck_record_t
 
    type :: deck_t

@@ -26,7 +26,7 @@ module spb_hdf5
    public :: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, h5_table, &
       h5_append, h5_xt, h5_append_xt, h5_read, h5_read_size
    public :: h5_open_read, h5_get, h5_get_attr, h5_get_columns, h5_copy, h5_table_rows, &
-      h5_xt_rows, xt_fields, xt_gauges
+      h5_xt_rows, xt_fields, xt_gauges, h5_exists, h5_has_attr, block_name
 
    integer, parameter :: buffer_rows = 1024     !! rows held before a table is written
    integer, parameter :: xt_fields = 1          !! the x-t fields (/fields/xt)
@@ -709,6 +709,24 @@ contains
       call h5dclose_f(dset, hdferr)
    end subroutine h5_get_columns
 
+   !> Whether the object at path exists and has the attribute name.
+   logical function h5_has_attr(h5, path, name)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer(hid_t) :: obj
+      integer :: hdferr
+      logical :: is_dset
+      h5_has_attr = .false.
+      if (h5%file < 0) return
+      if (.not. h5_exists(h5, path)) return
+      call open_obj(h5, path, obj, is_dset)
+      if (allocated(h5%error)) return
+      call h5aexists_f(obj, name, h5_has_attr, hdferr)
+      if (hdferr < 0) h5_has_attr = .false.
+      call close_obj(obj)
+   end function h5_has_attr
+
    !> Open the attribute name of the object path (attr < 0 and an error if absent).
    subroutine open_attr(h5, path, name, obj, attr)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
@@ -897,4 +915,13 @@ contains
          text = itoa(major) // '.' // itoa(minor) // '.' // itoa(release)
       end if
    end function h5_library_version
+
+   !> Name of the k-th block group: 'p000', 'p001', ... (sorts in time order).
+   pure function block_name(k) result(name)
+      integer, intent(in) :: k             !! block number, from 1
+      character(len=:), allocatable :: name
+      character(len=12) :: buf
+      write(buf, '(a,i3.3)') 'p', k - 1
+      name = trim(buf)
+   end function block_name
 end module spb_hdf5

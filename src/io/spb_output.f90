@@ -12,7 +12,8 @@ module spb_output
    use spb_deck, only: deck_record_t, write_echo
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
-      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges
+      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, block_name
+   use spb_xdmf, only: write_xdmf, xdmf_path
    use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
@@ -97,12 +98,14 @@ module spb_output
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
-      // 'velocity e_vib top_node bottom_node'
+      // 'velocity e_vib top_node bottom_node t'
+   character(len=*), parameter :: profile_columns = 'x u v stress t'
    character(len=*), parameter :: fmt_real = 'es20.12e3'
    character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
       '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
-   character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
-   character(len=*), parameter :: fmt_prf = '(4(1x,' // fmt_real // '))'
+   character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12),1x,' &
+      // fmt_real // ')'
+   character(len=*), parameter :: fmt_prf = '(5(1x,' // fmt_real // '))'
 
    !> A closed file's unit: newunit= numbers are negative but never -1.
    integer, parameter :: no_unit = -1
@@ -161,7 +164,7 @@ contains
          call close_outputs(out)
          return
       end if
-      call header(out%his, 'history: one row every history_every steps')
+      call header(out%his, 'history: one row every history_every steps', 1)
       write(out%his, '(a)') '# energies at row time t^{n+1}: e_kin from v^{n+1}, e_strain from' &
          // ' s^n s^{n+1}, e_pot from (u^n+u^{n+1})/2 (the scheme''s invariant, METHOD.md 3)'
       write(out%his, '(a)') '# ledger = e_kin + e_strain + e_pot - w_ext + e_lost is constant; ' &
@@ -169,16 +172,17 @@ contains
       write(out%his, '(a)') '# momentum balance: momentum - momentum(t=0) = i_gravity + i_ends ' &
          // '+ i_support + p_shift (gravity, end stresses, supports/base, collision shifts)'
       write(out%his, '(a)') '# units: ' // bar_units(history_units, mesh)
-      write(out%his, '(a)') '# ' // history_columns()
-      call header(out%prf, 'stress profiles: one block per profile time')
+      write(out%his, '(a)') column_line(1)
+      call header(out%prf, 'stress profiles: one block per profile time', 2)
       write(out%prf, '(a)') '# rows per half node, top to bottom: node 0 lower half only, ' &
          // 'node n upper half only, others upper then lower half at the same x'
       write(out%prf, '(a)') '# stress is that of the cell the half belongs to; v = du/dt over ' &
          // 'the step ending at t'
+      write(out%prf, '(a)') '# t: the block''s time, also on its "# t = " line'
       write(out%prf, '(a)') '# units: x [m] (reference position), u [m], v [m/s], stress [Pa] ' &
-         // '(compression > 0)'
-      write(out%prf, '(a)') '# x u v stress'
-      call header(out%evt, 'events: one row per fracture, collision, separation')
+         // '(compression > 0), t [s]'
+      write(out%prf, '(a)') column_line(2)
+      call header(out%evt, 'events: one row per fracture, collision, separation', 3)
       write(out%evt, '(a)') '# t is the grid time the event takes effect; the true time lies in ' &
          // '[t - dt_bound, t] (4.1), the true place within dx_bound of x (4.2)'
       write(out%evt, '(a)') '# frag_above, frag_below: fragment ids on either side after the event ' &
@@ -186,18 +190,21 @@ contains
       write(out%evt, '(a)') '# opening: fracture: (dA+dB)/2 of the new faces; collision: the ' &
          // 'correction (5.2) of the rule used; stress_bound: (6.2) bound of the collision ' &
          // 'stress error; shift: rigid shift given to one side'
-      write(out%evt, '(a)') '# units: t, dt_bound [s]; step, node, frag_* [-]; x, dx_bound, ' &
-         // 'opening, shift [m] (x reference); stress, stress_bound [Pa] (compression > 0)'
-      write(out%evt, '(a)') '# ' // event_columns()
-      call header(out%frg, 'fragments: one block per profile time')
+      write(out%evt, '(a)') '# kind_code: the kind as a number (' // kind_codes() // ')'
+      write(out%evt, '(a)') '# units: t, dt_bound [s]; step, node, frag_*, kind_code [-]; x, ' &
+         // 'dx_bound, opening, shift [m] (x reference); stress, stress_bound [Pa] ' &
+         // '(compression > 0)'
+      write(out%evt, '(a)') column_line(3)
+      call header(out%frg, 'fragments: one block per profile time', 4)
       write(out%frg, '(a)') '# x_top, x_bottom: current positions x + u of the faces; e_vib: ' &
          // 'kinetic energy about the mean motion + strain energy; birth_t: time of the ' &
          // 'fracture that made it'
-      write(out%frg, '(a)') '# units: ' // bar_units('birth_t [s]; x_* [m]; mass [kg/m^2]; ' &
+      write(out%frg, '(a)') '# t: the block''s time, also on its "# t = " line'
+      write(out%frg, '(a)') '# units: ' // bar_units('birth_t, t [s]; x_* [m]; mass [kg/m^2]; ' &
          // 'velocity [m/s]; e_vib [J/m^2]; ids and nodes [-]', mesh)
-      write(out%frg, '(a)') '# ' // fragment_columns
+      write(out%frg, '(a)') column_line(4)
       if (out%gau /= no_unit) then
-         call header(out%gau, 'gauges: one row every &gauges every steps')
+         call header(out%gau, 'gauges: one row every &gauges every steps', 5)
          call gauge_header(out%gau, rec, mesh)
       end if
       call text_sizes(out, out%head)
@@ -216,10 +223,14 @@ contains
             call make_error(err, '--output: cannot write ''' // prefix // ext // ''': ' // trim(msg))
          end if
       end subroutine open_one
-      !> The header lines every text file starts with.
-      subroutine header(u, what)
+      !> The header lines every text file starts with: with &run header = 'names' a first
+      !> line naming the columns without '#' (numpy's genfromtxt(names=True), pandas'
+      !> read_csv(comment='#')), then the '#' lines; the last '#' line names them again.
+      subroutine header(u, what, k)
          integer, intent(in) :: u          !! open formatted unit
          character(len=*), intent(in) :: what   !! what the file holds (its first line)
+         integer, intent(in) :: k          !! text file (text_extensions)
+         if (rec%names_first) write(u, '(a)') text_columns(k, size(rec%gauge_x))
          write(u, '(a)') '# spallbar ' // version // ' -- ' // what
          write(u, '(a)') '# title: ' // rec%title
          call write_echo(u, rec, '# ')
@@ -259,7 +270,7 @@ contains
       write(u, '(a)') '# velocity_k: du/dt over the step ending at t; u_k: displacement at t'
       write(u, '(a)') '# units: t [s]; stress_k [Pa] (compression > 0); velocity_k [m/s] ' // &
          'along +x (down); u_k [m]'
-      write(u, '(a)') '# ' // gauge_columns(size(g))
+      write(u, '(a)') column_line(5, size(g))
    end subroutine gauge_header
 
    !> The column names of PREFIX.gau: t, then stress_k velocity_k u_k for k = 1..n.
@@ -381,7 +392,7 @@ contains
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
-      character(len=len(prefix) + 5) :: files(7)
+      character(len=len(prefix) + 5) :: files(8)
       integer :: k, n, nt
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
@@ -395,8 +406,9 @@ contains
       end do
       n = nt
       if (rec%hdf5) then
-         n = n + 1
-         files(n) = prefix // '.h5'
+         files(n + 1) = prefix // '.h5'
+         files(n + 2) = xdmf_path(prefix)
+         n = n + 2
       end if
       files(n + 1) = prefix // '.lock'
       do k = 1, n
@@ -538,7 +550,7 @@ contains
    subroutine close_outputs(out, err)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out), optional :: err   !! allocated: it failed
-      type(spb_error_t), allocatable :: short
+      type(spb_error_t), allocatable :: short, xdmf_err
       call check_written(out, short)
       if (out%his /= no_unit) close(out%his)
       if (out%prf /= no_unit) close(out%prf)
@@ -553,8 +565,13 @@ contains
       if (out%hdf5) then
          call h5_close(out%h5)
          out%hdf5 = .false.
-         if (allocated(out%h5%error) .and. present(err)) call make_error(err, out%h5%error, &
-                                                                         code=exit_runtime)
+         if (allocated(out%h5%error)) then
+            if (present(err)) call make_error(err, out%h5%error, code=exit_runtime)
+         else
+            ! PREFIX.xmf describes the file as it is now, complete
+            call write_xdmf(out%prefix, xdmf_err)
+            if (allocated(xdmf_err) .and. present(err)) call move_alloc(xdmf_err, err)
+         end if
       end if
       if (allocated(short) .and. present(err)) call move_alloc(short, err)
    end subroutine close_outputs
@@ -652,20 +669,42 @@ contains
       integer, intent(in) :: k             !! text file (text_extensions)
       integer, intent(in), optional :: n_gauges   !! PREFIX.gau: its gauges
       character(len=:), allocatable :: line
+      if (present(n_gauges)) then
+         line = '# ' // text_columns(k, n_gauges)
+      else
+         line = '# ' // text_columns(k, 0)
+      end if
+   end function column_line
+
+   !> The names of the columns of text file k, blank-separated.
+   pure function text_columns(k, n_gauges) result(line)
+      integer, intent(in) :: k             !! text file (text_extensions)
+      integer, intent(in) :: n_gauges      !! PREFIX.gau: its gauges
+      character(len=:), allocatable :: line
       select case (k)
       case (1)
-         line = '# ' // history_columns()
+         line = history_columns()
       case (2)
-         line = '# x u v stress'
+         line = profile_columns
       case (3)
-         line = '# ' // event_columns()
+         line = event_columns() // ' kind_code'
       case (4)
-         line = '# ' // fragment_columns
+         line = fragment_columns
       case default
-         line = '# ' // gauge_columns(0)
-         if (present(n_gauges)) line = '# ' // gauge_columns(n_gauges)
+         line = gauge_columns(n_gauges)
       end select
-   end function column_line
+   end function text_columns
+
+   !> The event kinds' codes for the header of PREFIX.evt: "1 fracture, 2 collision, ...".
+   pure function kind_codes() result(line)
+      character(len=:), allocatable :: line
+      integer :: k
+      line = ''
+      do k = 1, size(event_kind_names)
+         if (k > 1) line = line // ', '
+         line = line // itoa(k) // ' ' // trim(event_kind_names(k))
+      end do
+   end function kind_codes
 
    !> Bytes of the header of a text output (up to its column line), -1 if there is none in
    !> its first MiBs, and the file's size.
@@ -781,8 +820,7 @@ contains
       units = event_table%unit
       whole_evt = event_table%whole
       call h5_table(out%h5, '/events', names, units, whole_evt, out%h_evt)
-      call h5_attr(out%h5, '/events', 'kind_codes', '1 fracture, 2 collision, 3 separation, ' // &
-                   '4 base-collision')
+      call h5_attr(out%h5, '/events', 'kind_codes', kind_codes())
       call h5_group(out%h5, '/fields')
       call h5_group(out%h5, '/fields/profiles')
       call h5_attr(out%h5, '/fields', 'rows', 'half nodes top to bottom, as PREFIX.prf: ' // &
@@ -932,7 +970,7 @@ contains
                  e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
                  real(e%frag_below, wp), e%stress_bound, e%shift]
             call table_line(event_table, v, line)
-            write(out%evt, '(a)') line
+            write(out%evt, '(a,1x,a)') line, int_right(e%kind, 9)
             if (out%hdf5) call h5_append(out%h5, out%h_evt, v)
          end associate
       end do
@@ -975,7 +1013,7 @@ contains
       do f = 1, size(list)
          write(out%frg, fmt_frg) list(f)%id, list(f)%parent, real(list(f)%birth_step, wp) * dt, &
             list(f)%x_top, list(f)%x_bot, list(f)%mass, list(f)%velocity, list(f)%e_vib, &
-            list(f)%top, list(f)%bot
+            list(f)%top, list(f)%bot, t
       end do
       if (.not. out%hdf5) return
       out%n_frg = out%n_frg + 1
@@ -1024,9 +1062,9 @@ contains
       write(out%prf, '(a)') '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested)
       do i = 0, n
          if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, &
-                                            st%s(i) / mesh%area(i)
+                                            st%s(i) / mesh%area(i), real(st%step, wp) * dt
          if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, &
-                                            st%s(i + 1) / mesh%area(i + 1)
+                                            st%s(i + 1) / mesh%area(i + 1), real(st%step, wp) * dt
       end do
       if (.not. out%hdf5) return
       out%n_prof = out%n_prof + 1
@@ -1060,12 +1098,4 @@ contains
       end if
    end function unquote
 
-   !> Name of the k-th block group: 'p000', 'p001', ... (sorts in time order).
-   pure function block_name(k) result(name)
-      integer, intent(in) :: k             !! block number, from 1
-      character(len=:), allocatable :: name
-      character(len=12) :: buf
-      write(buf, '(a,i3.3)') 'p', k - 1
-      name = trim(buf)
-   end function block_name
 end module spb_output

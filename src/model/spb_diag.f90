@@ -12,7 +12,7 @@ module spb_diag
    use spb_state, only: state_t
    implicit none
    private
-   public :: energies_t, energies, frag_info_t, fragment_list, run_summary_t
+   public :: energies_t, energies, frag_info_t, fragment_list, run_summary_t, first_fractures
 
    type :: energies_t
       real(wp) :: e_kin = 0.0_wp      !! [J/m^2]
@@ -34,6 +34,8 @@ module spb_diag
       real(wp) :: e_vib = 0.0_wp           !! kinetic energy relative to the mean motion plus
                                            !! strain energy [J/m^2]
    end type frag_info_t
+
+   integer, parameter :: first_fractures = 5   !! fractures the run summary keeps
 
    !> What a run reports and carries from step to step (a restart file keeps it).
    type :: run_summary_t
@@ -62,6 +64,9 @@ module spb_diag
       real(wp) :: max_jordan = 0.0_wp      !! largest relative Jordan amplitude over rows [-]
       real(wp) :: jordan_scale = 0.0_wp    !! largest momentum scale of the bar over rows, what
                                            !! the Jordan amplitude is relative to [kg/(m s)]
+      real(wp) :: fracture_t(first_fractures) = 0.0_wp    !! the first fractures: time [s],
+      real(wp) :: fracture_x(first_fractures) = 0.0_wp    !! reference position [m],
+      real(wp) :: fracture_s(first_fractures) = 0.0_wp    !! section stress [Pa]
    end type run_summary_t
 
 contains

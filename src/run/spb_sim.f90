@@ -19,7 +19,8 @@ module spb_sim
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
    use spb_wave, only: wave_t, wave_energy
-   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t
+   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t, &
+      first_fractures
    use spb_events, only: event_list_t, ev_fracture
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step
@@ -462,6 +463,12 @@ contains
             summary%n_kind(ev%kind) = summary%n_kind(ev%kind) + 1
             if (ev%kind == ev_fracture) then
                if (summary%first_fracture_t < 0.0_wp) summary%first_fracture_t = ev%t
+               k = summary%n_kind(ev_fracture)
+               if (k <= first_fractures) then
+                  summary%fracture_t(k) = ev%t
+                  summary%fracture_x(k) = ev%x
+                  summary%fracture_s(k) = ev%stress
+               end if
                summary%fracture_stress_sum = summary%fracture_stress_sum + abs(ev%stress)
             end if
          end associate

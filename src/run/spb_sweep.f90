@@ -447,6 +447,7 @@ contains
                          code=exit_runtime)
          return
       end if
+      if (deck%run%header == 'names') write(u, '(a)') sweep_columns()
       write(u, '(a)') '# spallbar ' // version // ' -- sweep: one row per case, in case order'
       write(u, '(a)') '# title: ' // trim(deck%run%title)
       call write_echo(u, deck_record(deck), '# ')
