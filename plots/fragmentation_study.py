@@ -23,6 +23,12 @@ Theory curves (doc/fragmentation.md):
 usage: fragmentation_study.py [--exe SPALLBAR] [--out DIR] [--rates r1,r2,...]
                               [--realizations R] [--jobs J] [--figure PNG] [--table MD]
 Writes DIR/results.json; with --figure a log-log plot, with --table a Markdown table.
+
+A rate whose windows hold no primary fracture site (the runs ended before any fracture)
+has no measured spacing: the figure leaves it out and says so on stderr, 'fragmentation_study.py:
+warning: nothing to draw: ...', as it does when no rate has a spacing to draw (every rate in
+the lattice limit or without fractures); the figure is written all the same, with the
+theory curves, and the exit status stays 0.
 """
 import argparse
 import concurrent.futures
@@ -217,6 +223,8 @@ def main():
             size_std=float(sizes.std(ddof=1)) if len(cs) > 1 else 0.0,
             primary_per_case=float(np.mean([c["primary"] for c in cs])),
             sites_per_case=float(np.mean([c["sites"] for c in cs])),
+            # windows with no primary fracture site have no spacing (theirs reads as the window)
+            cases_without_sites=sum(1 for c in cs if c["sites"] == 0),
             fragment_size=float(np.mean([c["size_primary"] for c in cs])),
             g_grady_needs=float(RHO * r ** 2 * sizes.mean() ** 3 / 24.0),
             e_fracture_per_crack=float(np.mean([c["e_fracture_per_crack"] for c in cs])),
@@ -229,11 +237,12 @@ def main():
             grady_size=grady(r, g_dx), gc_size=glenn_chudnovsky(r, g_dx, sig_th),
             steps=cs[0]["steps"]))
     # log-log slope of the measured sizes
-    free = [q for q in results if not q["lattice"]]
+    # rates with a measured spacing: primary fracture sites, above the lattice limit
+    free = [q for q in results if not q["lattice"] and q["cases_without_sites"] == 0]
     x = np.log([q["rate"] for q in free])
     y = np.log([q["size_mean"] for q in free])
     slope = float(np.polyfit(x, y, 1)[0]) if len(free) > 1 else float("nan")
-    coarse = [q for q in results if q["size_mean"] > 10 * DX]
+    coarse = [q for q in free if q["size_mean"] > 10 * DX]
     slope_low = (float(np.polyfit(np.log([q["rate"] for q in coarse]),
                                   np.log([q["size_mean"] for q in coarse]), 1)[0])
                  if len(coarse) > 1 else float("nan"))
@@ -270,6 +279,8 @@ def write_table(path, s):
             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for q in s["rates"]:
         ratio = ("lattice limit" if q["lattice"] else f"{q['size_mean']/q['mgk_size']:.3f}")
+        if q["cases_without_sites"]:
+            ratio = f"no primary fracture in {q['cases_without_sites']} of {q['realizations']} runs"
         rows.append(f"| {q['rate']:g} | {q['size_mean']*1e3:.3f} ± {q['size_std']*1e3:.3f} | "
                     f"{q['mgk_size']*1e3:.3f} | {ratio} | "
                     f"{q['fragment_size']*1e3:.3f} | {q['grady_size']*1e3:.3f} | "
@@ -288,18 +299,26 @@ def write_table(path, s):
 
 
 def plot(path, s):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from _common import nothing_to_draw, plt
     rates = np.array([q["rate"] for q in s["rates"]])
     fine = np.geomspace(rates.min() / 1.5, rates.max() * 1.5, 80)
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    ok = [q for q in s["rates"] if not q["lattice"]]
+    broken = [q for q in s["rates"] if q["cases_without_sites"] == 0]
+    for q in s["rates"]:
+        if q["cases_without_sites"]:
+            nothing_to_draw(f"rate {q['rate']:g} 1/s: no primary fracture site in "
+                            f"{q['cases_without_sites']} of {q['realizations']} windows (rate "
+                            "left out)")
+    ok = [q for q in broken if not q["lattice"]]
+    if not ok:
+        nothing_to_draw("no rate with a measured fracture-site spacing (every rate in the "
+                        "lattice limit or without fractures): only the theory is drawn")
     ax.errorbar([q["rate"] for q in ok], [q["size_mean"] * 1e3 for q in ok],
                 yerr=[q["size_std"] * 1e3 for q in ok], fmt="o", color="k",
                 label=f"spallbar: spacing of primary fracture sites (slope {s['slope_low']:.2f})")
-    ax.plot(rates, [q["fragment_size"] * 1e3 for q in s["rates"]], "s", mfc="none",
-            color="0.4", ms=5, label="spallbar: mean primary fragment, one-cell slivers counted")
+    ax.plot([q["rate"] for q in broken], [q["fragment_size"] * 1e3 for q in broken], "s",
+            mfc="none", color="0.4", ms=5,
+            label="spallbar: mean primary fragment, one-cell slivers counted")
     mg = [mgk(r) for r in fine]
     ax.plot(fine, [m[0] * 1e3 for m in mg], "-", color="C0",
             label=f"Mott/Grady-Kipp obscuration (slope {-M/(M+1):.2f}), no fit")

@@ -2,11 +2,20 @@
 to its bottom face at the height of its mean velocity.
 
 usage: fragments.py PREFIX -o fragments.png
+
+Without fragment blocks (they come with the profiles: &run profile_times), or when the bar
+is one piece in every block (it never broke), the figure is still written, with the line
+'fragments.py: warning: nothing to draw: ...' on stderr; the exit status stays 0.
 """
-from _common import parser, plt, save, spbread
+from _common import nothing_to_draw, parser, plt, save, spbread
 
 
 def plot(run, ax):
+    if not run.fragments:
+        nothing_to_draw("no fragment blocks (they come with the profiles: &run profile_times)")
+    elif all(len(b["id"]) <= 1 for b in run.fragments):
+        nothing_to_draw(f"no fragments: the bar is one piece in all {len(run.fragments)} "
+                        "fragment blocks")
     cmap = plt.get_cmap("plasma")
     n = max(1, len(run.fragments) - 1)
     for k, b in enumerate(run.fragments):
@@ -18,7 +27,8 @@ def plot(run, ax):
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("position x + u [m]")
     ax.set_ylabel("mean velocity [m/s] (down > 0)")
-    ax.legend(fontsize=7)
+    if run.fragments:
+        ax.legend(fontsize=7)
 
 
 def main():

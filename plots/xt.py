@@ -2,27 +2,33 @@
 (fractures, collisions, separations, base collisions) at their sections and times.
 
 usage: xt.py PREFIX -o xt.png
+
+Without an x-t field (&run hdf5 = .true. with field_every = N) only the events are drawn,
+and without events either nothing is; either way the figure is written, with the line
+'xt.py: warning: nothing to draw: ...' on stderr, and the exit status stays 0.
 """
 import numpy as np
 
-from _common import nothing_to_draw, parser, plt, save, spbread
+from _common import nothing_to_draw, parser, plt, save, spbread, stress_scale
 
 MARKERS = {"fracture": ("x", "k"), "collision": ("o", "tab:red"),
            "separation": ("^", "tab:blue"), "base-collision": ("s", "tab:green")}
 
 
 def plot(run, ax):
+    events = len(run.events.get("t", []))
     if run.xt is None or len(run.xt["t"]) <= 1:
-        nothing_to_draw("no x-t stress field (run with &run hdf5 = .true., field_every = N): "
-                        "only the events are drawn")
+        nothing_to_draw("no x-t stress field (run with &run hdf5 = .true., field_every = N)"
+                        + (": only the events are drawn" if events else ", and no events"))
     else:
         s = run.xt["stress"]
         lim = np.max(np.abs(s)) or 1.0
-        mesh = ax.pcolormesh(run.xt["x"], run.xt["t"] * 1e3, s / 1e6, cmap="RdBu_r",
-                             vmin=-lim / 1e6, vmax=lim / 1e6, shading="nearest")
-        plt.colorbar(mesh, ax=ax, label="stress [MPa] (compression > 0)")
+        scale, unit = stress_scale([lim])
+        mesh = ax.pcolormesh(run.xt["x"], run.xt["t"] * 1e3, s / scale, cmap="RdBu_r",
+                             vmin=-lim / scale, vmax=lim / scale, shading="nearest")
+        plt.colorbar(mesh, ax=ax, label=f"stress [{unit}] (compression > 0)")
     ev = run.events
-    if len(ev.get("t", [])):
+    if events:
         for kind, (m, c) in MARKERS.items():
             sel = np.array([k == kind for k in ev["kind"]], dtype=bool)
             if sel.any():
