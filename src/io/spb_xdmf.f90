@@ -77,9 +77,9 @@ contains
       write(u, '(a)') ' <Domain>'
       if (size(t_xt) > 0 .and. size(x) > 0) then
          call xt_plane(u, h5name, size(x), size(t_xt))
-         call bar_series(u, h5name, size(x), t_xt)
+         call line_series(u, h5name, size(x), t_xt, .true.)
       end if
-      if (n_prf > 0 .and. size(x) > 0) call profile_series(u, h5name, size(x), t_prf)
+      if (n_prf > 0 .and. size(x) > 0) call line_series(u, h5name, size(x), t_prf, .false.)
       write(u, '(a)') ' </Domain>'
       write(u, '(a)') '</Xdmf>'
       close(u, iostat=ios)
@@ -111,54 +111,49 @@ contains
       write(u, '(a)') '  </Grid>'
    end subroutine xt_plane
 
-   !> The grid `bar`: at each x-t time the bar as a line of points (row k of /fields/xt).
-   subroutine bar_series(u, h5name, nx, t)
-      integer, intent(in) :: u             !! open formatted unit
-      character(len=*), intent(in) :: h5name   !! the HDF5 file, relative to the XML
-      integer, intent(in) :: nx            !! half-node rows
-      real(wp), intent(in) :: t(:)         !! the x-t times [s]
-      integer :: k, j
-      write(u, '(a)') '  <Grid Name="bar" GridType="Collection" CollectionType="Temporal">'
-      do k = 1, size(t)
-         call line_grid_start(u, 'bar', h5name, nx, t(k))
-         do j = 1, size(fields)
-            write(u, '(a)') '    <Attribute Name="' // trim(fields(j)) // ' [' // &
-               trim(units(j)) // ']" AttributeType="Scalar" Center="Node">'
-            write(u, '(a)') '     <DataItem ItemType="HyperSlab" Dimensions="1 ' // itoa(nx) // '">'
-            write(u, '(a)') '      <DataItem Dimensions="3 2" Format="XML">' // itoa(k - 1) // &
-               ' 0 1 1 1 ' // itoa(nx) // '</DataItem>'
-            call item(u, itoa(size(t)) // ' ' // itoa(nx), h5name // ':/fields/xt/' // &
-                      trim(fields(j)))
-            write(u, '(a)') '     </DataItem>'
-            write(u, '(a)') '    </Attribute>'
-         end do
-         write(u, '(a)') '   </Grid>'
-      end do
-      write(u, '(a)') '  </Grid>'
-   end subroutine bar_series
-
-   !> The grid `profiles`: each profile snapshot as a line of points (its 1-D datasets
+   !> A time series of the bar as lines of points: `bar` (from_xt: at each x-t time, row k of
+   !> /fields/xt through a hyperslab) or `profiles` (each profile snapshot; its 1-D datasets
    !> given as 1 x nx, the shape of the grid: what VTK's XDMF reader needs).
-   subroutine profile_series(u, h5name, nx, t)
+   subroutine line_series(u, h5name, nx, t, from_xt)
       integer, intent(in) :: u             !! open formatted unit
       character(len=*), intent(in) :: h5name   !! the HDF5 file, relative to the XML
       integer, intent(in) :: nx            !! half-node rows
-      real(wp), intent(in) :: t(:)         !! the profiles' times [s]
+      real(wp), intent(in) :: t(:)         !! the members' times [s]
+      logical, intent(in) :: from_xt       !! the x-t rows (else the profiles)
       integer :: k, j
-      write(u, '(a)') '  <Grid Name="profiles" GridType="Collection" CollectionType="Temporal">'
+      character(len=:), allocatable :: name, member, path
+      if (from_xt) then
+         name = 'bar'
+         member = 'bar'
+      else
+         name = 'profiles'
+         member = 'profile'
+      end if
+      write(u, '(a)') '  <Grid Name="' // name // '" GridType="Collection" ' // &
+         'CollectionType="Temporal">'
       do k = 1, size(t)
-         call line_grid_start(u, 'profile', h5name, nx, t(k))
+         call line_grid_start(u, member, h5name, nx, t(k))
          do j = 1, size(fields)
             write(u, '(a)') '    <Attribute Name="' // trim(fields(j)) // ' [' // &
                trim(units(j)) // ']" AttributeType="Scalar" Center="Node">'
-            call item(u, '1 ' // itoa(nx), h5name // ':/fields/profiles/' // block_name(k) // &
-                      '/' // trim(fields(j)))
+            if (from_xt) then
+               path = h5name // ':/fields/xt/' // trim(fields(j))
+               write(u, '(a)') '     <DataItem ItemType="HyperSlab" Dimensions="1 ' // &
+                  itoa(nx) // '">'
+               write(u, '(a)') '      <DataItem Dimensions="3 2" Format="XML">' // &
+                  itoa(k - 1) // ' 0 1 1 1 ' // itoa(nx) // '</DataItem>'
+               call item(u, itoa(size(t)) // ' ' // itoa(nx), path)
+               write(u, '(a)') '     </DataItem>'
+            else
+               path = h5name // ':/fields/profiles/' // block_name(k) // '/' // trim(fields(j))
+               call item(u, '1 ' // itoa(nx), path)
+            end if
             write(u, '(a)') '    </Attribute>'
          end do
          write(u, '(a)') '   </Grid>'
       end do
       write(u, '(a)') '  </Grid>'
-   end subroutine profile_series
+   end subroutine line_series
 
    !> The opening of a time series' member: its time, a 1 x nx rectilinear grid on x.
    subroutine line_grid_start(u, name, h5name, nx, t)
