@@ -7,6 +7,7 @@ module spb_par
       MPI_Comm_size, MPI_Send, MPI_Recv, MPI_Status, MPI_COMM_WORLD, MPI_DOUBLE_PRECISION, &
       MPI_INTEGER, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_Wtime, MPI_Barrier, MPI_Allreduce, MPI_MAX
    use spb_kinds, only: wp
+   use spb_sys, only: fp_traps_off, fp_traps_restore
    implicit none
    private
    public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, &
@@ -24,11 +25,18 @@ module spb_par
 
 contains
 
-   !> Start the parallel run (MPI_Init).
+   !> Start the parallel run (MPI_Init). Floating-point traps (the debug build's
+   !> -ffpe-trap) are held off meanwhile: under `srun --mpi=pmix` OpenMPI's start-up raises
+   !> a floating-point exception inside MPI_Init, and the trap stopped every rank there
+   !> (SIGFPE; OpenMPI 4.1.4, Slurm 22.05). Flags it raised are cleared.
    subroutine par_init()
       logical :: started
+      logical :: saved(3)   ! the halting modes to restore
       call MPI_Initialized(started)
-      if (.not. started) call MPI_Init()
+      if (started) return
+      call fp_traps_off(saved)
+      call MPI_Init()
+      call fp_traps_restore(saved)
    end subroutine par_init
 
    !> End the parallel run.
