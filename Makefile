@@ -29,7 +29,9 @@ endif
 CTEST_ARGS ?=
 RUN_DECK      ?= example2
 JOBS          ?= $(shell nproc 2>/dev/null || echo 2)
-CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran
+# extra CMake options, e.g. make build CMAKE_FLAGS=-DSPALLBAR_NATIVE=OFF (a cluster binary)
+CMAKE_FLAGS   ?=
+CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran $(CMAKE_FLAGS)
 
 PREFIX ?= /usr/local
 

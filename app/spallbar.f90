@@ -49,6 +49,7 @@ program spallbar
             write(output_unit, '(a,i0,a,es12.5,a)') '  restart from ' // restart_path // &
                ' at step ', ck%st%step, ' (t = ', real(ck%st%step, wp) * sim%mesh%dt, ' s)'
          end if
+         flush(output_unit)   ! a log of stdout and stderr together: the header first
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
                       resume=ck, batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps))
@@ -58,6 +59,7 @@ program spallbar
          write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
          call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
       end if
+      flush(output_unit)   ! a log of stdout and stderr together: the header first
       call catch_stop_signals()
       call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
                    batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps))
@@ -109,7 +111,7 @@ contains
          write(output_unit, '(a)') trim(line)
       end do
       if (size(list) > 5) write(output_unit, '(a)') '    ... and ' // itoa(size(list) - 5) // &
-         ' more (' // prefix // '.frg at the profile times)'
+         ' more (' // prefix // '.frg lists them all at a profile time equal to t_end)'
       files = prefix // '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
       if (allocated(sim%record%gauge_x)) then
          if (size(sim%record%gauge_x) > 0) files = files // ', ' // prefix // '.gau'
@@ -141,10 +143,11 @@ contains
       if (.not. allocated(err)) then
          if (rank == 0 .and. .not. quiet) write(output_unit, '(a)') 'spallbar ' // version // &
             ' sweep: ' // trim(deck%run%title)
+         flush(output_unit)
          if (rank == 0) call warn(warnings(deck, 0))
          call catch_stop_signals()
          call run_sweep(deck, prefix, rank == 0 .and. (.not. quiet) .and. stderr_is_terminal(), &
-                        ssum, err)
+                        ssum, err, batch_seconds=merge(batch, 0.0_wp, rank == 0))
       end if
       if (rank == 0 .and. .not. quiet .and. ssum%cases > 0) then
          write(output_unit, '(a,i0,a,i0,a,a,a,a,a,f0.3,a)') '  done: ', ssum%cases, ' cases on ', &
@@ -183,12 +186,14 @@ contains
       write(output_unit, '(a)') '       (--progress: when stderr is not a terminal, a ' // &
          'progress line every SECONDS, default 30, 0 none; on a terminal it updates in place)'
       write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
-         'PREFIX] [--quiet]   (PREFIX.sweep, PREFIX_sweep.h5; ' // par_kind // ')'
+         'PREFIX] [--quiet] [--progress SECONDS]   (PREFIX.sweep, PREFIX_sweep.h5; ' // &
+         par_kind // ')'
       write(output_unit, '(a)') '       spallbar --version | --help | --deck-help   (--deck-help: ' // &
          'every deck variable, its default, unit and meaning)'
-      write(output_unit, '(a)') 'Reads the namelist deck, writes PREFIX.his, PREFIX.prf, ' // &
-         'PREFIX.evt (PREFIX defaults to the deck path without .nml).'
-      write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong.'
+      write(output_unit, '(a)') 'Reads the namelist deck, writes PREFIX.his, .prf, .evt, .frg ' // &
+         '(.gau with &gauges; .h5 and .xmf with &run hdf5) (PREFIX: the deck path without .nml).'
+      write(output_unit, '(a)') 'Exit status: 0 done, 2 bad input, 3 the run went wrong, ' // &
+         '128 + N stopped by signal N (SIGTERM: 143; outputs and checkpoint written to there).'
    end subroutine usage
 
    !> Plausibility warnings on stderr (--quiet keeps them; &run warnings = .false. has none).
@@ -225,9 +230,9 @@ contains
       write(output_unit, '(a)') '  HDF5:     ' // h5_library_version()
    end subroutine print_version
 
-   !> The compiler options that decide the numbers: every word of all but include paths (-I
-   !> and the path after it), the machine's instruction-set switches (-m..., --param, which
-   !> -march=native expands to: its -march= word stays) and the pre-include.
+   !> The compiler options that decide the numbers: every word of all, once, but include
+   !> paths (-I and the path after it), the machine's instruction-set switches (-m...,
+   !> --param, which -march=native expands to: its -march= word stays) and the pre-include.
    function build_options(all) result(text)
       character(len=*), intent(in) :: all   !! compiler_options()
       character(len=:), allocatable :: text
@@ -258,6 +263,7 @@ contains
          if (index(word, '-I') == 1 .or. index(word, '--param') == 1 .or. &
              index(word, '-fpre-include') == 1) cycle
          if (index(word, '-m') == 1 .and. index(word, '-march=') /= 1) cycle
+         if (index(text // ' ', ' ' // word // ' ') > 0) cycle   ! CMake repeats -O3, -g
          text = text // ' ' // word
       end do
       text = trim(adjustl(text))

@@ -35,7 +35,9 @@ def plot(run, ax):
                 style = dict(c=c) if m == "x" else dict(facecolors="none", edgecolors=c)
                 ax.scatter(ev["x"][sel], ev["t"][sel] * 1e3, marker=m, s=14, linewidths=0.8,
                            label=f"{kind} ({sel.sum()})", **style)
-        ax.legend(fontsize=7, loc="upper right")
+        # below the axes, off the field and the markers
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1),
+                  ncol=len(MARKERS), frameon=False)
     ax.set_xlabel("x [m] (from the top end)")
     ax.set_ylabel("t [ms]")
 

@@ -27,11 +27,20 @@ def main():
               "share/spallbar/examples/example1.nml", "share/spallbar/examples/example1_wave.txt",
               "share/spallbar/examples/example3_case2/accelerate_above_h19.nml"):
         check(os.path.isfile(os.path.join(prefix, f)), f"not installed: {f}")
-    for f in ("bin/spallbar", "bin/spallbar-compare"):
-        check(os.access(os.path.join(prefix, f), os.X_OK), f"not executable: {f}")
+    for f in ("bin/spallbar", "bin/spallbar-compare", "share/spallbar/slurm/slurm-array.sbatch",
+              "share/spallbar/slurm/slurm-sweep-mpi.sbatch",
+              "share/spallbar/slurm/slurm-restart.sbatch"):
+        check(os.access(os.path.join(prefix, f), os.X_OK), f"not installed or not executable: {f}")
+    # the examples are decks and their tables only, whatever ran beside them in input/
+    ex = os.path.join(prefix, "share", "spallbar", "examples")
+    other = [os.path.join(d, f) for d, _, fs in os.walk(ex) for f in fs
+             if not f.endswith((".nml", ".txt"))]
+    check(not other, f"installed beside the example decks: {other[:5]}")
     exe = os.path.join(prefix, "bin", "spallbar")
     r = run(exe, ["--version"], work)
     lines = r.stdout.splitlines()
+    opts = lines[2].split() if len(lines) > 2 else []
+    check(len(opts) == len(set(opts)), f"--version: an option repeated: {lines[2:3]}")
     check(r.returncode == 0 and len(lines) == 5 and lines[0].startswith("spallbar ") and
           lines[1].startswith("  compiler: ") and lines[3].startswith("  sweeps: ") and
           lines[4].startswith("  HDF5: "), f"--version: {r.stdout!r}")

@@ -361,7 +361,7 @@ def sweep_jobs(check, exe, env, indir, work, mpiexec):
     p = subprocess.run([exe, "--sweep", "sw.nml", "-o", "serial", "-q"], cwd=d,
                        capture_output=True, text=True, timeout=300, stdin=subprocess.DEVNULL)
     check(p.returncode == 0, f"serial sweep: {p.stderr.strip()}")
-    rows = lambda f: [l for l in open(os.path.join(d, f)) if not l.startswith("#")]
+    rows = lambda f: [l for l in open(os.path.join(d, f)) if l.startswith(" ")]
     for name, mpirun in launchers(env, mpiexec):
         t0 = time.time()
         status, job, err = sbatch(dict(env, MPIRUN=mpirun), d,
@@ -425,7 +425,7 @@ def stopped_sweeps_check(check, runs):
               f"stopped sweep ({name}): the script stopped the ranks on Slurm's SIGTERM, "
               f"the table is written ({launcher_exit})")
         table = os.path.join(d, name + ".sweep")
-        st = [l.split()[8] for l in open(table) if not l.startswith("#")] \
+        st = [l.split()[8] for l in open(table) if l.startswith(" ")] \
             if os.path.isfile(table) else []
         check(len(st) == 9000 and "-1" in st and "0" in st,
               f"stopped sweep ({name}): 9000 rows, some done, the others not run (status -1): "

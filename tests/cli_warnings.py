@@ -62,6 +62,28 @@ def main():
           "young(1) and density(1) give a wave speed of 0.11" in lines[0] and
           "Pa and kg/m^3 meant?" in lines[0], f"young = 30: exit {r.returncode} {r.stderr!r}")
     print(f"ok   young = 30: {lines[0] if lines else ''}")
+    # a deck that gives dt: the slip makes the segment lengths no whole number of cells; the
+    # one line of the refusal names the wave speed too
+    with open(os.path.join(work, "w.nml"), "w") as f:
+        f.write(BASE.format(**dict(GOOD, density="2.4")).replace("cells = 10", "dt = 1e-6"))
+    r = run(exe, ["w.nml", "--quiet"], work)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and "not a whole number" in lines[0] and
+          "give a wave speed of 111803.3" in lines[0] and "Pa and kg/m^3 meant?" in lines[0],
+          f"density = 2.4 with dt: exit {r.returncode} {r.stderr!r}")
+    print(f"ok   density = 2.4 with dt: {lines[0] if lines else ''}")
+    # a Weibull scale in MPa; t_end in ms (10000 transits of the bar)
+    for text, words in (
+            (BASE.format(**GOOD) + "&strength_field kind = 'weibull', modulus = 6, scale = 150 /\n",
+             ["&strength_field: scale = 150 Pa", "150 MPa = 1.5e8 Pa meant?"]),
+            (BASE.format(**dict(GOOD, t_end="0.4")),
+             ["&run: t_end = 0.4 s is 14142 transits of the bar", "ms meant? (0.4 ms = 0.0004 s)"])):
+        with open(os.path.join(work, "w.nml"), "w") as f:
+            f.write(text)
+        r = run(exe, ["w.nml", "--quiet"], work)
+        check(r.returncode == 0 and all(w in r.stderr for w in words) and
+              len(r.stderr.splitlines()) == 1, f"{words[0]}: exit {r.returncode} {r.stderr!r}")
+        print(f"ok   {r.stderr.strip()}")
     with open(os.path.join(work, "w.nml"), "w") as f:
         f.write(BASE.format(**GOOD))
     r = run(exe, ["w.nml", "--quiet"], work)

@@ -851,13 +851,16 @@ contains
                ' cells; the limit is ' // itoa(max_cells)
       case (fault_short_run)
          msg = '&run: t_end = ' // rtoa(prob%t_end) // ' s is shorter than half a step of ' // &
-               'dt = ' // rtoa(fault%dt) // ' s' // speed_hint(prob)
+               'dt = ' // rtoa(fault%dt) // ' s'
       case (fault_long_run)
          msg = '&run: t_end = ' // rtoa(prob%t_end) // ' s needs ' // rtoa(fault%steps) // &
                ' steps of dt = ' // rtoa(fault%dt) // ' s; the limit is ' // itoa(max_steps)
       case default
          msg = ''
       end select
+      ! every refusal of the mesh follows from dx = a dt: a wave speed no solid has (a unit
+      ! slip in young or density) is the likely cause, and the one line says so
+      if (len(msg) > 0) msg = msg // speed_hint(prob)
    contains
       !> '' or, where a segment's wave speed is outside the solids' 20..20000 m/s, a hint at
       !> a unit slip in its young or density (young = 30 meant in GPa makes dt huge).
@@ -1002,7 +1005,7 @@ contains
                'Pa', 'any solid''s', unit_guess(seg%young(j), .true.) // ' meant?')
             a = sqrt(seg%young(j) / seg%density(j))
             if (a < 20.0_wp .or. a > 20000.0_wp) call add('&segments: young' // sj // &
-               ' and density' // sj // ' give a wave speed of ' // itoa(nint(min(a, 1.0e9_wp))) // &
+               ' and density' // sj // ' give a wave speed of ' // three_digits(a) // &
                ' m/s, outside the solids'' 20..20000 m/s: check their units (Pa, kg/m^3)')
             if (seg%strength(j) > 0.0_wp) call out_of_range('&segments: strength' // sj, &
                seg%strength(j), 1.0e3_wp, 1.0e10_wp, 'Pa', 'any solid''s tensile strength', &
@@ -1027,6 +1030,14 @@ contains
       end associate
       if (steps > 10000000) call add('&mesh: the run takes ' // itoa(steps) // ' steps, a ' // &
          'long run: t_end, dt or cells in other units than meant?')
+      if (deck%field%kind == 'weibull' .and. is_set(deck%field%scale)) call out_of_range( &
+         '&strength_field: scale', deck%field%scale, 1.0e3_wp, 1.0e10_wp, 'Pa', &
+         'any solid''s tensile strength', unit_guess(deck%field%scale, .false.) // ' meant?')
+      block
+         character(len=:), allocatable :: line
+         line = transits_warning(deck)
+         if (len(line) > 0) call add(line)
+      end block
    contains
       !> Append one warning.
       subroutine add(text)
@@ -1052,6 +1063,46 @@ contains
          end if
       end subroutine out_of_range
    end function deck_warnings
+
+   !> The warning ('' : none) when t_end spans more than 1000 transits of the bar's waves
+   !> (ms meant for s?): the paper's longest case spans about 110.
+   function transits_warning(deck) result(line)
+      type(deck_t), intent(in) :: deck     !! a validated deck
+      character(len=:), allocatable :: line
+      real(wp) :: transit
+      integer :: j
+      line = ''
+      transit = 0.0_wp
+      do j = 1, deck%seg%n
+         transit = transit + deck%seg%length(j) / sqrt(deck%seg%young(j) / deck%seg%density(j))
+      end do
+      if (transit > 0.0_wp .and. is_set(deck%run%t_end)) then
+         if (deck%run%t_end > 1000.0_wp * transit) line = '&run: t_end = ' // &
+            rtoa(deck%run%t_end) // ' s is ' // three_digits(deck%run%t_end / transit) // &
+            ' transits of the bar (' // three_digits(transit) // ' s each): ms meant? (' // &
+            rtoa(deck%run%t_end) // ' ms = ' // rtoa(deck%run%t_end / 1000.0_wp) // ' s)'
+      end if
+   end function transits_warning
+
+   !> x with about three significant digits ('0.11', '3.54', '14100', '1.41E-04'), for
+   !> messages.
+   function three_digits(x) result(text)
+      real(wp), intent(in) :: x   !! the number
+      character(len=:), allocatable :: text
+      character(len=24) :: buf
+      character(len=8) :: fmt
+      if (abs(x) >= 100.0_wp .and. abs(x) < 1.0e9_wp) then
+         text = itoa(nint(x))
+      else if (abs(x) >= 0.01_wp .and. abs(x) < 100.0_wp) then
+         write(fmt, '(a,i0,a)') '(f0.', 2 - floor(log10(abs(x))), ')'
+         write(buf, fmt) x
+         text = trim(adjustl(buf))
+         if (text(1:1) == '.') text = '0' // text
+      else
+         write(buf, '(es9.2)') x
+         text = trim(adjustl(buf))
+      end if
+   end function three_digits
 
    !> The unit a value given in Pa was likely meant in: GPa (a modulus below 1e4) or MPa
    !> ('30 GPa = 3e10 Pa').

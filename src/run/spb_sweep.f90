@@ -84,6 +84,15 @@ module spb_sweep
       character(len=16) :: distribution = ''
    end type sweep_summary_t
 
+
+   !> The sweep's progress lines on rank 0 (show): on a terminal, or in batch every so often.
+   type :: meter_t
+      logical :: terminal = .false.     !! stderr is a terminal: one line updated in place
+      real(wp) :: every = 0.0_wp        !! batch: seconds between lines (0: none) [s]
+      real(wp) :: t0 = 0.0_wp           !! par_wtime at the start [s]
+      real(wp) :: last = 0.0_wp         !! par_wtime of the last batch line [s]
+   end type meter_t
+
 contains
 
    !> Number of cases: values x realizations (at least one of each).
@@ -175,18 +184,25 @@ contains
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
    !> over the ranks; rank 0 writes PREFIX.sweep and PREFIX_sweep.h5.
-   subroutine run_sweep(deck, prefix, progress, summary, err)
+   subroutine run_sweep(deck, prefix, progress, summary, err, batch_seconds)
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
       type(sweep_summary_t), intent(out) :: summary   !! the sweep's summary
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      real(wp), intent(in), optional :: batch_seconds   !! rank 0: a progress line every so
+                                                        !! many seconds (stderr not a terminal)
       real(wp), allocatable :: rows(:, :)
       integer, allocatable :: hists(:, :)
       real(wp) :: l_hist, t0, tables
       integer :: nc, nbins, rank, nranks, c
+      type(meter_t) :: meter
 
       t0 = par_wtime()
+      meter%terminal = progress
+      if (present(batch_seconds)) meter%every = batch_seconds
+      meter%t0 = t0
+      meter%last = t0
       nc = sweep_case_count(deck)
       nbins = deck%sweep%bins
       rank = par_rank()
@@ -211,11 +227,11 @@ contains
       summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
-         call run_static(deck, 1, 0, l_hist, progress, t0, rows, hists)
+         call run_static(deck, 1, 0, l_hist, meter, rows, hists)
       else if (deck%sweep%distribution == 'dynamic') then
-         call run_dynamic(deck, rank, nranks, l_hist, progress, t0, rows, hists)
+         call run_dynamic(deck, rank, nranks, l_hist, meter, rows, hists)
       else
-         call run_static(deck, nranks, rank, l_hist, progress, t0, rows, hists)
+         call run_static(deck, nranks, rank, l_hist, meter, rows, hists)
       end if
       summary%wall = par_wtime() - t0
       ! every rank learns whether one was stopped (and waits here until all are done)
@@ -241,13 +257,12 @@ contains
 
    !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
    !> case order (rank 0 receives in the same order: no deadlock).
-   subroutine run_static(deck, k, me, l_hist, progress, t0, rows, hists)
+   subroutine run_static(deck, k, me, l_hist, meter, rows, hists)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: k                 !! ranks
       integer, intent(in) :: me                !! this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
-      logical, intent(in) :: progress          !! progress line on stderr (rank 0)
-      real(wp), intent(in) :: t0               !! par_wtime at the start [s]
+      type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
       integer :: c, done, nc, nbins
@@ -259,7 +274,7 @@ contains
          if (stop_signal() /= 0) exit
          call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
          done = done + 1
-         if (me == 0 .and. progress) call show(done * k, nc, t0)
+         if (me == 0) call show(meter, done * k, nc)
       end do
       if (k == 1) return
       if (me /= 0) then
@@ -280,13 +295,12 @@ contains
 
    !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
    !> the other ranks compute. Case 0 means stop.
-   subroutine run_dynamic(deck, rank, nranks, l_hist, progress, t0, rows, hists)
+   subroutine run_dynamic(deck, rank, nranks, l_hist, meter, rows, hists)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: rank              !! this rank
       integer, intent(in) :: nranks            !! ranks
       real(wp), intent(in) :: l_hist           !! histogram range [m]
-      logical, intent(in) :: progress          !! progress line on stderr (rank 0)
-      real(wp), intent(in) :: t0               !! par_wtime at the start [s]
+      type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
       integer :: c, next, active, worker, finished, nc, nbins
@@ -304,7 +318,7 @@ contains
                rows(:, c) = buf(1:n_columns)
                hists(:, c) = nint(buf(n_columns + 1:))
                finished = finished + 1
-               if (progress) call show(finished, nc, t0)
+               call show(meter, finished, nc)
             end if
             if (next <= nc .and. stop_signal() == 0) then
                call par_send(next, worker, tag_work)
@@ -330,16 +344,25 @@ contains
       end if
    end subroutine run_dynamic
 
-   !> The sweep's progress line on stderr.
-   subroutine show(n_done, n_all, t0)
+   !> The sweep's progress on stderr: on a terminal one line updated in place after every
+   !> case; in batch (meter%every > 0) a line every meter%every seconds and at the end.
+   subroutine show(meter, n_done, n_all)
+      type(meter_t), intent(inout) :: meter   !! the progress lines
       integer, intent(in) :: n_done            !! cases done
       integer, intent(in) :: n_all             !! all cases
-      real(wp), intent(in) :: t0               !! par_wtime at the start [s]
       character(len=100) :: line
+      real(wp) :: now
+      if (.not. meter%terminal .and. meter%every <= 0.0_wp) return
+      now = par_wtime()
       write(line, '(a,i0,a,i0,a,f8.1,a)') 'spallbar sweep: ', min(n_done, n_all), ' of ', &
-         n_all, ' cases, ', par_wtime() - t0, ' s'
-      write(error_unit, '(a)', advance='no') achar(13) // trim(line)
-      if (n_done >= n_all) write(error_unit, '(a)') ''
+         n_all, ' cases, ', now - meter%t0, ' s'
+      if (meter%terminal) then
+         write(error_unit, '(a)', advance='no') achar(13) // trim(line)
+         if (n_done >= n_all) write(error_unit, '(a)') ''
+      else if (now - meter%last >= meter%every .or. n_done >= n_all) then
+         meter%last = now
+         write(error_unit, '(a)') trim(line)
+      end if
       flush(error_unit)
    end subroutine show
 
