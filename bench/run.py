@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
 """spallbar benchmarks (`make bench`): whole-process wall times, medians of several runs.
 
-  intact    intact bar, N = 100 000 cells, 2000 steps: node-steps/s, and the NumPy
-            reference of the same compact scheme (bench/numpy_ref.py) in the same run
+  intact    intact bar, N = 100 000 cells, 2000 steps: node-steps/s, and in the same run
+            two references of the same compact scheme (bench/references.py): a lean NumPy
+            loop (bench/numpy_ref.py) and a naive Fortran loop (bench/naive_ref.f90,
+            compiled here with spallbar's Release flags); first a check that both compute
+            spallbar's final state (u, v, stress) to TOLERANCE; then the superseded NumPy
+            reference (numpy_ref.py --variant old), timed once, for the record
   case2     the paper's Example 3 case 2 at h/190 (input/example3_case2/), outputs as in
             the decks (history every step, every event)
   output    case 2 at h/19 with history every step vs none: the share output costs
@@ -12,45 +16,22 @@
             time)
 
 usage: run.py --exe SPALLBAR [--repeats 5] [--table doc/benchmarks.md] [--plot PNG]
+              [--fc gfortran]
 """
 import argparse
 import os
+import re
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
 
+from references import (TOLERANCE, build_naive, check, describe, intact_deck,
+                        release_flags, worst)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-
-INTACT = """&run
-  title = 'intact bar benchmark, {cells} cells'
-  t_end = {t_end}
-  history_every = 1000000000
-/
-&mesh
-  dt = 1.0e-6
-/
-&segments
-  n = 1
-  length = {length}
-  young = 2.0e11
-  density = 8000.0
-/
-&ends
-  top = 'free'
-  bottom = 'free'
-/
-&load
-  kind = 'power'
-  p0 = 1.0e8
-  t_k = 1.0e-4
-  exponent = 1.0
-  t_cut = 1.0e-4
-/
-"""
-
 
 def timed(cmd, cwd, repeats):
     walls = []
@@ -59,14 +40,6 @@ def timed(cmd, cwd, repeats):
         subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.DEVNULL)
         walls.append(time.perf_counter() - t)
     return statistics.median(walls), min(walls), max(walls)
-
-
-def intact_deck(work, cells, steps):
-    path = os.path.join(work, f"intact_{cells}.nml")
-    with open(path, "w") as f:
-        f.write(INTACT.format(cells=cells, t_end=f"{steps * 1.0e-6:.10g}",
-                              length=f"{cells * 5.0e-3:.10g}"))
-    return path
 
 
 FLYING = """&run
@@ -125,6 +98,71 @@ def no_history(work, deck, name):
     return path
 
 
+def timed_together(cmds, cwd, repeats):
+    """Run the commands of CMDS ({name: argv}) one after the other, REPEATS rounds, so that
+    the VM's slow and fast spells fall on all of them alike. Returns {name: (median, min,
+    max wall, median of the 'loop T s' the program printed, or None)}."""
+    walls = {k: [] for k in cmds}
+    loops = {k: [] for k in cmds}
+    for _ in range(repeats):
+        for name, cmd in cmds.items():
+            t = time.perf_counter()
+            out = subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.PIPE,
+                                 text=True).stdout
+            walls[name].append(time.perf_counter() - t)
+            m = re.search(r"loop\s+([0-9.]+) s", out)
+            if m:
+                loops[name].append(float(m.group(1)))
+    return {k: (statistics.median(w), min(w), max(w),
+                statistics.median(loops[k]) if loops[k] else None) for k, w in walls.items()}
+
+
+def intact_rows(exe, work, rep, fc):
+    """The intact bar against its two references (bench/references.py), timed in the same
+    rounds, after a check that they compute what spallbar computes."""
+    cells, steps = 100000, 2000
+    naive, naive_cmd = build_naive(work, fc, release_flags(exe))
+    result = check(exe, work, cells, steps, naive)
+    if not worst(result) <= TOLERANCE:
+        raise SystemExit(f"references disagree with spallbar beyond {TOLERANCE:.0e}: "
+                         f"{describe(result)}")
+    numpy_ref = os.path.join(HERE, "numpy_ref.py")
+    cmds = {"spallbar": [exe, intact_deck(work, cells, steps), "-q"],
+            # start-up, deck, set-up of 1e5 nodes and outputs: the same deck for one step
+            "spallbar_1": [exe, intact_deck(work, cells, 1), "-q"],
+            "naive": [naive, str(cells), str(steps)],
+            "numpy": [sys.executable, numpy_ref, str(cells), str(steps)]}
+    r = timed_together(cmds, work, rep)
+    old = timed_together({"old": [sys.executable, numpy_ref, str(cells), str(steps),
+                                  "--variant", "old"]}, work, max(3, rep // 2))["old"]
+    ns = (cells + 1) * steps
+    spb, spb1 = r["spallbar"], r["spallbar_1"]
+    spb_steps = spb[0] - spb1[0]
+
+    def span(x):
+        return f"{x[0]:.3f} s ({x[1]:.3f}-{x[2]:.3f})"
+
+    rows = [("intact bar, N = 1e5, 2000 steps", span(spb),
+             f"{ns / spb[0]:.3g} node-steps/s; the same deck for 1 step (start-up, set-up, "
+             f"outputs) {spb1[0]:.3f} s, so the steps take {spb_steps:.3f} s")]
+    for key, what in (("naive", "naive Fortran loop (bench/naive_ref.f90, Release flags)"),
+                      ("numpy", "NumPy, lean loop (bench/numpy_ref.py)")):
+        x = r[key]
+        rows.append((f"{what}, same scheme and size", span(x),
+                     f"its time loop {x[3]:.3f} s ({ns / x[3]:.3g} node-steps/s); "
+                     f"spallbar / {key} = **{x[0] / spb[0]:.2f}** whole process, "
+                     f"**{x[3] / spb_steps:.2f}** time steps only"))
+    rows.append(("superseded NumPy reference (NumPy-scalar stiffness, temporaries; "
+                 "`numpy_ref.py --variant old`)", span(old),
+                 f"its time loop {old[3]:.3f} s; spallbar / old = {old[0] / spb[0]:.2f} whole "
+                 f"process (the ratio the tables before issue 21 reported)"))
+    rows.append(("check: both references against spallbar's profile at t_end, N = 1e5, "
+                 "2000 steps", "-",
+                 f"max |ref - spallbar| / max |spallbar|: {describe(result)} "
+                 f"(tolerance {TOLERANCE:.0e}); naive built with `{naive_cmd}`"))
+    return rows
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--exe", required=True)
@@ -132,24 +170,13 @@ def main():
     p.add_argument("--table", help="write the Markdown table here")
     p.add_argument("--plot", help="write the scaling plot here")
     p.add_argument("--label", default="this build")
+    p.add_argument("--fc", default="gfortran", help="compiler for bench/naive_ref.f90")
     args = p.parse_args()
     exe = os.path.abspath(args.exe)
     rep = args.repeats
     rows, notes = [], []
     with tempfile.TemporaryDirectory() as work:
-        # intact bar and the NumPy reference
-        cells, steps = 100000, 2000
-        deck = intact_deck(work, cells, steps)
-        med, lo, hi = timed([exe, deck, "-q"], work, rep)
-        rate = (cells + 1) * steps / med
-        rows.append(("intact bar, N = 1e5, 2000 steps", f"{med:.3f} s ({lo:.3f}-{hi:.3f})",
-                     f"{rate:.3g} node-steps/s"))
-        nmed, nlo, nhi = timed([sys.executable, os.path.join(HERE, "numpy_ref.py"), str(cells),
-                                str(steps)], work, max(3, rep // 2))
-        nrate = (cells + 1) * steps / nmed
-        rows.append(("NumPy reference, same scheme and size (bench/numpy_ref.py)",
-                     f"{nmed:.3f} s ({nlo:.3f}-{nhi:.3f})", f"{nrate:.3g} node-steps/s; "
-                     f"spallbar / NumPy = {rate / nrate:.2f}"))
+        rows += intact_rows(exe, work, rep, args.fc)
         # case 2 at h/190
         for rule in ("accelerate_fragment", "accelerate_above", "delay_fragment",
                      "min_fragment"):
@@ -217,21 +244,25 @@ def main():
         os.environ.setdefault("MPLBACKEND", "Agg")
         import matplotlib.pyplot as plt
         fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(13, 3.8))
-        a1.loglog(sizes, per_node, "o-")
+        a1.loglog(sizes, per_node, "o-", color="C0")
         a1.set_ylim(min(per_node) / 3, max(per_node) * 3)
         a1.set_xlabel("cells N")
         a1.set_ylabel("wall time per node-step [ns]")
         a1.set_title("intact bar: cost per node-step vs N", fontsize=9)
-        a2.semilogx(pieces, per_frag, "o-")
+        a2.semilogx(pieces, per_frag, "o-", color="C0")
         a2.set_ylim(0, max(per_frag) * 1.5)
         a2.set_xlabel("fragments (N = 1e5, 200 steps)")
         a2.set_ylabel("wall time per node-step [ns]")
         a2.set_title("no events: cost per step vs number of fragments", fontsize=9)
-        for c, mk in zip((95, 190), ("o", "s")):
+        # one colour per series: its points, its least-squares line and its legend entry
+        # (a proxy drawn with both the marker and the line)
+        for c, mk, col in zip((95, 190), ("o", "s"), ("C0", "C1")):
             evs, walls, slope, icpt = fits[c]
-            a3.plot(evs, walls, mk, label=f"h/{c}: {slope * 1e6:.2f} us/event")
+            a3.plot(evs, walls, mk, color=col, linestyle="none")
             xs = [0, max(evs)]
-            a3.plot(xs, [icpt + slope * x for x in xs], "-", lw=0.8)
+            a3.plot(xs, [icpt + slope * x for x in xs], "-", color=col, lw=0.8)
+            a3.plot([], [], mk + "-", color=col, lw=0.8,
+                    label=f"h/{c}: runs and fit, {slope * 1e6:.2f} us/event")
         a3.set_xlabel("events in the run (case 2, 6 rule/policy decks)")
         a3.set_ylabel("wall time [s]")
         a3.set_title("case 2: wall time vs event count", fontsize=9)
