@@ -28,6 +28,7 @@ from clitools import Checks
 DECK = """&run
   title = 'interrupted run'
   t_end = 10.0
+  warnings = .false.   ! long on purpose (25000 transits): it is stopped by a signal
   history_every = 1
   hdf5 = .true.
   field_every = 100
