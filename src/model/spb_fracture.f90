@@ -231,7 +231,7 @@ contains
       do while (m <= size(cand))
          call fragment_span(mesh, st, cand(m), j, k)
          allocate(f(j+1:k), gw(j+1:k))
-         call fragment_characteristics(mesh, st, j, k, i_top, i_bot, .true., f, gw)
+         call fragment_characteristics(mesh, st, g, j, k, i_top, i_bot, .true., f, gw)
          do while (m <= size(cand))
             if (cand(m) >= k) exit
             i = cand(m)
@@ -345,7 +345,7 @@ contains
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, j, n)
       if (rules == events_admissible .and. .not. mesh%full_mass) then
          allocate(f(j+1:n), gw(j+1:n))
-         call fragment_characteristics(mesh, st, j, n, i_top, i_bot, .true., f, gw)
+         call fragment_characteristics(mesh, st, g, j, n, i_top, i_bot, .true., f, gw)
          ! the base lets go where the continuum reading's base stress pulls too (as breaks)
          if (.not. (2.0_wp * mesh%z(n) / mesh%dt * f(n) < -eps)) then
             st%section(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)

@@ -5,6 +5,7 @@ module spb_step
    use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base
    use spb_load, only: load_t, load_none, face_top, step_load, load_integral
    use spb_state, only: state_t
+   use spb_wave, only: transmit_residuals
    implicit none
    private
    public :: section_stress_a, section_stress_b, advance, advance_joined, joined_only, &
@@ -21,6 +22,8 @@ module spb_step
       real(wp) :: s_1 = 0.0_wp, s_n = 0.0_wp               !! s^n of the end cells [Pa]
       real(wp) :: q_top = 0.0_wp, q_bot = 0.0_wp           !! integral of the load over the
                                                            !! step on that face [Pa s]
+      real(wp) :: rho_top = 0.0_wp, rho_bot = 0.0_wp       !! zig-zag content at a transmitting
+                                                           !! end after the step (spb_wave) [m]
    end type end_step_t
 
    integer, parameter :: block_default = 2048   !! nodes per block of advance_joined
@@ -90,6 +93,27 @@ contains
       end if
    end subroutine face_load_integrals
 
+   !> Under gravity, the zig-zag content rho (spb_wave, transmit_residuals) at each transmitting
+   !> end after the step from the state at t^n: the intact step takes rho to -rho (found on
+   !> the lattice model, loads included), so it is read once, before the step; 0 otherwise.
+   pure subroutine zigzag_after_step(mesh, load, g, st, rho_top, rho_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(in) :: st      !! the state at t^n
+      real(wp), intent(out) :: rho_top     !! rho at a transmitting top at t^{n+1} [m]
+      real(wp), intent(out) :: rho_bot     !! rho at a transmitting bottom at t^{n+1} [m]
+      real(wp) :: i_top, i_bot
+      rho_top = 0.0_wp
+      rho_bot = 0.0_wp
+      if (.not. abs(g) > 0.0_wp) return
+      if (.not. (mesh%top == end_transmit .or. mesh%bottom == end_transmit)) return
+      call face_load_integrals(mesh, load, st%step, i_top, i_bot)
+      call transmit_residuals(mesh, st, g, i_top, i_bot, rho_top, rho_bot)
+      rho_top = -rho_top
+      rho_bot = -rho_bot
+   end subroutine zigzag_after_step
+
    !> Integral of the load over the step from t^n to t^{n+1} on the face it acts on [Pa s].
    pure subroutine step_load_integrals(load, n, dt, q_top, q_bot)
       type(load_t), intent(in) :: load     !! the end load
@@ -127,6 +151,7 @@ contains
       dt2 = dt * dt
       call end_stresses(mesh, load, st, r%s_top, r%s_bot)
       call step_load_integrals(load, st%step, mesh%dt, r%q_top, r%q_bot)
+      call zigzag_after_step(mesh, load, g, st, r%rho_top, r%rho_bot)
       st%s(0) = r%s_top
       st%s(n + 1) = r%s_bot
       r%du_top_old = st%dub(0)
@@ -242,7 +267,7 @@ contains
       integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
       real(wp), intent(out), optional :: max_sec_bottom  !! largest sec(n) of these steps [Pa]
       type(end_step_t) :: r(nsteps)
-      real(wp) :: unused
+      real(wp) :: unused, rho_top, rho_bot
       integer :: n, n0, bw, nblk, kb, lo, hi, t, a, e, i, k
       logical :: same_u
 
@@ -257,6 +282,14 @@ contains
             same_u = .false.
             exit
          end if
+      end do
+      ! the zig-zag content at a transmitting end changes sign in every step
+      call zigzag_after_step(mesh, load, g, st, rho_top, rho_bot)
+      do t = 1, nsteps
+         r(t)%rho_top = rho_top
+         r(t)%rho_bot = rho_bot
+         rho_top = -rho_top
+         rho_bot = -rho_bot
       end do
       bw = block_default
       if (present(block_nodes)) bw = block_nodes
@@ -411,14 +444,16 @@ contains
 
       ! the same work on the continuum state (spb_wave): I du / dt at a free loaded face; at a
       ! transmitting end the energy the incoming wave (the static stress carried and the
-      ! incident load) brings minus what the outgoing one takes, Z du (2 w_in - du) / dt
+      ! incident load) brings minus what the outgoing one takes, Z du (2 w - du) / dt, w the
+      ! incoming interval: w_in, plus under gravity the fragment's zig-zag content rho
       select case (mesh%top)
       case (end_free)
          st%ledger%w_wave = st%ledger%w_wave + r%q_top * r%du_top / dt
       case (end_transmit)
          st%ends%w_in_top = (0.5_wp * st%ends%s_static_top * dt + r%q_top) / mesh%z(1) + &
                        0.5_wp * st%ends%v_far_top * dt
-         st%ledger%w_wave = st%ledger%w_wave + mesh%z(1) * r%du_top * (2.0_wp * st%ends%w_in_top - r%du_top) / dt
+         st%ledger%w_wave = st%ledger%w_wave + mesh%z(1) * r%du_top * &
+                            (2.0_wp * (st%ends%w_in_top + r%rho_top) - r%du_top) / dt
       case default
          ! the other ends take no part here
       end select
@@ -428,7 +463,8 @@ contains
       case (end_transmit)
          st%ends%w_in_bot = -(0.5_wp * st%ends%s_static_bot * dt + r%q_bot) / mesh%z(n) + &
                        0.5_wp * st%ends%v_far_bot * dt
-         st%ledger%w_wave = st%ledger%w_wave + mesh%z(n) * r%du_bot * (2.0_wp * st%ends%w_in_bot - r%du_bot) / dt
+         st%ledger%w_wave = st%ledger%w_wave + mesh%z(n) * r%du_bot * &
+                            (2.0_wp * (st%ends%w_in_bot + r%rho_bot) - r%du_bot) / dt
       case default
          ! the other ends take no part here
       end select

@@ -9,7 +9,8 @@
 !>    joined node i:  m_i du_i / dt   = Z_{i+1} f_{i+1} + Z_i g_i
 !>    free top face:  m du / dt       = Z f - I/2      (I: integral of the face load over the step)
 !>    free bottom:    m du / dt       = Z g + I/2
-!> (a held or transmitting end gives no equation). The energy of that continuum state,
+!> (a held end gives no equation; a transmitting one gives the interval of the wave that came
+!> in through it, plus g dt^2/4 under gravity). The energy of that continuum state,
 !>    E = sum_k Z_k (f_k^2 + g_k^2) / dt  =  integral of rho v^2/2 + sigma^2/(2E),
 !> is non-negative, zero only at rest or in rigid motion, and conserved exactly by the intact
 !> scheme (g = 0, no load). A fragment with two free faces has one equation more than
@@ -19,15 +20,17 @@
 !> grows linearly when not zero) and must stay at round-off. A fragment held at both ends
 !> has one unknown more than equations (the zig-zag standing wave with nodes at every node):
 !> the smallest energy is taken. Under gravity E + e_pot - (g dt / 2) sum_f J'_f (J' the same
-!> alternating sum with the loads) is the exactly conserved total (checked for every
-!> combination of held and free ends, homogeneous and layered).
+!> alternating sum with the loads; with a transmitting end and an odd cell count, the outgoing
+!> wave's interval there) is the exactly conserved total (checked for every combination of
+!> held, free and transmitting ends, homogeneous and layered; bench/transmit_gravity.py).
 module spb_wave
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, end_free, end_base, end_fixed, end_transmit
    use spb_state, only: state_t
    implicit none
    private
-   public :: wave_t, wave_energy, fragment_wave, fragment_characteristics, region_wave
+   public :: wave_t, wave_energy, fragment_wave, fragment_characteristics, region_wave, &
+      transmit_residuals
 
    !> The whole bar's wave energy and the largest Jordan amplitude of its fragments.
    type :: wave_t
@@ -39,6 +42,20 @@ module spb_wave
       real(wp) :: jordan_abs = 0.0_wp  !! largest |J| [kg/(m s)]
       real(wp) :: momentum_scale = 0.0_wp  !! the bar's momentum scale (the sum above) [kg/(m s)]
    end type wave_t
+
+   !> What a fragment's two faces give its reading (face_equations).
+   type :: faces_t
+      logical :: eq_top = .false.     !! the top face gives an equation (tr_top included)
+      logical :: eq_bot = .false.     !! the bottom face gives an equation (tr_bot included)
+      logical :: tr_top = .false.     !! the top face is a transmitting end that is used
+      logical :: tr_bot = .false.     !! the bottom face is a transmitting end that is used
+      real(wp) :: load_top = 0.0_wp   !! load term of the top face, I_top/2 or 0 [kg/(m s)]
+      real(wp) :: load_bot = 0.0_wp   !! load term of the bottom face, I_bot/2 or 0 [kg/(m s)]
+      real(wp) :: eta_top = 0.0_wp    !! at a transmitting top, Z_1 f_1 its equation gives at
+                                      !! t^{n+1}: Z_1 (w_in + g dt^2/4) [kg/(m s)]
+      real(wp) :: eta_bot = 0.0_wp    !! at a transmitting bottom, Z_n g_n: Z_n (w_in + g dt^2/4)
+                                      !! [kg/(m s)]
+   end type faces_t
 
 contains
 
@@ -61,7 +78,7 @@ contains
          else
             bot = mesh%n
          end if
-         call fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jp, jr, ja)
+         call fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jp, jr, ja)
          w%e_wave = w%e_wave + e
          w%e_gravity = w%e_gravity - 0.5_wp * g * mesh%dt * jp
          total = total + jr
@@ -98,7 +115,7 @@ contains
             if (.not. st%joined(b)) exit
             b = b + 1
          end do
-         call fragment_wave(mesh, st, t, b, i_top, i_bot, e, jp, jr, ja)
+         call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja)
          e_sum = e_sum + e - 0.5_wp * g * mesh%dt * jp
          t = b
       end do
@@ -113,10 +130,14 @@ contains
    !> of it, sharing the residual, when both faces are free; 0 when only the top is free) or,
    !> held at both ends, from the smallest energy. With A = sum (hd^2 + (hd + s dt)^2)/Z,
    !> B = sum (-1)^(bot-k) (2 hd + s dt)/Z and C = sum 1/Z the energy is
-   !> (A + 2 beta B + 2 beta^2 C)/dt.
-   pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs)
+   !> (A + 2 beta B + 2 beta^2 C)/dt. rho: at a transmitting end, the reading's incoming
+   !> interval minus the one its equation gives (the fragment's zig-zag content, not zero where
+   !> the other face gives an equation too; transmit_residuals).
+   pure subroutine fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jprime, jordan, &
+                                 jordan_abs, rho)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp), intent(in) :: i_top          !! top face-load integral over the step [Pa s]
@@ -126,18 +147,20 @@ contains
       real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
                                              !! and |s dt| [kg/(m s)]
       real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
-      real(wp) :: dt, load_top, load_bot, r, sd, hd, sgn, sgn_k, a, b, c, d, beta, iz
-      logical :: eq_top, eq_bot, tr_top, tr_bot
+      real(wp), intent(out), optional :: rho(2)  !! rho at a transmitting top and bottom (else
+                                                 !! 0) [m]
+      real(wp) :: dt, r, sd, hd, hd_1, sgn, sgn_k, a, b, c, d, beta, iz
+      type(faces_t) :: fc
       integer :: k
       dt = mesh%dt
-      call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot, &
-                          tr_top, tr_bot)
+      fc = face_equations(mesh, st, g, top, bot, i_top, i_bot)
       r = node_momentum(mesh, st, top, bot, top)
       jprime = r
       jordan = abs(r)
       hd = 0.0_wp
-      if (eq_top .and. bot > top) hd = r + load_top - st%s(top + 1) * dt
-      if (tr_top .and. bot > top) hd = mesh%z(1) * st%ends%w_in_top - st%s(top + 1) * dt
+      if (fc%eq_top .and. bot > top) hd = r + fc%load_top - st%s(top + 1) * dt
+      if (fc%tr_top .and. bot > top) hd = fc%eta_top - st%s(top + 1) * dt
+      hd_1 = hd
       a = 0.0_wp
       b = 0.0_wp
       c = 0.0_wp
@@ -156,34 +179,92 @@ contains
          sgn_k = -sgn_k
          if (k < bot) hd = r - st%s(k + 1) * dt - hd
       end do
-      call face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
+      call face_terms(mesh, st, top, bot, fc, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
+      if (present(rho)) rho = 0.0_wp
       if (bot == top) return
       ! hd now holds hd_bot; d = h_bot from the bottom face's equation minus hd_bot
-      d = r - load_bot - hd
-      if (tr_bot) d = mesh%z(bot) * st%ends%w_in_bot - hd
-      if (eq_top .and. eq_bot) then
-         jordan_abs = abs(d)
+      d = r - fc%load_bot - hd
+      if (fc%tr_bot) d = fc%eta_bot - hd
+      if (fc%eq_top .and. fc%eq_bot) then
+         ! with two transmitting ends the residual is not a Jordan amplitude but the content of
+         ! the neutral zig-zag mode (no Jordan block: it changes sign in every step and never
+         ! grows; an unstressed start under gravity holds some); reported as before where
+         ! g = 0 (round-off there)
+         if (.not. ((fc%tr_top .or. fc%tr_bot) .and. abs(g) > 0.0_wp)) jordan_abs = abs(d)
          beta = 0.5_wp * d
-      else if (eq_top) then
+      else if (fc%eq_top) then
          beta = 0.0_wp
-      else if (eq_bot) then
+      else if (fc%eq_bot) then
          beta = d
       else
          beta = -b / (2.0_wp * c)
       end if
       e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
+      if (.not. present(rho)) return
+      ! h of the end cells: h_1 = hd_1 + beta (-1)^(bot-top-1), h_bot = hd_bot + beta
+      if (top == 0 .and. mesh%top == end_transmit) then
+         rho(1) = (hd_1 + beta * merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0) + &
+                   st%s(1) * dt - fc%eta_top) / mesh%z(1)
+      end if
+      if (bot == mesh%n .and. mesh%bottom == end_transmit) then
+         rho(2) = (hd + beta - fc%eta_bot) / mesh%z(bot)
+      end if
    end subroutine fragment_wave
+
+   !> The zig-zag content of the fragments at the transmitting ends, at t^{n+1} [m]: the
+   !> reading's incoming interval there minus the one the end's equation gives,
+   !> w_in + g dt^2/4. It is zero where the fragment's other end is held (the end's equation
+   !> is its reading); where the other face gives an equation too (a free face, another
+   !> transmitting end) a state can hold the neutral zig-zag mode of such a fragment (an
+   !> unstressed start under gravity holds g dt^2/4 of it), and the intact scheme takes
+   !> rho to -rho in every step, loads or not. The work through the end then counts the
+   !> incoming interval w_in + rho (spb_step). 0 without gravity (not computed: with g = 0 the
+   !> states the program makes have none).
+   pure subroutine transmit_residuals(mesh, st, g, i_top, i_bot, rho_top, rho_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), intent(out) :: rho_top     !! rho at a transmitting top (else 0) [m]
+      real(wp), intent(out) :: rho_bot     !! rho at a transmitting bottom (else 0) [m]
+      real(wp) :: e, jp, jr, ja, rho(2)
+      type(faces_t) :: fc
+      integer :: top, bot
+      rho_top = 0.0_wp
+      rho_bot = 0.0_wp
+      if (.not. abs(g) > 0.0_wp) return
+      if (mesh%top == end_transmit) then
+         bot = mesh%n
+         if (st%n_split > 0) bot = st%split(1)
+         fc = face_equations(mesh, st, g, 0, bot, i_top, i_bot)
+         if (fc%eq_bot) then
+            call fragment_wave(mesh, st, g, 0, bot, i_top, i_bot, e, jp, jr, ja, rho)
+            rho_top = rho(1)
+         end if
+      end if
+      if (mesh%bottom == end_transmit) then
+         top = 0
+         if (st%n_split > 0) top = st%split(st%n_split)
+         fc = face_equations(mesh, st, g, top, mesh%n, i_top, i_bot)
+         if (fc%eq_top) then
+            call fragment_wave(mesh, st, g, top, mesh%n, i_top, i_bot, e, jp, jr, ja, rho)
+            rho_bot = rho(2)
+         end if
+      end if
+   end subroutine transmit_residuals
 
    !> The characteristic intervals of the fragment's cells at t^n (at_n: read from s^n and
    !> du^{n+1}; the waves that arrive at the nodes during the step) or at t^{n+1} (from
    !> s^{n+1} and du^{n+1}): f_k (down-going) and g_k (up-going) rise over one step [m].
    !> Over the step a joined node moves by 2 (Z_i f_i + Z_{i+1} g_{i+1}) / (Z_i + Z_{i+1})
    !> (t^n intervals), a free bottom face by 2 f_i, a free top face by 2 g_{i+1}.
-   pure subroutine fragment_characteristics(mesh, st, top, bot, i_top, i_bot, at_n, f, g)
+   pure subroutine fragment_characteristics(mesh, st, gravity, top, bot, i_top, i_bot, at_n, f, g)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: gravity      !! gravity along +x [m/s^2]
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp), intent(in) :: i_top          !! top face-load integral over the step [Pa s]
@@ -192,7 +273,7 @@ contains
       real(wp), intent(out) :: f(top+1:)   !! down-going interval f_k of each cell [m]
       real(wp), intent(out) :: g(top+1:)   !! up-going interval g_k of each cell [m]
       real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot)), jp, jr, ja
-      call fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jp, jr, ja)
+      call fragment_h(mesh, st, gravity, top, bot, i_top, i_bot, at_n, h, sdt, jp, jr, ja)
       g(top+1:bot) = h(top+1:bot) / mesh%z(top+1:bot)
       f(top+1:bot) = (h(top+1:bot) + sdt(top+1:bot)) / mesh%z(top+1:bot)
    end subroutine fragment_characteristics
@@ -200,10 +281,11 @@ contains
    !> h_k = Z_k g_k and s_k dt of the fragment's cells, J' and the Jordan amplitude; at_n:
    !> the t^n reading (s^n; a node's equation holds the cell above), else t^{n+1} (s^{n+1};
    !> the cell below).
-   pure subroutine fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jprime, jordan, &
+   pure subroutine fragment_h(mesh, st, g, top, bot, i_top, i_bot, at_n, h, sdt, jprime, jordan, &
                               jordan_abs)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
@@ -216,8 +298,8 @@ contains
                                              !! and |s dt| [kg/(m s)]
       real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
       real(wp) :: r(top:bot), h_dn(top+1:max(top+1, bot)), h_up(top+1:max(top+1, bot))
-      real(wp) :: dt, load_top, load_bot, scale, sgn, res, alpha, num, den
-      logical :: eq_top, eq_bot, tr_top, tr_bot
+      real(wp) :: dt, scale, sgn, alpha, num, den
+      type(faces_t) :: fc
       integer :: i, k, o
 
       dt = mesh%dt
@@ -233,8 +315,7 @@ contains
             sdt(k) = st%s(k) * dt
          end if
       end do
-      call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot, &
-                          tr_top, tr_bot)
+      fc = face_equations(mesh, st, g, top, bot, i_top, i_bot)
       ! J' = sum (-1)^(i-top) (r_i + s_i dt), s_i the cell above node i
       jprime = 0.0_wp
       scale = 0.0_wp
@@ -249,42 +330,39 @@ contains
          end if
          sgn = -sgn
       end do
-      call face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
+      call face_terms(mesh, st, top, bot, fc, jprime)
       jordan = scale
       jordan_abs = 0.0_wp
       if (bot == top) return
       ! h from the top face down and from the bottom face up
       h_dn(top + 1) = 0.0_wp
-      if (eq_top .and. at_n) h_dn(top + 1) = r(top) - load_top
-      if (eq_top .and. .not. at_n) h_dn(top + 1) = r(top) + load_top - sdt(top + 1)
-      if (tr_top .and. at_n) h_dn(top + 1) = r(top) - mesh%z(1) * st%ends%w_in_top
-      if (tr_top .and. .not. at_n) h_dn(top + 1) = mesh%z(1) * st%ends%w_in_top - sdt(top + 1)
+      if (fc%eq_top .and. .not. fc%tr_top) h_dn(top + 1) = merge(r(top) - fc%load_top, &
+         r(top) + fc%load_top - sdt(top + 1), at_n)
+      if (fc%tr_top) h_dn(top + 1) = merge(r(top) - fc%eta_top, fc%eta_top - sdt(top + 1), at_n)
       do k = top + 1, bot - 1
          h_dn(k + 1) = r(k) - sdt(k + o) - h_dn(k)
       end do
-      if (eq_bot) then
-         if (tr_bot .and. at_n) then
-            h_up(bot) = r(bot) - mesh%z(bot) * st%ends%w_in_bot - sdt(bot)
-         else if (tr_bot) then
-            h_up(bot) = mesh%z(bot) * st%ends%w_in_bot
-         else if (at_n) then
-            h_up(bot) = r(bot) - sdt(bot) + load_bot
+      if (fc%eq_bot) then
+         if (fc%tr_bot) then
+            h_up(bot) = merge(r(bot) - fc%eta_bot - sdt(bot), fc%eta_bot, at_n)
          else
-            h_up(bot) = r(bot) - load_bot
+            h_up(bot) = merge(r(bot) - sdt(bot) + fc%load_bot, r(bot) - fc%load_bot, at_n)
          end if
          do k = bot - 1, top + 1, -1
             h_up(k) = r(k) - sdt(k + o) - h_up(k + 1)
          end do
       end if
-      if (eq_top .and. eq_bot) then
+      if (fc%eq_top .and. fc%eq_bot) then
          ! two free faces: one equation too many; its residual is the Jordan amplitude,
-         ! shared half and half between the two readings
-         res = h_dn(bot) - h_up(bot)
-         jordan_abs = abs(res)
+         ! shared half and half between the two readings (with a transmitting end: the
+         ! zig-zag content, fragment_wave)
+         if (.not. ((fc%tr_top .or. fc%tr_bot) .and. abs(g) > 0.0_wp)) then
+            jordan_abs = abs(h_dn(bot) - h_up(bot))
+         end if
          h(top+1:bot) = 0.5_wp * (h_dn + h_up)
-      else if (eq_top) then
+      else if (fc%eq_top) then
          h(top+1:bot) = h_dn
-      else if (eq_bot) then
+      else if (fc%eq_bot) then
          h(top+1:bot) = h_up
       else
          ! held at both ends: h + alpha (-1)^k solves the node equations for any alpha; the
@@ -307,33 +385,48 @@ contains
    end subroutine fragment_h
 
    !> The face loads' terms of J', and the alternating sum counted from the held end: from
-   !> the bottom where only the bottom is held (the top otherwise).
-   pure subroutine face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
+   !> the bottom where only the bottom is held (the top otherwise); with a transmitting end
+   !> and an odd cell count, the continuation's part of the sum (below).
+   pure subroutine face_terms(mesh, st, top, bot, fc, jprime)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      logical, intent(in) :: eq_top                  !! the top face gives an equation
-      logical, intent(in) :: eq_bot                  !! the bottom face gives an equation
-      real(wp), intent(in) :: load_top               !! load term of the top face [kg/(m s)]
-      real(wp), intent(in) :: load_bot               !! load term of the bottom face [kg/(m s)]
-      real(wp), intent(inout) :: jprime              !! J' from the nodes [kg/(m s)]
+      type(faces_t), intent(in) :: fc      !! what the two faces give (face_equations)
+      real(wp), intent(inout) :: jprime    !! J' from the nodes [kg/(m s)]
+      real(wp) :: out_top, out_bot
       ! Found by computing the
       ! conserved functional of the affine one-step map and checked exact (round-off) for
       ! free, top-held, bottom-held and both-held fragments of odd and even cell counts, with
-      ! loads on either face; not for a transmitting end (doc/method.md)
-      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * load_bot
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
+      ! loads on either face (doc/method.md)
+      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * fc%load_bot
+      if (fc%eq_top .and. .not. fc%eq_bot .and. mod(bot - top, 2) == 1) jprime = -jprime
       ! held at both ends (a fixed top, and a fixed bottom or the base) with an odd cell count:
       ! the conserved gravity term is -2 g sum w_i m_i (u_i^n + u_i^{n+1})/2 with weights
       ! w_i = (-1)^(i-top-1) (1/2 - C_i/C), C_i the compliance (sum of dt/Z) of the cells
       ! above node i (found from the affine one-step map; exact, layered included), plus the
       ! bottom node's elastic position over C (held_weights)
-      if (.not. (eq_top .or. eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
+      if (.not. (fc%eq_top .or. fc%eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
           mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
           (mesh%bottom == end_base .and. st%ends%base_contact))) jprime = held_weights(mesh, st, top, bot)
-      if (eq_top .and. .not. eq_bot .and. mod(bot - top, 2) == 1) then
-         jprime = jprime - 2.0_wp * load_top
+      if (fc%eq_top .and. .not. fc%eq_bot .and. mod(bot - top, 2) == 1) then
+         jprime = jprime - 2.0_wp * fc%load_top
+      end if
+      ! a transmitting end read by its equation, odd cell count: the alternating sum goes on
+      ! through the continuation, where it telescopes to the interval of the wave that went out
+      ! over the step, Z (du_end - w_in - g dt^2/4) = r_end - eta. Twice that with a held other
+      ! end (the sum counted from it); with two transmitting ends the two halves' sum replaces
+      ! J' (the bar's own part cancels). Found on the lattice model (bench/transmit_gravity.py,
+      ! from the affine one-step map), exact intact and through breaks.
+      if (mod(bot - top, 2) == 0 .or. .not. (fc%tr_top .or. fc%tr_bot)) return
+      out_top = node_momentum(mesh, st, top, bot, top) - fc%eta_top
+      out_bot = node_momentum(mesh, st, top, bot, bot) - fc%eta_bot
+      if (fc%tr_top .and. fc%tr_bot) then
+         jprime = out_top + out_bot
+      else if (fc%tr_bot .and. .not. fc%eq_top) then
+         jprime = jprime + 2.0_wp * out_bot
+      else if (fc%tr_top .and. .not. fc%eq_bot) then
+         jprime = jprime + 2.0_wp * out_top
       end if
    end subroutine face_terms
 
@@ -391,42 +484,48 @@ contains
 
    !> Which faces of the fragment give an equation: a free face, with the load terms -I/2 (top)
    !> and +I/2 (bottom) moved to the side of the unknowns, and a transmitting end (tr_*), where
-   !> the wave that came in over the step is known (st%w_in_*): at t^{n+1} it is the interval
-   !> of the end cell's incoming wave; at t^n the end node moved by it plus the end cell's
-   !> outgoing interval. A held end gives none. A transmitting end is used only where the
-   !> other end is not a free face: under gravity its equation lacks a term (not derived), and
-   !> the free face's reading is exact there (Example 1's splinter under g).
-   pure subroutine face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, &
-                                  load_top, load_bot, tr_top, tr_bot)
+   !> the wave that came in over the step is known: at t^{n+1} the end cell's incoming
+   !> interval is w_in + g dt^2/4 (eta = Z times it); at t^n the end node moved by it plus the
+   !> end cell's outgoing interval. w_in (st%ends) is the interval the static stress carried,
+   !> the continuation's motion and the incident load bring; g dt^2/4 is gravity's: the virtual
+   !> cell's s_static is the continuation's static stress half a cell beyond the end node, so
+   !> at the node it is s_static -/+ rho g dx/2 (bottom/top), and the reading's intervals carry
+   !> the common rise g dt t^{n+1/2}/2 of g t^2/2, which cancels the incoming wave's own
+   !> growth (doc/method.md). A held end gives none. A transmitting end is used only where the
+   !> other end is not a free face (the free face's reading is exact there too).
+   pure type(faces_t) function face_equations(mesh, st, g, top, bot, i_top, i_bot) result(fc)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      logical, intent(out) :: eq_top       !! the top face gives an equation (tr_top included)
-      logical, intent(out) :: eq_bot       !! the bottom face gives an equation (tr_bot included)
-      logical, intent(out) :: tr_top       !! the top face is a transmitting end that is used
-      logical, intent(out) :: tr_bot       !! the bottom face is a transmitting end that is used
-      real(wp), intent(out) :: load_top    !! load term of the top face, I_top/2 or 0 [kg/(m s)]
-      real(wp), intent(out) :: load_bot    !! load term of the bottom face, I_bot/2 or 0 [kg/(m s)]
-      load_top = 0.0_wp
-      load_bot = 0.0_wp
+      real(wp) :: grav
       if (top > 0) then
-         eq_top = .true.
+         fc%eq_top = .true.
       else
-         eq_top = mesh%top == end_free
-         if (eq_top) load_top = 0.5_wp * i_top
+         fc%eq_top = mesh%top == end_free
+         if (fc%eq_top) fc%load_top = 0.5_wp * i_top
       end if
       if (bot < mesh%n) then
-         eq_bot = .true.
+         fc%eq_bot = .true.
       else
-         eq_bot = mesh%bottom == end_free .or. (mesh%bottom == end_base .and. .not. st%ends%base_contact)
-         if (mesh%bottom == end_free) load_bot = 0.5_wp * i_bot
+         fc%eq_bot = mesh%bottom == end_free .or. &
+                     (mesh%bottom == end_base .and. .not. st%ends%base_contact)
+         if (mesh%bottom == end_free) fc%load_bot = 0.5_wp * i_bot
       end if
-      tr_top = top == 0 .and. mesh%top == end_transmit .and. .not. eq_bot
-      tr_bot = bot == mesh%n .and. mesh%bottom == end_transmit .and. .not. eq_top
-      eq_top = eq_top .or. tr_top
-      eq_bot = eq_bot .or. tr_bot
-   end subroutine face_equations
+      fc%tr_top = top == 0 .and. mesh%top == end_transmit .and. .not. fc%eq_bot
+      fc%tr_bot = bot == mesh%n .and. mesh%bottom == end_transmit .and. .not. fc%eq_top
+      fc%eq_top = fc%eq_top .or. fc%tr_top
+      fc%eq_bot = fc%eq_bot .or. fc%tr_bot
+      grav = 0.0_wp
+      if (abs(g) > 0.0_wp) grav = 0.25_wp * g * mesh%dt**2
+      if (top == 0 .and. mesh%top == end_transmit) then
+         fc%eta_top = mesh%z(1) * (st%ends%w_in_top + grav)
+      end if
+      if (bot == mesh%n .and. mesh%bottom == end_transmit) then
+         fc%eta_bot = mesh%z(mesh%n) * (st%ends%w_in_bot + grav)
+      end if
+   end function face_equations
 end module spb_wave
