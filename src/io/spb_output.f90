@@ -98,11 +98,21 @@ module spb_output
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node'
-   character(len=*), parameter :: fmt_real = 'es20.12e3'
-   character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
-      '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
-   character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12))'
-   character(len=*), parameter :: fmt_prf = '(4(1x,' // fmt_real // '))'
+   ! The rows' formats, written by the fast formatters (es20_12, int_right), which give the
+   ! same characters: .evt and .his (1x,es20.12e3 | 1x,i12 | 1x,a16 per column: table_line),
+   ! .frg (2(1x,i12),6(1x,es20.12e3),2(1x,i12)), .prf (4(1x,es20.12e3)), .gau (1x,es20.12e3
+   ! per column).
+
+   !> Bytes of rows collected per text file before they are written: one write statement
+   !> per buffer instead of one per row (the run-time library's cost per record is most of
+   !> the writing otherwise); the bytes in the file are the same.
+   integer, parameter :: row_buffer_len = 262144
+
+   !> Rows of one text file not yet written: text(1:n), each row ended by a newline.
+   type :: row_buffer_t
+      character(len=:), allocatable :: text   !! the rows (allocated at the first row)
+      integer :: n = 0                        !! bytes held
+   end type row_buffer_t
 
    !> A closed file's unit: newunit= numbers are negative but never -1.
    integer, parameter :: no_unit = -1
@@ -118,6 +128,8 @@ module spb_output
       integer :: h_his = 0, h_evt = 0                     !! its table handles
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
       integer(int64) :: head(5) = 0                       !! header bytes of each text file
+      type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
+                                                          !! file (text_extensions order)
    end type outputs_t
 
    !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
@@ -292,7 +304,7 @@ contains
          line(at + 44:at + 63) = es20_12(u(k))
          at = at + 63
       end do
-      write(out%gau, '(a)') line
+      call put_row(out, 5, line)
       if (out%hdf5) call h5_append_xt(out%h5, t, stress, velocity, u, xt_gauges)
    end subroutine write_gauge_row
 
@@ -510,10 +522,11 @@ contains
    !> when a disk is full, so the size the system has is compared with what was written
    !> (after a flush). A shortfall is err (exit 3), naming the file and the bytes.
    subroutine check_written(out, err)
-      type(outputs_t), intent(in) :: out   !! the outputs
+      type(outputs_t), intent(inout) :: out   !! the outputs (collected rows written first)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer(int64) :: wrote, have
       integer :: k, u
+      call drain_rows(out)
       if (allocated(err)) return
       do k = 1, size(text_extensions)
          u = text_unit(out, k)
@@ -562,6 +575,7 @@ contains
    !> Push what is written so far to disk (text and HDF5): a killed run reads up to here.
    subroutine flush_outputs(out)
       type(outputs_t), intent(inout) :: out   !! the outputs
+      call drain_rows(out)
       if (out%his /= no_unit) flush(out%his)
       if (out%evt /= no_unit) flush(out%evt)
       if (out%gau /= no_unit) flush(out%gau)
@@ -570,9 +584,10 @@ contains
 
    !> Bytes in each text file now (written through to the file first).
    subroutine text_sizes(out, bytes)
-      type(outputs_t), intent(in) :: out   !! the outputs
+      type(outputs_t), intent(inout) :: out   !! the outputs (collected rows written first)
       integer(int64), intent(out) :: bytes(5)   !! .his, .prf, .evt, .frg, .gau (0: not open)
       integer :: k, u(5)
+      call drain_rows(out)
       u = [out%his, out%prf, out%evt, out%frg, out%gau]
       bytes = 0
       do k = 1, 5
@@ -915,7 +930,7 @@ contains
       real(wp), intent(in) :: v(n_history)     !! the row
       character(len=sum(history_table%width + 1)) :: line
       call table_line(history_table, v, line)
-      write(out%his, '(a)') line
+      call put_row(out, 1, line)
       if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
 
@@ -932,11 +947,56 @@ contains
                  e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
                  real(e%frag_below, wp), e%stress_bound, e%shift]
             call table_line(event_table, v, line)
-            write(out%evt, '(a)') line
+            call put_row(out, 3, line)
             if (out%hdf5) call h5_append(out%h5, out%h_evt, v)
          end associate
       end do
    end subroutine write_events
+
+   !> Collect one row of text file k (text_extensions order); the rows are written when the
+   !> buffer is full and by drain_rows.
+   subroutine put_row(out, k, line)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      integer, intent(in) :: k                !! text file (text_extensions)
+      character(len=*), intent(in) :: line    !! the row, without its newline
+      integer :: u
+      u = text_unit(out, k)
+      if (u == no_unit) return
+      associate (b => out%rows(k))
+         if (.not. allocated(b%text)) allocate(character(len=row_buffer_len) :: b%text)
+         if (b%n + len(line) + 1 > row_buffer_len) call drain_one(out, k)
+         if (len(line) + 1 > row_buffer_len) then
+            write(u, '(a)') line
+         else
+            b%text(b%n + 1:b%n + len(line)) = line
+            b%text(b%n + len(line) + 1:b%n + len(line) + 1) = new_line('a')
+            b%n = b%n + len(line) + 1
+         end if
+      end associate
+   end subroutine put_row
+
+   !> Write the collected rows of every text file.
+   subroutine drain_rows(out)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      integer :: k
+      do k = 1, size(out%rows)
+         call drain_one(out, k)
+      end do
+   end subroutine drain_rows
+
+   !> Write the collected rows of text file k as one record: the rows with their newlines,
+   !> the last newline left to the record's end (the bytes of one write per row).
+   subroutine drain_one(out, k)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      integer, intent(in) :: k                !! text file (text_extensions)
+      integer :: u
+      associate (b => out%rows(k))
+         if (b%n == 0) return
+         u = text_unit(out, k)
+         if (u /= no_unit) write(u, '(a)') b%text(1:b%n - 1)
+         b%n = 0
+      end associate
+   end subroutine drain_one
 
    !> One text row of a table: each column a blank and its field, by the fast formatters
    !> (the same characters as es20.12e3 and iW edit descriptors, tests/test_format.pf).
@@ -971,11 +1031,16 @@ contains
       type(frag_info_t), intent(in) :: list(:)   !! the fragments, top to bottom
       integer :: f
       character(len=:), allocatable :: g
-      write(out%frg, '(a)') '# t = ' // rtoa(t)
+      character(len=2 * 13 + 6 * 21 + 2 * 13) :: line
+      call put_row(out, 4, '# t = ' // rtoa(t))
       do f = 1, size(list)
-         write(out%frg, fmt_frg) list(f)%id, list(f)%parent, real(list(f)%birth_step, wp) * dt, &
-            list(f)%x_top, list(f)%x_bot, list(f)%mass, list(f)%velocity, list(f)%e_vib, &
-            list(f)%top, list(f)%bot
+         ! (2(1x,i12),6(1x,es20.12e3),2(1x,i12))
+         line = ' ' // int_right(list(f)%id, 12) // ' ' // int_right(list(f)%parent, 12) // &
+            ' ' // es20_12(real(list(f)%birth_step, wp) * dt) // ' ' // es20_12(list(f)%x_top) // &
+            ' ' // es20_12(list(f)%x_bot) // ' ' // es20_12(list(f)%mass) // &
+            ' ' // es20_12(list(f)%velocity) // ' ' // es20_12(list(f)%e_vib) // &
+            ' ' // int_right(list(f)%top, 12) // ' ' // int_right(list(f)%bot, 12)
+         call put_row(out, 4, line)
       end do
       if (.not. out%hdf5) return
       out%n_frg = out%n_frg + 1
@@ -1020,13 +1085,14 @@ contains
       character(len=:), allocatable :: g
       n = mesh%n
       dt = mesh%dt
-      write(out%prf, '(a)') '# t = ' // rtoa(real(st%step, wp) * dt)
-      write(out%prf, '(a)') '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested)
+      call put_row(out, 2, '# t = ' // rtoa(real(st%step, wp) * dt))
+      call put_row(out, 2, '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested))
+      ! (4(1x,es20.12e3))
       do i = 0, n
-         if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, &
-                                            st%s(i) / mesh%area(i)
-         if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, &
-                                            st%s(i + 1) / mesh%area(i + 1)
+         if (i > 0) call put_row(out, 2, ' ' // es20_12(mesh%x(i)) // ' ' // es20_12(st%ua(i)) // &
+            ' ' // es20_12(st%dua(i) / dt) // ' ' // es20_12(st%s(i) / mesh%area(i)))
+         if (i < n) call put_row(out, 2, ' ' // es20_12(mesh%x(i)) // ' ' // es20_12(st%ub(i)) // &
+            ' ' // es20_12(st%dub(i) / dt) // ' ' // es20_12(st%s(i + 1) / mesh%area(i + 1)))
       end do
       if (.not. out%hdf5) return
       out%n_prof = out%n_prof + 1
