@@ -98,7 +98,7 @@ contains
             if (.not. st%joined(b)) exit
             b = b + 1
          end do
-         call fragment_wave(mesh, st, t, b, i_top, i_bot, e, jp, jr, ja)
+         call fragment_wave(mesh, st, t, b, i_top, i_bot, e, jp, jr, ja, scale=.false.)
          e_sum = e_sum + e - 0.5_wp * g * mesh%dt * jp
          t = b
       end do
@@ -113,8 +113,11 @@ contains
    !> of it, sharing the residual, when both faces are free; 0 when only the top is free) or,
    !> held at both ends, from the smallest energy. With A = sum (hd^2 + (hd + s dt)^2)/Z,
    !> B = sum (-1)^(bot-k) (2 hd + s dt)/Z and C = sum 1/Z the energy is
-   !> (A + 2 beta B + 2 beta^2 C)/dt.
-   pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs)
+   !> (A + 2 beta B + 2 beta^2 C)/dt. B and C are summed only where beta can be other than 0,
+   !> the momentum scale only when asked (scale, default .true.): the same operations in the
+   !> same order otherwise (cell_sums), so the same bits.
+   pure subroutine fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jprime, jordan, jordan_abs, &
+                                 scale)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
@@ -124,38 +127,33 @@ contains
       real(wp), intent(out) :: e             !! continuum energy [J/m^2]
       real(wp), intent(out) :: jprime        !! alternating sum J' with the load terms [kg/(m s)]
       real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
-                                             !! and |s dt| [kg/(m s)]
+                                             !! and |s dt| [kg/(m s)] (0 with scale = .false.)
       real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
-      real(wp) :: dt, load_top, load_bot, r, sd, hd, sgn, sgn_k, a, b, c, d, beta, iz
-      logical :: eq_top, eq_bot, tr_top, tr_bot
-      integer :: k
+      logical, intent(in), optional :: scale   !! sum the momentum scale (default .true.)
+      real(wp) :: dt, load_top, load_bot, r, hd, a, b, c, beta, d
+      logical :: eq_top, eq_bot, tr_top, tr_bot, with_scale
+      with_scale = .true.
+      if (present(scale)) with_scale = scale
+      if (top > 0 .and. bot < mesh%n .and. bot > top) then
+         call inner_wave(mesh, st, top, bot, with_scale, e, jprime, jordan, jordan_abs)
+         return
+      end if
       dt = mesh%dt
       call face_equations(mesh, st, top, bot, i_top, i_bot, eq_top, eq_bot, load_top, load_bot, &
                           tr_top, tr_bot)
       r = node_momentum(mesh, st, top, bot, top)
-      jprime = r
-      jordan = abs(r)
       hd = 0.0_wp
       if (eq_top .and. bot > top) hd = r + load_top - st%s(top + 1) * dt
       if (tr_top .and. bot > top) hd = mesh%z(1) * st%ends%w_in_top - st%s(top + 1) * dt
+      jprime = r
+      jordan = 0.0_wp
+      if (with_scale) jordan = abs(r)
       a = 0.0_wp
       b = 0.0_wp
       c = 0.0_wp
-      sgn = 1.0_wp
-      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
-      do k = top + 1, bot
-         sd = st%s(k) * dt
-         r = node_momentum(mesh, st, top, bot, k)
-         sgn = -sgn
-         jprime = jprime + sgn * (r + sd)
-         jordan = jordan + abs(r) + abs(sd)
-         iz = 1.0_wp / mesh%z(k)
-         a = a + (hd**2 + (hd + sd)**2) * iz
-         b = b + sgn_k * (2.0_wp * hd + sd) * iz
-         c = c + iz
-         sgn_k = -sgn_k
-         if (k < bot) hd = r - st%s(k + 1) * dt - hd
-      end do
+      ! B and C enter the energy unless beta = 0 (a free top over a held bottom)
+      call cell_sums(mesh, st, top, bot, with_scale, .not. (eq_top .and. .not. eq_bot), hd, r, &
+                     jprime, jordan, a, b, c)
       call face_terms(mesh, st, top, bot, eq_top, eq_bot, load_top, load_bot, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
@@ -175,6 +173,107 @@ contains
       end if
       e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
    end subroutine fragment_wave
+
+   !> fragment_wave of a fragment between two split nodes (0 < top < bot < n), the common
+   !> case once a bar has broken up: both faces free and without load, so face_equations and
+   !> face_terms reduce to what is written out here (the load terms 0 kept in the same
+   !> operations: x + 0 is not x for x = -0).
+   pure subroutine inner_wave(mesh, st, top, bot, with_scale, e, jprime, jordan, jordan_abs)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment, a split node
+      integer, intent(in) :: bot           !! bottom node of the fragment, a split node > top
+      logical, intent(in) :: with_scale    !! sum the momentum scale
+      real(wp), intent(out) :: e             !! continuum energy [J/m^2]
+      real(wp), intent(out) :: jprime        !! alternating sum J' [kg/(m s)]
+      real(wp), intent(out) :: jordan        !! the momentum scale (0 without with_scale)
+                                             !! [kg/(m s)]
+      real(wp), intent(out) :: jordan_abs    !! |J| [kg/(m s)]
+      real(wp), parameter :: no_load = 0.0_wp   ! load_top, load_bot of a split node's face
+      real(wp) :: dt, r, hd, a, b, c, beta, d
+      dt = mesh%dt
+      ! node_momentum of the lower half of the split node top
+      r = mesh%mb(top) * st%dub(top)
+      r = r / dt
+      hd = r + no_load - st%s(top + 1) * dt
+      jprime = r
+      jordan = 0.0_wp
+      if (with_scale) jordan = abs(r)
+      a = 0.0_wp
+      b = 0.0_wp
+      c = 0.0_wp
+      call cell_sums(mesh, st, top, bot, with_scale, .true., hd, r, jprime, jordan, a, b, c)
+      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * no_load
+      d = r - no_load - hd
+      jordan_abs = abs(d)
+      beta = 0.5_wp * d
+      e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
+   end subroutine inner_wave
+
+   !> fragment_wave's pass over the cells top+1..bot: the same operations in the same order
+   !> as the one-pass loop (node_momentum inlined), the sums in locals. On return hd is
+   !> hd_bot and r the bottom node's momentum (the top node's when the fragment has no cell).
+   pure subroutine cell_sums(mesh, st, top, bot, with_scale, with_bc, hd, r, jp, jr, a, b, c)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      logical, intent(in) :: with_scale    !! sum the momentum scale (jr)
+      logical, intent(in) :: with_bc       !! sum B and C
+      real(wp), intent(inout) :: hd        !! hd of the first cell in, hd_bot out [kg/(m s)]
+      real(wp), intent(inout) :: r         !! m du/dt of the last node summed [kg/(m s)]
+      real(wp), intent(inout) :: jp        !! J' so far [kg/(m s)]
+      real(wp), intent(inout) :: jr        !! the momentum scale so far [kg/(m s)]
+      real(wp), intent(inout) :: a         !! A so far [(kg/(m s))^2 m^2 s/kg]
+      real(wp), intent(inout) :: b         !! B so far [kg/(m s) m^2 s/kg]
+      real(wp), intent(inout) :: c         !! C so far [m^2 s/kg]
+      real(wp) :: dt, sd, sd_next, iz, sgn, sgn_k, h, p, q, u, v, w, rk
+      integer :: k, last
+      dt = mesh%dt
+      h = hd
+      p = jp
+      q = jr
+      u = a
+      v = b
+      w = c
+      rk = r
+      sgn = 1.0_wp
+      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
+      ! the bottom node is a whole node only at the bar's end
+      last = bot
+      if (bot < mesh%n) last = bot - 1
+      sd_next = 0.0_wp
+      if (bot > top) sd_next = st%s(top + 1) * dt
+      do k = top + 1, bot
+         sd = sd_next
+         if (k <= last) then
+            rk = (mesh%ma(k) * st%dua(k) + mesh%mb(k) * st%dub(k)) / dt
+         else
+            rk = mesh%ma(k) * st%dua(k) / dt    ! the upper half of a split node
+         end if
+         iz = 1.0_wp / mesh%z(k)
+         sgn = -sgn
+         p = p + sgn * (rk + sd)
+         if (with_scale) q = q + abs(rk) + abs(sd)
+         u = u + (h**2 + (h + sd)**2) * iz
+         if (with_bc) then
+            v = v + sgn_k * (2.0_wp * h + sd) * iz
+            w = w + iz
+         end if
+         sgn_k = -sgn_k
+         if (k < bot) then
+            sd_next = st%s(k + 1) * dt
+            h = rk - sd_next - h
+         end if
+      end do
+      r = rk
+      hd = h
+      jp = p
+      jr = q
+      a = u
+      b = v
+      c = w
+   end subroutine cell_sums
 
    !> The characteristic intervals of the fragment's cells at t^n (at_n: read from s^n and
    !> du^{n+1}; the waves that arrive at the nodes during the step) or at t^{n+1} (from
