@@ -5,7 +5,7 @@ module spb_strings
    use spb_kinds, only: wp
    implicit none
    private
-   public :: itoa, rtoa, lower, ltoa, es20_12, int_right
+   public :: itoa, rtoa, lower, ltoa, es20_12, int_right, int_into
 
    interface itoa
       module procedure itoa_default, itoa_int64
@@ -93,13 +93,16 @@ contains
       integer(int64), intent(out) :: m     !! the 13 digits
       integer, intent(out) :: e            !! the decimal exponent
       logical, intent(out) :: ok           !! m and e are decided
-      integer :: j, k, step
+      integer :: j, k, step, be
       real(qp) :: q, r
       !> 10^k correctly rounded to 113 bits (compile time; checked against exact fractions)
       !> for every k that ES20.12 of a double needs: 12 - e, e = -324 (subnormals) .. 308
       real(qp), parameter :: pow10_q(-300:340) = [(10.0_qp**k, k = -300, 340)]
-      ! the decade from the binary exponent (within one; corrected below)
-      e = floor(real(exponent(a) - 1, wp) * 0.30102999566398120_wp)
+      ! the decade from the binary exponent (within one; corrected below): exponent(a) - 1,
+      ! read from the bits where a is normal (exponent() is a library call)
+      be = int(ibits(transfer(a, 0_int64), 52, 11))
+      if (be == 0) be = exponent(a) + 1022
+      e = floor(real(be - 1023, wp) * 0.30102999566398120_wp)
       ok = .false.
       m = 0
       do j = 1, 3
@@ -142,20 +145,30 @@ contains
       integer(int64), intent(out) :: m     !! the rounded value (step 0)
       integer, intent(out) :: step         !! 0: in the decade; +1: above it; -1: below it
       real(wp), parameter :: splitter = 134217729.0_wp          ! 2^27 + 1
-      real(wp) :: p, hi, lo, r, f, ah, al, ph, pl
+      real(wp) :: p, hi, lo, r, f, ah, al, ph, pl, t
+      integer(int64) :: m0
       integer :: j
       real(wp), parameter :: pow10(0:22) = [(10.0_wp**j, j = 0, 22)]   ! exact
       p = pow10(k)
       hi = a * p
-      r = anint(hi)
-      f = hi - r
       step = 0
       m = 0
-      ! lo is below half an ulp of hi (< 1e-3 here): only the decade's edges and ties need it
-      if (hi > 1.0e12_wp + 1.0_wp .and. hi < 1.0e13_wp - 1.0_wp .and. abs(f) < 0.499_wp) then
-         m = int(r, int64)
-         return
+      ! lo is below half an ulp of hi (< 1e-3 here): only the decade's edges and ties need it.
+      ! hi < 1e15 (the decade is known within one): its integer part m0 and fraction t are
+      ! exact, and anint(hi) is m0 or m0 + 1 (without the library's round)
+      if (hi > 1.0e12_wp + 1.0_wp .and. hi < 1.0e13_wp - 1.0_wp) then
+         m0 = int(hi, int64)
+         t = hi - real(m0, wp)
+         if (t < 0.499_wp) then
+            m = m0
+            return
+         else if (t > 0.501_wp) then
+            m = m0 + 1
+            return
+         end if
       end if
+      r = anint(hi)
+      f = hi - r
       call split(a, ah, al)
       call split(p, ph, pl)
       lo = ((ah * ph - hi) + ah * pl + al * ph) + al * pl
@@ -191,19 +204,29 @@ contains
       integer, intent(in) :: k   !! the integer
       integer, intent(in) :: w   !! field width in characters (<= 20)
       character(len=w) :: out
+      call int_into(k, out)
+   end function int_right
+
+   !> k right-justified in the field, as the I<w> edit writes it with w = len(field) (<= 20),
+   !> written in place (no temporary of run-time length).
+   pure subroutine int_into(k, field)
+      integer, intent(in) :: k   !! the integer
+      ! the caller's part of a row receives the digits
+      ! allow(assumed-size-character-intent)
+      character(len=*), intent(out) :: field   !! the field
       integer(int64) :: m
       integer :: j
       m = abs(int(k, int64))
-      out = ' '
-      j = w
+      field = ' '
+      j = len(field)
       do
-         out(j:j) = achar(48 + int(mod(m, 10_int64)))
+         field(j:j) = achar(48 + int(mod(m, 10_int64)))
          m = m / 10_int64
          j = j - 1
          if (m == 0 .or. j < 1) exit
       end do
-      if (k < 0 .and. j >= 1) out(j:j) = '-'
-   end function int_right
+      if (k < 0 .and. j >= 1) field(j:j) = '-'
+   end subroutine int_into
 
    !> Integer as text, no blanks.
    pure function itoa_default(k) result(s)

@@ -8,7 +8,7 @@ module spb_output
    use, intrinsic :: iso_fortran_env, only: int64
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
-   use spb_strings, only: itoa, rtoa, es20_12, int_right
+   use spb_strings, only: itoa, rtoa, es20_12, int_right, int_into
    use spb_deck, only: deck_record_t, write_echo
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
@@ -1012,9 +1012,11 @@ contains
       do k = 1, size(table)
          associate (c => table(k))
             if (c%kind) then
-               line(at + 1:at + c%width) = kind_field(nint(v(k)))
+               line(at + 1:at + c%width) = kind_field(whole(v(k)))
             else if (c%whole) then
-               line(at + 1:at + c%width) = int_right(nint(v(k)), c%width)
+               call int_into(whole(v(k)), line(at + 1:at + c%width))
+            else if (c%width == 20) then
+               line(at + 1:at + 20) = es20_12(v(k))       ! a copy of known length
             else
                line(at + 1:at + c%width) = es20_12(v(k))
             end if
@@ -1022,6 +1024,14 @@ contains
          end associate
       end do
    end subroutine table_line
+
+   !> nint(x) for a whole number held as float64 (exact below 2^53), without the library call
+   !> where x is whole.
+   pure integer function whole(x) result(k)
+      real(wp), intent(in) :: x            !! the value
+      k = int(x)
+      if (abs(x - real(k, wp)) > 0.0_wp) k = nint(x)
+   end function whole
 
    !> One block of fragments at time t.
    subroutine write_fragments(out, t, dt, list)
@@ -1106,12 +1116,13 @@ contains
       call h5_write(out%h5, g // '/v', v, 'm/s')
       call h5_write(out%h5, g // '/stress', s, 'Pa')
    end subroutine write_profile
-   !> An event kind's name right-justified in 16 characters (the A16 field of fmt_evt),
-   !> without an allocatable temporary per event.
+   !> An event kind's name right-justified in 16 characters (the A16 field of the .evt rows),
+   !> without a temporary per event.
    pure function kind_field(kind) result(f)
       integer, intent(in) :: kind   !! event kind (ev_*)
       character(len=16) :: f
-      f = adjustr('  ' // event_kind_names(max(1, min(4, kind))))
+      character(len=16), parameter :: fields(4) = adjustr('  ' // event_kind_names)
+      f = fields(max(1, min(4, kind)))
    end function kind_field
 
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.
