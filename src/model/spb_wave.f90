@@ -86,11 +86,23 @@ contains
       real(wp) :: e, jp, jr, ja
       integer :: t, b, i
       ! gravity potential at mid-step, -g m (u^n + u^{n+1})/2, of the halves the region owns
+      ! (node by node, upper half then lower half: the ends' halves only where the region
+      ! owns them)
       e_sum = 0.0_wp
-      do i = top, bot
-         if (i > top .or. top == 0) e_sum = e_sum - g * mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i))
-         if (i < bot .or. bot == mesh%n) e_sum = e_sum - g * mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i))
+      if (top == 0) e_sum = e_sum - g * mesh%ma(top) * (st%ua(top) - 0.5_wp * st%dua(top))
+      if (top < bot .or. bot == mesh%n) then
+         e_sum = e_sum - g * mesh%mb(top) * (st%ub(top) - 0.5_wp * st%dub(top))
+      end if
+      do i = top + 1, bot - 1
+         e_sum = e_sum - g * mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i))
+         e_sum = e_sum - g * mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i))
       end do
+      if (bot > top) then
+         e_sum = e_sum - g * mesh%ma(bot) * (st%ua(bot) - 0.5_wp * st%dua(bot))
+         if (bot == mesh%n) then
+            e_sum = e_sum - g * mesh%mb(bot) * (st%ub(bot) - 0.5_wp * st%dub(bot))
+         end if
+      end if
       t = top
       do while (t < bot)
          b = t + 1
@@ -98,7 +110,11 @@ contains
             if (.not. st%joined(b)) exit
             b = b + 1
          end do
-         call fragment_wave(mesh, st, t, b, i_top, i_bot, e, jp, jr, ja, scale=.false.)
+         if (t > 0 .and. b < mesh%n) then
+            call inner_wave(mesh, st, t, b, .false., e, jp, jr, ja)
+         else
+            call fragment_wave(mesh, st, t, b, i_top, i_bot, e, jp, jr, ja, scale=.false.)
+         end if
          e_sum = e_sum + e - 0.5_wp * g * mesh%dt * jp
          t = b
       end do
@@ -190,7 +206,7 @@ contains
                                              !! [kg/(m s)]
       real(wp), intent(out) :: jordan_abs    !! |J| [kg/(m s)]
       real(wp), parameter :: no_load = 0.0_wp   ! load_top, load_bot of a split node's face
-      real(wp) :: dt, r, hd, a, b, c, beta, d
+      real(wp) :: dt, r, hd, a, b, c, beta, d, sd, iz
       dt = mesh%dt
       ! node_momentum of the lower half of the split node top
       r = mesh%mb(top) * st%dub(top)
@@ -202,7 +218,19 @@ contains
       a = 0.0_wp
       b = 0.0_wp
       c = 0.0_wp
-      call cell_sums(mesh, st, top, bot, with_scale, .true., hd, r, jprime, jordan, a, b, c)
+      if (bot == top + 1) then
+         ! one cell (cell_sums' loop written out for it: sgn = -1, sgn_k = 1)
+         sd = st%s(bot) * dt
+         r = mesh%ma(bot) * st%dua(bot) / dt
+         iz = 1.0_wp / mesh%z(bot)
+         jprime = jprime + (-1.0_wp) * (r + sd)
+         if (with_scale) jordan = jordan + abs(r) + abs(sd)
+         a = a + (hd**2 + (hd + sd)**2) * iz
+         b = b + 1.0_wp * (2.0_wp * hd + sd) * iz
+         c = c + iz
+      else
+         call cell_sums(mesh, st, top, bot, with_scale, .true., hd, r, jprime, jordan, a, b, c)
+      end if
       if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * no_load
       d = r - no_load - hd
       jordan_abs = abs(d)
