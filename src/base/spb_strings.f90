@@ -30,7 +30,7 @@ contains
    pure function es20_12(x) result(out)
       real(wp), intent(in) :: x            !! the number
       character(len=20) :: out
-      integer(int64) :: m
+      integer(int64) :: m, hi7
       integer :: e, k, lo6, hi6
       logical :: ok
       if (.not. ieee_is_finite(x)) then
@@ -48,12 +48,12 @@ contains
       end if
       ! m has 13 digits: d.dddddddddddd, the last 12 as two groups of 6 in pairs
       out(1:1) = merge('-', ' ', x < 0.0_wp)
-      k = int(m / 1000000000000_int64)
+      hi7 = m / 1000000_int64
+      lo6 = int(m - hi7 * 1000000_int64)
+      k = int(hi7 / 1000000_int64)
+      hi6 = int(hi7) - 1000000 * k
       out(2:2) = achar(48 + k)
       out(3:3) = '.'
-      m = m - int(k, int64) * 1000000000000_int64
-      hi6 = int(m / 1000000_int64)
-      lo6 = int(m - int(hi6, int64) * 1000000_int64)
       out(4:9) = six_digits(hi6)
       out(10:15) = six_digits(lo6)
       out(16:16) = 'E'
@@ -156,7 +156,13 @@ contains
       ! lo is below half an ulp of hi (< 1e-3 here): only the decade's edges and ties need it.
       ! hi < 1e15 (the decade is known within one): its integer part m0 and fraction t are
       ! exact, and anint(hi) is m0 or m0 + 1 (without the library's round)
-      if (hi > 1.0e12_wp + 1.0_wp .and. hi < 1.0e13_wp - 1.0_wp) then
+      if (hi >= 1.0e13_wp + 1.0_wp) then
+         step = 1                    ! clearly above the decade (the estimate was one low)
+         return
+      else if (hi < 1.0e12_wp - 1.0_wp) then
+         step = -1
+         return
+      else if (hi > 1.0e12_wp + 1.0_wp .and. hi < 1.0e13_wp - 1.0_wp) then
          m0 = int(hi, int64)
          t = hi - real(m0, wp)
          if (t < 0.499_wp) then

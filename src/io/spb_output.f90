@@ -108,6 +108,15 @@ module spb_output
    !> the writing otherwise); the bytes in the file are the same.
    integer, parameter :: row_buffer_len = 262144
 
+   !> The text of each real column of a table's last row, with the bits it was made from:
+   !> a value repeated from the row before (a third of the event columns: t within a step,
+   !> x, dt_bound, ...) is not formatted again (es20_12 depends on the bits alone).
+   type :: row_cache_t
+      integer(int64) :: bits(n_history) = 0            !! the value's bits (transfer)
+      character(len=20) :: text(n_history) = ''        !! es20_12 of it
+      logical :: set(n_history) = .false.              !! text holds a value
+   end type row_cache_t
+
    !> Rows of one text file not yet written: text(1:n), each row ended by a newline.
    type :: row_buffer_t
       character(len=:), allocatable :: text   !! the rows (allocated at the first row)
@@ -130,6 +139,7 @@ module spb_output
       integer(int64) :: head(5) = 0                       !! header bytes of each text file
       type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
                                                           !! file (text_extensions order)
+      type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
    end type outputs_t
 
    !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
@@ -929,7 +939,7 @@ contains
       type(outputs_t), intent(inout) :: out    !! the outputs
       real(wp), intent(in) :: v(n_history)     !! the row
       character(len=sum(history_table%width + 1)) :: line
-      call table_line(history_table, v, line)
+      call table_line(history_table, v, line, out%his_cache)
       call put_row(out, 1, line)
       if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
@@ -946,7 +956,7 @@ contains
             v = [e%t, real(e%step, wp), real(e%kind, wp), real(e%node, wp), e%x, e%stress, &
                  e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
                  real(e%frag_below, wp), e%stress_bound, e%shift]
-            call table_line(event_table, v, line)
+            call table_line(event_table, v, line, out%evt_cache)
             call put_row(out, 3, line)
             if (out%hdf5) call h5_append(out%h5, out%h_evt, v)
          end associate
@@ -1000,13 +1010,15 @@ contains
 
    !> One text row of a table: each column a blank and its field, by the fast formatters
    !> (the same characters as es20.12e3 and iW edit descriptors, tests/test_format.pf).
-   pure subroutine table_line(table, v, line)
-      type(column_t), intent(in) :: table(:)   !! the columns
+   pure subroutine table_line(table, v, line, cache)
+      type(column_t), intent(in) :: table(:)   !! the columns (at most n_history)
       real(wp), intent(in) :: v(:)             !! the row's values (whole numbers as float64)
       ! the caller's buffer receives the row
       ! allow(assumed-size-character-intent)
       character(len=*), intent(out) :: line    !! the row (sum of widths + 1 characters)
+      type(row_cache_t), intent(inout) :: cache   !! the texts of the table's last row
       integer :: k, at
+      integer(int64) :: bits
       line = ' '
       at = 1
       do k = 1, size(table)
@@ -1015,10 +1027,18 @@ contains
                line(at + 1:at + c%width) = kind_field(whole(v(k)))
             else if (c%whole) then
                call int_into(whole(v(k)), line(at + 1:at + c%width))
-            else if (c%width == 20) then
-               line(at + 1:at + 20) = es20_12(v(k))       ! a copy of known length
             else
-               line(at + 1:at + c%width) = es20_12(v(k))
+               bits = transfer(v(k), 0_int64)
+               if (.not. cache%set(k) .or. cache%bits(k) /= bits) then
+                  cache%text(k) = es20_12(v(k))
+                  cache%bits(k) = bits
+                  cache%set(k) = .true.
+               end if
+               if (c%width == 20) then
+                  line(at + 1:at + 20) = cache%text(k)       ! a copy of known length
+               else
+                  line(at + 1:at + c%width) = cache%text(k)
+               end if
             end if
             at = at + c%width + 1
          end associate
