@@ -61,7 +61,11 @@ contains
          else
             bot = mesh%n
          end if
-         call fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jp, jr, ja)
+         if (top > 0 .and. bot < mesh%n .and. bot > top) then
+            call inner_wave(mesh, st, top, bot, .true., e, jp, jr, ja)
+         else
+            call fragment_wave(mesh, st, top, bot, i_top, i_bot, e, jp, jr, ja)
+         end if
          w%e_wave = w%e_wave + e
          w%e_gravity = w%e_gravity - 0.5_wp * g * mesh%dt * jp
          total = total + jr
@@ -318,10 +322,15 @@ contains
       logical, intent(in) :: at_n          !! the t^n intervals (else those at t^{n+1})
       real(wp), intent(out) :: f(top+1:)   !! down-going interval f_k of each cell [m]
       real(wp), intent(out) :: g(top+1:)   !! up-going interval g_k of each cell [m]
-      real(wp) :: h(top+1:max(top+1, bot)), sdt(top+1:max(top+1, bot)), jp, jr, ja
-      call fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, h, sdt, jp, jr, ja)
-      g(top+1:bot) = h(top+1:bot) / mesh%z(top+1:bot)
-      f(top+1:bot) = (h(top+1:bot) + sdt(top+1:bot)) / mesh%z(top+1:bot)
+      real(wp) :: jp, jr, ja, h
+      integer :: k
+      ! h_k read into g, s_k dt into f (no temporaries), then g = h/Z, f = (h + s dt)/Z
+      call fragment_h(mesh, st, top, bot, i_top, i_bot, at_n, g, f, jp, jr, ja)
+      do k = top + 1, bot
+         h = g(k)
+         g(k) = h / mesh%z(k)
+         f(k) = (h + f(k)) / mesh%z(k)
+      end do
    end subroutine fragment_characteristics
 
    !> h_k = Z_k g_k and s_k dt of the fragment's cells, J' and the Jordan amplitude; at_n:
@@ -342,8 +351,8 @@ contains
       real(wp), intent(out) :: jordan        !! the fragment's momentum scale, sum of |m du/dt|
                                              !! and |s dt| [kg/(m s)]
       real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
-      real(wp) :: r(top:bot), h_dn(top+1:max(top+1, bot)), h_up(top+1:max(top+1, bot))
-      real(wp) :: dt, load_top, load_bot, scale, sgn, res, alpha, num, den
+      real(wp) :: r(top:bot)
+      real(wp) :: dt, load_top, load_bot, scale, sgn, res, alpha, num, den, h_up, h_up_bot
       logical :: eq_top, eq_bot, tr_top, tr_bot
       integer :: i, k, o
 
@@ -380,54 +389,56 @@ contains
       jordan = scale
       jordan_abs = 0.0_wp
       if (bot == top) return
-      ! h from the top face down and from the bottom face up
-      h_dn(top + 1) = 0.0_wp
-      if (eq_top .and. at_n) h_dn(top + 1) = r(top) - load_top
-      if (eq_top .and. .not. at_n) h_dn(top + 1) = r(top) + load_top - sdt(top + 1)
-      if (tr_top .and. at_n) h_dn(top + 1) = r(top) - mesh%z(1) * st%ends%w_in_top
-      if (tr_top .and. .not. at_n) h_dn(top + 1) = mesh%z(1) * st%ends%w_in_top - sdt(top + 1)
+      ! h from the top face down (h_dn, held in h) and from the bottom face up (h_up, one
+      ! value at a time, bottom first)
+      h(top + 1) = 0.0_wp
+      if (eq_top .and. at_n) h(top + 1) = r(top) - load_top
+      if (eq_top .and. .not. at_n) h(top + 1) = r(top) + load_top - sdt(top + 1)
+      if (tr_top .and. at_n) h(top + 1) = r(top) - mesh%z(1) * st%ends%w_in_top
+      if (tr_top .and. .not. at_n) h(top + 1) = mesh%z(1) * st%ends%w_in_top - sdt(top + 1)
       do k = top + 1, bot - 1
-         h_dn(k + 1) = r(k) - sdt(k + o) - h_dn(k)
+         h(k + 1) = r(k) - sdt(k + o) - h(k)
       end do
       if (eq_bot) then
          if (tr_bot .and. at_n) then
-            h_up(bot) = r(bot) - mesh%z(bot) * st%ends%w_in_bot - sdt(bot)
+            h_up_bot = r(bot) - mesh%z(bot) * st%ends%w_in_bot - sdt(bot)
          else if (tr_bot) then
-            h_up(bot) = mesh%z(bot) * st%ends%w_in_bot
+            h_up_bot = mesh%z(bot) * st%ends%w_in_bot
          else if (at_n) then
-            h_up(bot) = r(bot) - sdt(bot) + load_bot
+            h_up_bot = r(bot) - sdt(bot) + load_bot
          else
-            h_up(bot) = r(bot) - load_bot
+            h_up_bot = r(bot) - load_bot
          end if
-         do k = bot - 1, top + 1, -1
-            h_up(k) = r(k) - sdt(k + o) - h_up(k + 1)
+         if (eq_top) then
+            ! two free faces: one equation too many; its residual is the Jordan amplitude,
+            ! shared half and half between the two readings
+            res = h(bot) - h_up_bot
+            jordan_abs = abs(res)
+         end if
+         h_up = h_up_bot
+         do k = bot, top + 1, -1
+            if (k < bot) h_up = r(k) - sdt(k + o) - h_up
+            if (eq_top) then
+               h(k) = 0.5_wp * (h(k) + h_up)
+            else
+               h(k) = h_up
+            end if
          end do
-      end if
-      if (eq_top .and. eq_bot) then
-         ! two free faces: one equation too many; its residual is the Jordan amplitude,
-         ! shared half and half between the two readings
-         res = h_dn(bot) - h_up(bot)
-         jordan_abs = abs(res)
-         h(top+1:bot) = 0.5_wp * (h_dn + h_up)
-      else if (eq_top) then
-         h(top+1:bot) = h_dn
-      else if (eq_bot) then
-         h(top+1:bot) = h_up
-      else
+      else if (.not. eq_top) then
          ! held at both ends: h + alpha (-1)^k solves the node equations for any alpha; the
          ! smallest energy drops the standing zig-zag wave that no node sees
          num = 0.0_wp
          den = 0.0_wp
          sgn = 1.0_wp
          do k = top + 1, bot
-            num = num + sgn * (2.0_wp * h_dn(k) + sdt(k)) / mesh%z(k)
+            num = num + sgn * (2.0_wp * h(k) + sdt(k)) / mesh%z(k)
             den = den + 2.0_wp / mesh%z(k)
             sgn = -sgn
          end do
          alpha = -num / den
          sgn = 1.0_wp
          do k = top + 1, bot
-            h(k) = h_dn(k) + sgn * alpha
+            h(k) = h(k) + sgn * alpha
             sgn = -sgn
          end do
       end if
