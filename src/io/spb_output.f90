@@ -12,7 +12,7 @@ module spb_output
    use spb_deck, only: deck_record_t, write_echo
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
-      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges
+      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, buffer_rows
    use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
@@ -140,6 +140,7 @@ module spb_output
       type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
                                                           !! file (text_extensions order)
       type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
+      integer(int64) :: n_his = 0, n_evt = 0              !! .his, .evt rows written here
    end type outputs_t
 
    !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
@@ -941,6 +942,10 @@ contains
       character(len=sum(history_table%width + 1)) :: line
       call table_line(history_table, v, line, out%his_cache)
       call put_row(out, 1, line)
+      out%n_his = out%n_his + 1
+      ! the text reaches the file before PREFIX.h5 writes a block of rows: a killed run's
+      ! text never holds fewer rows than its HDF5 tables
+      if (out%hdf5 .and. mod(out%n_his, int(buffer_rows, int64)) == 0) call drain_one(out, 1)
       if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
 
@@ -958,6 +963,10 @@ contains
                  real(e%frag_below, wp), e%stress_bound, e%shift]
             call table_line(event_table, v, line, out%evt_cache)
             call put_row(out, 3, line)
+            out%n_evt = out%n_evt + 1
+            if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
+               call drain_one(out, 3)
+            end if
             if (out%hdf5) call h5_append(out%h5, out%h_evt, v)
          end associate
       end do
