@@ -141,6 +141,11 @@ module spb_output
                                                           !! file (text_extensions order)
       type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
       integer(int64) :: n_his = 0, n_evt = 0              !! .his, .evt rows written here
+      integer(int64) :: expect(5) = 0                     !! bytes each text file should
+                                                          !! hold: check_written's measure
+                                                          !! (a write the disk refuses is
+                                                          !! not always in inquire's size)
+      logical :: refused(5) = .false.                     !! a write of rows to it failed
    end type outputs_t
 
    !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
@@ -224,6 +229,7 @@ contains
          call gauge_header(out%gau, rec, mesh)
       end if
       call text_sizes(out, out%head)
+      out%expect = out%head
       if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err, xt_rows)
    contains
       !> Open PREFIX.ext for writing (unit u).
@@ -544,8 +550,9 @@ contains
          if (u == no_unit) cycle
          flush(u)
          inquire(unit=u, size=wrote)
+         wrote = max(wrote, out%expect(k))
          have = sys_file_size(out%prefix // text_extensions(k))
-         if (have < wrote) then
+         if (have < wrote .or. out%refused(k)) then
             call make_error(err, 'run: cannot write ''' // out%prefix // text_extensions(k) // &
                ''': ' // itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached ' // &
                'the disk (full, or over quota?); the outputs end there', code=exit_runtime)
@@ -659,6 +666,13 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k             !! text file (text_extensions)
       integer, intent(in) :: u             !! open formatted unit
+      integer(int64) :: bytes
+      if (u /= no_unit) then
+         ! what the file holds now counts as written (a restart's copied body); what was
+         ! written and refused before stays counted (a mark's reopening)
+         inquire(unit=u, size=bytes)
+         out%expect(k) = max(out%expect(k), bytes)
+      end if
       select case (k)
       case (1)
          out%his = u
@@ -978,14 +992,16 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k                !! text file (text_extensions)
       character(len=*), intent(in) :: line    !! the row, without its newline
-      integer :: u
+      integer :: u, ios
       u = text_unit(out, k)
       if (u == no_unit) return
+      out%expect(k) = out%expect(k) + len(line) + 1
       associate (b => out%rows(k))
          if (.not. allocated(b%text)) allocate(character(len=row_buffer_len) :: b%text)
          if (b%n + len(line) + 1 > row_buffer_len) call drain_one(out, k)
          if (len(line) + 1 > row_buffer_len) then
-            write(u, '(a)') line
+            write(u, '(a)', iostat=ios) line
+            if (ios /= 0) out%refused(k) = .true.    ! check_written tells
          else
             b%text(b%n + 1:b%n + len(line)) = line
             b%text(b%n + len(line) + 1:b%n + len(line) + 1) = new_line('a')
@@ -1008,11 +1024,15 @@ contains
    subroutine drain_one(out, k)
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k                !! text file (text_extensions)
-      integer :: u
+      integer :: u, ios
       associate (b => out%rows(k))
          if (b%n == 0) return
          u = text_unit(out, k)
-         if (u /= no_unit) write(u, '(a)') b%text(1:b%n - 1)
+         ! a refused write (a full disk) is found by check_written (out%expect)
+         if (u /= no_unit) then
+            write(u, '(a)', iostat=ios) b%text(1:b%n - 1)
+            if (ios /= 0) out%refused(k) = .true.
+         end if
          b%n = 0
       end associate
    end subroutine drain_one
