@@ -26,7 +26,7 @@ module spb_hdf5
    public :: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, h5_table, &
       h5_append, h5_xt, h5_append_xt, h5_read, h5_read_size
    public :: h5_open_read, h5_get, h5_get_attr, h5_get_columns, h5_copy, h5_table_rows, &
-      h5_xt_rows, xt_fields, xt_gauges, h5_exists, h5_has_attr, block_name
+      h5_xt_rows, xt_fields, xt_gauges, h5_exists, h5_has_attr, block_name, buffer_rows
 
    integer, parameter :: buffer_rows = 1024     !! rows held before a table is written
    integer, parameter :: xt_fields = 1          !! the x-t fields (/fields/xt)

@@ -8,11 +8,11 @@ module spb_output
    use, intrinsic :: iso_fortran_env, only: int64
    use spb_kinds, only: wp, version
    use spb_error, only: spb_error_t, make_error, exit_runtime
-   use spb_strings, only: itoa, rtoa, es20_12, int_right
+   use spb_strings, only: itoa, rtoa, es20_12, int_right, int_into
    use spb_deck, only: deck_record_t, write_echo
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
-      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, block_name
+      h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, block_name, buffer_rows
    use spb_xdmf, only: write_xdmf, xdmf_path
    use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
       sys_file_kind, file_other
@@ -100,12 +100,30 @@ module spb_output
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node t'
    character(len=*), parameter :: profile_columns = 'x u v stress t'
-   character(len=*), parameter :: fmt_real = 'es20.12e3'
-   character(len=*), parameter :: fmt_evt = '(1x,' // fmt_real // ',1x,i12,1x,a16,1x,i12,' // &
-      '5(1x,' // fmt_real // '),2(1x,i12),2(1x,' // fmt_real // '))'
-   character(len=*), parameter :: fmt_frg = '(2(1x,i12),6(1x,' // fmt_real // '),2(1x,i12),1x,' &
-      // fmt_real // ')'
-   character(len=*), parameter :: fmt_prf = '(5(1x,' // fmt_real // '))'
+   ! The rows' formats, written by the fast formatters (es20_12, int_right), which give the
+   ! same characters: .evt and .his (1x,es20.12e3 | 1x,i12 | 1x,a16 per column: table_line;
+   ! .evt then 1x,i9 kind_code), .frg (2(1x,i12),6(1x,es20.12e3),2(1x,i12),1x,es20.12e3),
+   ! .prf (5(1x,es20.12e3)), .gau (1x,es20.12e3 per column).
+
+   !> Bytes of rows collected per text file before they are written: one write statement
+   !> per buffer instead of one per row (the run-time library's cost per record is most of
+   !> the writing otherwise); the bytes in the file are the same.
+   integer, parameter :: row_buffer_len = 262144
+
+   !> The text of each real column of a table's last row, with the bits it was made from:
+   !> a value repeated from the row before (a third of the event columns: t within a step,
+   !> x, dt_bound, ...) is not formatted again (es20_12 depends on the bits alone).
+   type :: row_cache_t
+      integer(int64) :: bits(n_history) = 0            !! the value's bits (transfer)
+      character(len=20) :: text(n_history) = ''        !! es20_12 of it
+      logical :: set(n_history) = .false.              !! text holds a value
+   end type row_cache_t
+
+   !> Rows of one text file not yet written: text(1:n), each row ended by a newline.
+   type :: row_buffer_t
+      character(len=:), allocatable :: text   !! the rows (allocated at the first row)
+      integer :: n = 0                        !! bytes held
+   end type row_buffer_t
 
    !> A closed file's unit: newunit= numbers are negative but never -1.
    integer, parameter :: no_unit = -1
@@ -121,6 +139,15 @@ module spb_output
       integer :: h_his = 0, h_evt = 0                     !! its table handles
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
       integer(int64) :: head(5) = 0                       !! header bytes of each text file
+      type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
+                                                          !! file (text_extensions order)
+      type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
+      integer(int64) :: n_his = 0, n_evt = 0              !! .his, .evt rows written here
+      integer(int64) :: expect(5) = 0                     !! bytes each text file should
+                                                          !! hold: check_written's measure
+                                                          !! (a write the disk refuses is
+                                                          !! not always in inquire's size)
+      logical :: refused(5) = .false.                     !! a write of rows to it failed
    end type outputs_t
 
    !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
@@ -208,6 +235,7 @@ contains
          call gauge_header(out%gau, rec, mesh)
       end if
       call text_sizes(out, out%head)
+      out%expect = out%head
       if (rec%hdf5) call open_h5(prefix, rec, mesh, report, out, err, xt_rows)
    contains
       !> Open PREFIX.ext for writing (unit u).
@@ -303,7 +331,7 @@ contains
          line(at + 44:at + 63) = es20_12(u(k))
          at = at + 63
       end do
-      write(out%gau, '(a)') line
+      call put_row(out, 5, line)
       if (out%hdf5) call h5_append_xt(out%h5, t, stress, velocity, u, xt_gauges)
    end subroutine write_gauge_row
 
@@ -522,18 +550,20 @@ contains
    !> when a disk is full, so the size the system has is compared with what was written
    !> (after a flush). A shortfall is err (exit 3), naming the file and the bytes.
    subroutine check_written(out, err)
-      type(outputs_t), intent(in) :: out   !! the outputs
+      type(outputs_t), intent(inout) :: out   !! the outputs (collected rows written first)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer(int64) :: wrote, have
       integer :: k, u
+      call drain_rows(out)
       if (allocated(err)) return
       do k = 1, size(text_extensions)
          u = text_unit(out, k)
          if (u == no_unit) cycle
          flush(u)
          inquire(unit=u, size=wrote)
+         wrote = max(wrote, out%expect(k))
          have = sys_file_size(out%prefix // text_extensions(k))
-         if (have < wrote) then
+         if (have < wrote .or. out%refused(k)) then
             call make_error(err, 'run: cannot write ''' // out%prefix // text_extensions(k) // &
                ''': ' // itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached ' // &
                'the disk (full, or over quota?); the outputs end there', code=exit_runtime)
@@ -579,6 +609,7 @@ contains
    !> Push what is written so far to disk (text and HDF5): a killed run reads up to here.
    subroutine flush_outputs(out)
       type(outputs_t), intent(inout) :: out   !! the outputs
+      call drain_rows(out)
       if (out%his /= no_unit) flush(out%his)
       if (out%evt /= no_unit) flush(out%evt)
       if (out%gau /= no_unit) flush(out%gau)
@@ -587,9 +618,10 @@ contains
 
    !> Bytes in each text file now (written through to the file first).
    subroutine text_sizes(out, bytes)
-      type(outputs_t), intent(in) :: out   !! the outputs
+      type(outputs_t), intent(inout) :: out   !! the outputs (collected rows written first)
       integer(int64), intent(out) :: bytes(5)   !! .his, .prf, .evt, .frg, .gau (0: not open)
       integer :: k, u(5)
+      call drain_rows(out)
       u = [out%his, out%prf, out%evt, out%frg, out%gau]
       bytes = 0
       do k = 1, 5
@@ -650,6 +682,13 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k             !! text file (text_extensions)
       integer, intent(in) :: u             !! open formatted unit
+      integer(int64) :: bytes
+      if (u /= no_unit) then
+         ! what the file holds now counts as written (a restart's copied body); what was
+         ! written and refused before stays counted (a mark's reopening)
+         inquire(unit=u, size=bytes)
+         out%expect(k) = max(out%expect(k), bytes)
+      end if
       select case (k)
       case (1)
          out%his = u
@@ -952,8 +991,12 @@ contains
       type(outputs_t), intent(inout) :: out    !! the outputs
       real(wp), intent(in) :: v(n_history)     !! the row
       character(len=sum(history_table%width + 1)) :: line
-      call table_line(history_table, v, line)
-      write(out%his, '(a)') line
+      call table_line(history_table, v, line, out%his_cache)
+      call put_row(out, 1, line)
+      out%n_his = out%n_his + 1
+      ! the text reaches the file before PREFIX.h5 writes a block of rows: a killed run's
+      ! text never holds fewer rows than its HDF5 tables
+      if (out%hdf5 .and. mod(out%n_his, int(buffer_rows, int64)) == 0) call drain_one(out, 1)
       if (out%hdf5) call h5_append(out%h5, out%h_his, v)
    end subroutine write_history_row
 
@@ -969,37 +1012,112 @@ contains
             v = [e%t, real(e%step, wp), real(e%kind, wp), real(e%node, wp), e%x, e%stress, &
                  e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
                  real(e%frag_below, wp), e%stress_bound, e%shift]
-            call table_line(event_table, v, line)
-            write(out%evt, '(a,1x,a)') line, int_right(e%kind, 9)
+            call table_line(event_table, v, line, out%evt_cache)
+            call put_row(out, 3, line // ' ' // int_right(e%kind, 9))   ! kind_code
+            out%n_evt = out%n_evt + 1
+            if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
+               call drain_one(out, 3)
+            end if
             if (out%hdf5) call h5_append(out%h5, out%h_evt, v)
          end associate
       end do
    end subroutine write_events
 
+   !> Collect one row of text file k (text_extensions order); the rows are written when the
+   !> buffer is full and by drain_rows.
+   subroutine put_row(out, k, line)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      integer, intent(in) :: k                !! text file (text_extensions)
+      character(len=*), intent(in) :: line    !! the row, without its newline
+      integer :: u, ios
+      u = text_unit(out, k)
+      if (u == no_unit) return
+      out%expect(k) = out%expect(k) + len(line) + 1
+      associate (b => out%rows(k))
+         if (.not. allocated(b%text)) allocate(character(len=row_buffer_len) :: b%text)
+         if (b%n + len(line) + 1 > row_buffer_len) call drain_one(out, k)
+         if (len(line) + 1 > row_buffer_len) then
+            write(u, '(a)', iostat=ios) line
+            if (ios /= 0) out%refused(k) = .true.    ! check_written tells
+         else
+            b%text(b%n + 1:b%n + len(line)) = line
+            b%text(b%n + len(line) + 1:b%n + len(line) + 1) = new_line('a')
+            b%n = b%n + len(line) + 1
+         end if
+      end associate
+   end subroutine put_row
+
+   !> Write the collected rows of every text file.
+   subroutine drain_rows(out)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      integer :: k
+      do k = 1, size(out%rows)
+         call drain_one(out, k)
+      end do
+   end subroutine drain_rows
+
+   !> Write the collected rows of text file k as one record: the rows with their newlines,
+   !> the last newline left to the record's end (the bytes of one write per row).
+   subroutine drain_one(out, k)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      integer, intent(in) :: k                !! text file (text_extensions)
+      integer :: u, ios
+      associate (b => out%rows(k))
+         if (b%n == 0) return
+         u = text_unit(out, k)
+         ! a refused write (a full disk) is found by check_written (out%expect)
+         if (u /= no_unit) then
+            write(u, '(a)', iostat=ios) b%text(1:b%n - 1)
+            if (ios /= 0) out%refused(k) = .true.
+         end if
+         b%n = 0
+      end associate
+   end subroutine drain_one
+
    !> One text row of a table: each column a blank and its field, by the fast formatters
    !> (the same characters as es20.12e3 and iW edit descriptors, tests/test_format.pf).
-   pure subroutine table_line(table, v, line)
-      type(column_t), intent(in) :: table(:)   !! the columns
+   pure subroutine table_line(table, v, line, cache)
+      type(column_t), intent(in) :: table(:)   !! the columns (at most n_history)
       real(wp), intent(in) :: v(:)             !! the row's values (whole numbers as float64)
       ! the caller's buffer receives the row
       ! allow(assumed-size-character-intent)
       character(len=*), intent(out) :: line    !! the row (sum of widths + 1 characters)
+      type(row_cache_t), intent(inout) :: cache   !! the texts of the table's last row
       integer :: k, at
+      integer(int64) :: bits
       line = ' '
       at = 1
       do k = 1, size(table)
          associate (c => table(k))
             if (c%kind) then
-               line(at + 1:at + c%width) = kind_field(nint(v(k)))
+               line(at + 1:at + c%width) = kind_field(whole(v(k)))
             else if (c%whole) then
-               line(at + 1:at + c%width) = int_right(nint(v(k)), c%width)
+               call int_into(whole(v(k)), line(at + 1:at + c%width))
             else
-               line(at + 1:at + c%width) = es20_12(v(k))
+               bits = transfer(v(k), 0_int64)
+               if (.not. cache%set(k) .or. cache%bits(k) /= bits) then
+                  cache%text(k) = es20_12(v(k))
+                  cache%bits(k) = bits
+                  cache%set(k) = .true.
+               end if
+               if (c%width == 20) then
+                  line(at + 1:at + 20) = cache%text(k)       ! a copy of known length
+               else
+                  line(at + 1:at + c%width) = cache%text(k)
+               end if
             end if
             at = at + c%width + 1
          end associate
       end do
    end subroutine table_line
+
+   !> nint(x) for a whole number held as float64 (exact below 2^53), without the library call
+   !> where x is whole.
+   pure integer function whole(x) result(k)
+      real(wp), intent(in) :: x            !! the value
+      k = int(x)
+      if (abs(x - real(k, wp)) > 0.0_wp) k = nint(x)
+   end function whole
 
    !> One block of fragments at time t.
    subroutine write_fragments(out, t, dt, list)
@@ -1009,11 +1127,17 @@ contains
       type(frag_info_t), intent(in) :: list(:)   !! the fragments, top to bottom
       integer :: f
       character(len=:), allocatable :: g
-      write(out%frg, '(a)') '# t = ' // rtoa(t)
+      character(len=2 * 13 + 6 * 21 + 2 * 13) :: line
+      call put_row(out, 4, '# t = ' // rtoa(t))
       do f = 1, size(list)
-         write(out%frg, fmt_frg) list(f)%id, list(f)%parent, real(list(f)%birth_step, wp) * dt, &
-            list(f)%x_top, list(f)%x_bot, list(f)%mass, list(f)%velocity, list(f)%e_vib, &
-            list(f)%top, list(f)%bot, t
+         ! (2(1x,i12),6(1x,es20.12e3),2(1x,i12),1x,es20.12e3): ... top_node bottom_node t
+         line = ' ' // int_right(list(f)%id, 12) // ' ' // int_right(list(f)%parent, 12) // &
+            ' ' // es20_12(real(list(f)%birth_step, wp) * dt) // ' ' // es20_12(list(f)%x_top) // &
+            ' ' // es20_12(list(f)%x_bot) // ' ' // es20_12(list(f)%mass) // &
+            ' ' // es20_12(list(f)%velocity) // ' ' // es20_12(list(f)%e_vib) // &
+            ' ' // int_right(list(f)%top, 12) // ' ' // int_right(list(f)%bot, 12) // &
+            ' ' // es20_12(t)
+         call put_row(out, 4, line)
       end do
       if (.not. out%hdf5) return
       out%n_frg = out%n_frg + 1
@@ -1056,15 +1180,19 @@ contains
       real(wp) :: dt
       real(wp) :: u(2 * mesh%n), v(2 * mesh%n), s(2 * mesh%n)
       character(len=:), allocatable :: g
+      character(len=20) :: tt
       n = mesh%n
       dt = mesh%dt
-      write(out%prf, '(a)') '# t = ' // rtoa(real(st%step, wp) * dt)
-      write(out%prf, '(a)') '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested)
+      call put_row(out, 2, '# t = ' // rtoa(real(st%step, wp) * dt))
+      call put_row(out, 2, '# step ' // itoa(st%step) // ', requested t = ' // rtoa(t_requested))
+      ! (5(1x,es20.12e3)): x u v stress t
+      tt = es20_12(real(st%step, wp) * dt)
       do i = 0, n
-         if (i > 0) write(out%prf, fmt_prf) mesh%x(i), st%ua(i), st%dua(i) / dt, &
-                                            st%s(i) / mesh%area(i), real(st%step, wp) * dt
-         if (i < n) write(out%prf, fmt_prf) mesh%x(i), st%ub(i), st%dub(i) / dt, &
-                                            st%s(i + 1) / mesh%area(i + 1), real(st%step, wp) * dt
+         if (i > 0) call put_row(out, 2, ' ' // es20_12(mesh%x(i)) // ' ' // es20_12(st%ua(i)) // &
+            ' ' // es20_12(st%dua(i) / dt) // ' ' // es20_12(st%s(i) / mesh%area(i)) // ' ' // tt)
+         if (i < n) call put_row(out, 2, ' ' // es20_12(mesh%x(i)) // ' ' // es20_12(st%ub(i)) // &
+            ' ' // es20_12(st%dub(i) / dt) // ' ' // es20_12(st%s(i + 1) / mesh%area(i + 1)) // &
+            ' ' // tt)
       end do
       if (.not. out%hdf5) return
       out%n_prof = out%n_prof + 1
@@ -1078,12 +1206,13 @@ contains
       call h5_write(out%h5, g // '/v', v, 'm/s')
       call h5_write(out%h5, g // '/stress', s, 'Pa')
    end subroutine write_profile
-   !> An event kind's name right-justified in 16 characters (the A16 field of fmt_evt),
-   !> without an allocatable temporary per event.
+   !> An event kind's name right-justified in 16 characters (the A16 field of the .evt rows),
+   !> without a temporary per event.
    pure function kind_field(kind) result(f)
       integer, intent(in) :: kind   !! event kind (ev_*)
       character(len=16) :: f
-      f = adjustr('  ' // event_kind_names(max(1, min(4, kind))))
+      character(len=16), parameter :: fields(4) = adjustr('  ' // event_kind_names)
+      f = fields(max(1, min(4, kind)))
    end function kind_field
 
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.

@@ -226,12 +226,18 @@ contains
       ! each candidate breaks where the continuum reading's own section stress over the step,
       ! (Z_i/dt)(2 f_i - du_i), is beyond its strength too (after a join the (3.1)-(3.2)
       ! recursion can differ from it; its value is kept where the section holds)
+      if (size(cand) == 0) return
+      ! f and gw over the fragments of all candidates at once (the spans do not change here)
+      call fragment_span(mesh, st, cand(1), j, k)
+      i = j
+      call fragment_span(mesh, st, cand(size(cand)), j, k)
+      allocate(f(i+1:k), gw(i+1:k))
       m = 1
       nb = 0
       do while (m <= size(cand))
          call fragment_span(mesh, st, cand(m), j, k)
-         allocate(f(j+1:k), gw(j+1:k))
-         call fragment_characteristics(mesh, st, g, j, k, i_top, i_bot, .true., f, gw)
+         call fragment_characteristics(mesh, st, g, j, k, i_top, i_bot, .true., f(j+1:k), &
+                                       gw(j+1:k))
          do while (m <= size(cand))
             if (cand(m) >= k) exit
             i = cand(m)
@@ -246,7 +252,6 @@ contains
             end if
             m = m + 1
          end do
-         deallocate(f, gw)
       end do
       do m = 1, nb
          i = brk(m)

@@ -78,7 +78,12 @@ contains
          else
             bot = mesh%n
          end if
-         call fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jp, jr, ja)
+         if (top > 0 .and. bot < mesh%n .and. bot > top) then
+            ! between two split nodes (no transmitting end, no load): the short path
+            call inner_wave(mesh, st, top, bot, .true., e, jp, jr, ja)
+         else
+            call fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jp, jr, ja)
+         end if
          w%e_wave = w%e_wave + e
          w%e_gravity = w%e_gravity - 0.5_wp * g * mesh%dt * jp
          total = total + jr
@@ -115,7 +120,11 @@ contains
             if (.not. st%joined(b)) exit
             b = b + 1
          end do
-         call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja)
+         if (t > 0 .and. b < mesh%n) then
+            call inner_wave(mesh, st, t, b, .false., e, jp, jr, ja)
+         else
+            call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja)
+         end if
          e_sum = e_sum + e - 0.5_wp * g * mesh%dt * jp
          t = b
       end do
@@ -212,6 +221,119 @@ contains
          rho(2) = (hd + beta - fc%eta_bot) / mesh%z(bot)
       end if
    end subroutine fragment_wave
+
+   !> fragment_wave of a fragment between two split nodes (0 < top < bot < n), the common
+   !> case once a bar has broken up: both faces free and without load, so face_equations and
+   !> face_terms reduce to what is written out here (the load terms 0 kept in the same
+   !> operations: x + 0 is not x for x = -0).
+   pure subroutine inner_wave(mesh, st, top, bot, with_scale, e, jprime, jordan, jordan_abs)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment, a split node
+      integer, intent(in) :: bot           !! bottom node of the fragment, a split node > top
+      logical, intent(in) :: with_scale    !! sum the momentum scale
+      real(wp), intent(out) :: e             !! continuum energy [J/m^2]
+      real(wp), intent(out) :: jprime        !! alternating sum J' [kg/(m s)]
+      real(wp), intent(out) :: jordan        !! the momentum scale (0 without with_scale)
+                                             !! [kg/(m s)]
+      real(wp), intent(out) :: jordan_abs    !! |J| [kg/(m s)]
+      real(wp), parameter :: no_load = 0.0_wp   ! load_top, load_bot of a split node's face
+      real(wp) :: dt, r, hd, a, b, c, beta, d, sd, iz
+      dt = mesh%dt
+      ! node_momentum of the lower half of the split node top
+      r = mesh%mb(top) * st%dub(top)
+      r = r / dt
+      hd = r + no_load - st%s(top + 1) * dt
+      jprime = r
+      jordan = 0.0_wp
+      if (with_scale) jordan = abs(r)
+      a = 0.0_wp
+      b = 0.0_wp
+      c = 0.0_wp
+      if (bot == top + 1) then
+         ! one cell (cell_sums' loop written out for it: sgn = -1, sgn_k = 1)
+         sd = st%s(bot) * dt
+         r = mesh%ma(bot) * st%dua(bot) / dt
+         iz = 1.0_wp / mesh%z(bot)
+         jprime = jprime + (-1.0_wp) * (r + sd)
+         if (with_scale) jordan = jordan + abs(r) + abs(sd)
+         a = a + (hd**2 + (hd + sd)**2) * iz
+         b = b + 1.0_wp * (2.0_wp * hd + sd) * iz
+         c = c + iz
+      else
+         call cell_sums(mesh, st, top, bot, with_scale, .true., hd, r, jprime, jordan, a, b, c)
+      end if
+      if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * no_load
+      d = r - no_load - hd
+      jordan_abs = abs(d)
+      beta = 0.5_wp * d
+      e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
+   end subroutine inner_wave
+
+   !> fragment_wave's pass over the cells top+1..bot: the same operations in the same order
+   !> as the one-pass loop (node_momentum inlined), the sums in locals. On return hd is
+   !> hd_bot and r the bottom node's momentum (the top node's when the fragment has no cell).
+   pure subroutine cell_sums(mesh, st, top, bot, with_scale, with_bc, hd, r, jp, jr, a, b, c)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      logical, intent(in) :: with_scale    !! sum the momentum scale (jr)
+      logical, intent(in) :: with_bc       !! sum B and C
+      real(wp), intent(inout) :: hd        !! hd of the first cell in, hd_bot out [kg/(m s)]
+      real(wp), intent(inout) :: r         !! m du/dt of the last node summed [kg/(m s)]
+      real(wp), intent(inout) :: jp        !! J' so far [kg/(m s)]
+      real(wp), intent(inout) :: jr        !! the momentum scale so far [kg/(m s)]
+      real(wp), intent(inout) :: a         !! A so far [(kg/(m s))^2 m^2 s/kg]
+      real(wp), intent(inout) :: b         !! B so far [kg/(m s) m^2 s/kg]
+      real(wp), intent(inout) :: c         !! C so far [m^2 s/kg]
+      real(wp) :: dt, sd, sd_next, iz, sgn, sgn_k, h, p, q, u, v, w, rk
+      integer :: k, last
+      dt = mesh%dt
+      h = hd
+      p = jp
+      q = jr
+      u = a
+      v = b
+      w = c
+      rk = r
+      sgn = 1.0_wp
+      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
+      ! the bottom node is a whole node only at the bar's end
+      last = bot
+      if (bot < mesh%n) last = bot - 1
+      sd_next = 0.0_wp
+      if (bot > top) sd_next = st%s(top + 1) * dt
+      do k = top + 1, bot
+         sd = sd_next
+         if (k <= last) then
+            rk = (mesh%ma(k) * st%dua(k) + mesh%mb(k) * st%dub(k)) / dt
+         else
+            rk = mesh%ma(k) * st%dua(k) / dt    ! the upper half of a split node
+         end if
+         iz = 1.0_wp / mesh%z(k)
+         sgn = -sgn
+         p = p + sgn * (rk + sd)
+         if (with_scale) q = q + abs(rk) + abs(sd)
+         u = u + (h**2 + (h + sd)**2) * iz
+         if (with_bc) then
+            v = v + sgn_k * (2.0_wp * h + sd) * iz
+            w = w + iz
+         end if
+         sgn_k = -sgn_k
+         if (k < bot) then
+            sd_next = st%s(k + 1) * dt
+            h = rk - sd_next - h
+         end if
+      end do
+      r = rk
+      hd = h
+      jp = p
+      jr = q
+      a = u
+      b = v
+      c = w
+   end subroutine cell_sums
 
    !> The zig-zag content of the fragments at the transmitting ends, at t^{n+1} [m]: the
    !> reading's incoming interval there minus the one the end's equation gives,
