@@ -1127,7 +1127,7 @@ contains
       type(frag_info_t), intent(in) :: list(:)   !! the fragments, top to bottom
       integer :: f
       character(len=:), allocatable :: g
-      character(len=2 * 13 + 6 * 21 + 2 * 13) :: line
+      character(len=2 * 13 + 6 * 21 + 2 * 13 + 21) :: line
       call put_row(out, 4, '# t = ' // rtoa(t))
       do f = 1, size(list)
          ! (2(1x,i12),6(1x,es20.12e3),2(1x,i12),1x,es20.12e3): ... top_node bottom_node t
