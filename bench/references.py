@@ -55,13 +55,7 @@ INTACT = """&run
   top = 'free'
   bottom = 'free'
 /
-&load
-  kind = 'power'
-  p0 = 1.0e8
-  t_k = 1.0e-4
-  exponent = 1.0
-  t_cut = 1.0e-4
-/
+&load kind = 'power', p0 = 1.0e8, t_k = 1.0e-4, exponent = 1.0, t_cut = 1.0e-4 /
 """
 
 

@@ -355,6 +355,15 @@ def random_deck(r, top=None, bottom=None, gravity=None):
     return deck
 
 
+def run_random(check, exe, work, name, deck):
+    """Run a random deck: its history, or None when the deck checks refuse the combination
+    (exit 2, e.g. a load on a held face) or the run failed (a failed check)."""
+    rc, err = run(exe, work, name, deck)
+    if rc == 2 or not check(rc == 0, f"{name}: exit {rc} {err}"):
+        return None
+    return his(os.path.join(work, name + ".his"))
+
+
 def part_random(check, exe, work, count, seed):
     r = random.Random(seed)
     worst = [0.0, 0.0, 0.0, 0.0, 0.0]
@@ -362,10 +371,7 @@ def part_random(check, exe, work, count, seed):
     for k in range(count):
         name = f"random_{k:03d}"
         deck = random_deck(r)
-        rc, err = run(exe, work, name, deck)
-        if rc == 2:      # a combination the deck checks refuse (e.g. a load on a held face)
-            continue
-        if not check(rc == 0, f"{name}: exit {rc} {err}"):
+        if run_random(check, exe, work, name, deck) is None:
             continue
         ran += 1
         res = admissible(check, work, name, quiet=True)
@@ -406,13 +412,10 @@ def part_held(check, exe, work, count, seed):
         name = f"held_{k:03d}"
         bottom = ("fixed", "base", "base")[k % 3]
         deck = random_deck(r, top="fixed", bottom=bottom, gravity=r.choice([9.81, 5000.0]))
-        rc, err = run(exe, work, name, deck)
-        if rc == 2:
-            continue
-        if not check(rc == 0, f"{name}: exit {rc} {err}"):
+        h = run_random(check, exe, work, name, deck)
+        if h is None:
             continue
         ran += 1
-        h = his(os.path.join(work, name + ".his"))
         e = h["e_wave"] + h["e_pot"] + h["e_wave_g"]
         w = h["w_wave"]
         scale = max(h["e_wave"][0], np.max(np.abs(w)), np.max(np.abs(h["e_wave"])) * 1e-3, 1e-300)
@@ -457,13 +460,10 @@ def part_open(check, exe, work, count, seed):
         deck = random_deck(r, top="transmit", bottom="base", gravity=r.choice([9.81, 5000.0]))
         if re.search(r"velocity = (.*) /", deck).group(1).split(",")[-1].strip() == "0.0":
             continue
-        rc, err = run(exe, work, name, deck)
-        if rc == 2:
-            continue
-        if not check(rc == 0, f"{name}: exit {rc} {err}"):
+        h = run_random(check, exe, work, name, deck)
+        if h is None:
             continue
         ran += 1
-        h = his(os.path.join(work, name + ".his"))
         w = h["w_wave"]
         scale = max(h["e_wave"][0], np.max(np.abs(w)), np.max(np.abs(h["e_wave"])) * 1e-3, 1e-300)
         steps = np.diff(h["e_lost_w"]) / scale
