@@ -340,10 +340,11 @@ contains
    !> w_in + g dt^2/4. It is zero where the fragment's other end is held (the end's equation
    !> is its reading); where the other face gives an equation too (a free face, another
    !> transmitting end) a state can hold the neutral zig-zag mode of such a fragment (an
-   !> unstressed start under gravity holds g dt^2/4 of it), and the intact scheme takes
-   !> rho to -rho in every step, loads or not. The work through the end then counts the
-   !> incoming interval w_in + rho (spb_step). 0 without gravity (not computed: with g = 0 the
-   !> states the program makes have none).
+   !> unstressed start under gravity as init_state builds it holds g dt^2/4 of it), and the
+   !> intact scheme takes rho to -rho in every step, loads or not. The start the program runs
+   !> holds none (start_without_zigzag), so rho stays at round-off; the work through the end
+   !> counts the incoming interval w_in + rho (spb_step). 0 without gravity (not computed:
+   !> with g = 0 nothing but the start, which the projection clears, makes any).
    pure subroutine transmit_residuals(mesh, st, g, i_top, i_bot, rho_top, rho_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
