@@ -137,13 +137,16 @@ contains
       st%gen%frag_id = 0
       st%gen%frag_id(0) = 1
       st%gen%n_frag_ids = 1
+      v = initial_velocities(prob, mesh)
       if (prob%static_start) then
-         call static_state(mesh, g, u, s, st%ends%s_static_top, st%ends%s_static_bot)
+         ! the base carries weight only where the bar starts resting on it (in contact below);
+         ! a bottom face moving at t = 0 is not touched by it (issue 17)
+         call static_state(mesh, g, prob%base_gap <= 0.0_wp .and. .not. (abs(v(n) * dt) > 0.0_wp), &
+                           u, s, st%ends%s_static_top, st%ends%s_static_bot)
       else
          u = 0.0_wp
          s = 0.0_wp
       end if
-      v = initial_velocities(prob, mesh)
       ! a transmitting end continues the bar without end: beyond it the bar keeps the motion
       ! its end had at t = 0 (as it keeps the static stress), so a bar in uniform motion stays
       ! in it and no end depends on the frame of reference

@@ -1,12 +1,13 @@
 !> Self-weight equilibrium (2.4) of the lumped-mass bar for the given supports.
 !>
-!> Supported ends are 'fixed' and 'transmit' (a transmitting end continues the bar, so
-!> it carries the weight like a support). With one support the cell stresses follow from
+!> Supported ends are 'fixed', 'transmit' (a transmitting end continues the bar, so
+!> it carries the weight like a support) and the base where the bar starts on it (not where
+!> its bottom face moves at t = 0: the base does not touch it then). With one support the cell stresses follow from
 !> the weight carried and the displacements by summing strains from the support; with two
 !> the tridiagonal stiffness system is solved.
 module spb_static
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free
+   use spb_mesh, only: mesh_t, end_free, end_base
    implicit none
    private
    public :: static_state
@@ -15,9 +16,10 @@ contains
 
    !> Static displacements u(0:n), cell stresses s(1:n) and end stresses [Pa] that the
    !> supports exert (s_top acts on node 0 like a cell above it, s_bot like a cell below).
-   pure subroutine static_state(mesh, g, u, s, s_top, s_bot)
+   pure subroutine static_state(mesh, g, base_holds, u, s, s_top, s_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g                   !! gravity [m/s^2]
+      logical, intent(in) :: base_holds           !! a base bottom holds the bar at t = 0
       real(wp), intent(out) :: u(0:mesh%n)        !! [m]
       real(wp), intent(out) :: s(1:mesh%n)        !! [Pa], compression positive
       real(wp), intent(out) :: s_top              !! top end stress, as a cell above node 0 [Pa]
@@ -29,7 +31,7 @@ contains
       n = mesh%n
       m = mesh%ma + mesh%mb
       top_held = mesh%top /= end_free
-      bot_held = mesh%bottom /= end_free
+      bot_held = mesh%bottom /= end_free .and. (mesh%bottom /= end_base .or. base_holds)
       if (top_held .and. .not. bot_held) then
          ! node equilibrium s_i - s_{i+1} + m_i g = 0 from the free bottom (s_{n+1} = 0)
          s(n) = -m(n) * g

@@ -30,7 +30,7 @@ module spb_wave
    implicit none
    private
    public :: wave_t, wave_energy, fragment_wave, fragment_characteristics, region_wave, &
-      transmit_residuals
+      transmit_residuals, start_without_zigzag, start_zigzag
 
    !> The whole bar's wave energy and the largest Jordan amplitude of its fragments.
    type :: wave_t
@@ -340,10 +340,11 @@ contains
    !> w_in + g dt^2/4. It is zero where the fragment's other end is held (the end's equation
    !> is its reading); where the other face gives an equation too (a free face, another
    !> transmitting end) a state can hold the neutral zig-zag mode of such a fragment (an
-   !> unstressed start under gravity holds g dt^2/4 of it), and the intact scheme takes
-   !> rho to -rho in every step, loads or not. The work through the end then counts the
-   !> incoming interval w_in + rho (spb_step). 0 without gravity (not computed: with g = 0 the
-   !> states the program makes have none).
+   !> unstressed start under gravity as init_state builds it holds g dt^2/4 of it), and the
+   !> intact scheme takes rho to -rho in every step, loads or not. The start the program runs
+   !> holds none (start_without_zigzag), so rho stays at round-off; the work through the end
+   !> counts the incoming interval w_in + rho (spb_step). 0 without gravity (not computed:
+   !> with g = 0 nothing but the start, which the projection clears, makes any).
    pure subroutine transmit_residuals(mesh, st, g, i_top, i_bot, rho_top, rho_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
@@ -377,6 +378,114 @@ contains
          end if
       end if
    end subroutine transmit_residuals
+
+   !> The start without the lattice's zig-zag content (issue 17): a fragment with a
+   !> transmitting end whose other end gives an equation (a free face, the base out of contact,
+   !> a split node, a second transmitting end) has the zig-zag mode u_i = A (-1)^(n+i) as a
+   !> neutral mode, a lattice-only state the continuum cannot have, and a start can hold some
+   !> (an unstressed one under gravity g dt^2/4: the bar moved over the step before t = 0 at
+   !> its end's velocity while the continuation rests in equilibrium; a strain rate
+   !> (strain_rate dx) dt/4). Its amplitude is read by rho (start_zigzag) and the mode is taken
+   !> out: A = -rho at a transmitting top, -(-1)^n rho at a transmitting bottom (n the bottom
+   !> node), -rho_top 2 Z_1/(Z_1 + Z_n) with two transmitting ends (the mode's own rho there,
+   !> the two readings' residual shared half and half). rho flips its sign in every intact
+   !> step, so its linear part is the left eigenvector of the mode: this is the spectral
+   !> projection, and rho stays 0 (to round-off) until an event. At t^0 the mode adds
+   !> u_i += A (-1)^i, du_i += 2 A (-1)^i, s_k += 2 A (E/dx)_k (-1)^(k-1) and the opposite
+   !> to s^{-1}; the section stresses are left alone (the mode leaves (3.1)'s half velocity
+   !> unchanged, so S keeps no part of it), and a base out of contact moves with the bottom
+   !> face (the deck's gap is kept). Called once, after init_state (spb_sim).
+   pure subroutine start_without_zigzag(mesh, g, st)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the initial state (st%step = 0)
+      real(wp) :: rho_top, rho_bot, amp
+      integer :: top, bot, n
+      n = mesh%n
+      call start_zigzag(mesh, g, st, rho_top, rho_bot)
+      top = 0
+      if (st%n_split > 0) top = st%split(st%n_split)
+      bot = n
+      if (st%n_split > 0) bot = st%split(1)
+      if (mesh%top == end_transmit .and. mesh%bottom == end_transmit .and. top == 0) then
+         amp = -rho_top * 2.0_wp * mesh%z(1) / (mesh%z(1) + mesh%z(n))
+         call add_zigzag(mesh, st, 0, n, amp)
+         return
+      end if
+      if (mesh%top == end_transmit) call add_zigzag(mesh, st, 0, bot, -rho_top)
+      if (mesh%bottom == end_transmit) then
+         amp = -rho_bot * merge(1.0_wp, -1.0_wp, mod(n, 2) == 0)
+         call add_zigzag(mesh, st, top, n, amp)
+      end if
+   end subroutine start_without_zigzag
+
+   !> The zig-zag content rho of the state at t^0 at a transmitting top and bottom [m]
+   !> (transmit_residuals, with no load before t = 0, with and without gravity): 0 where the
+   !> fragment's other end is held.
+   pure subroutine start_zigzag(mesh, g, st, rho_top, rho_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(in) :: st      !! the state at t^0
+      real(wp), intent(out) :: rho_top     !! rho at a transmitting top (else 0) [m]
+      real(wp), intent(out) :: rho_bot     !! rho at a transmitting bottom (else 0) [m]
+      real(wp), parameter :: no_load = 0.0_wp
+      real(wp) :: e, jp, jr, ja, rho(2)
+      type(faces_t) :: fc
+      integer :: top, bot
+      rho_top = 0.0_wp
+      rho_bot = 0.0_wp
+      if (mesh%top == end_transmit) then
+         bot = mesh%n
+         if (st%n_split > 0) bot = st%split(1)
+         fc = face_equations(mesh, st, g, 0, bot, no_load, no_load)
+         if (fc%eq_bot) then
+            call fragment_wave(mesh, st, g, 0, bot, no_load, no_load, e, jp, jr, ja, rho)
+            rho_top = rho(1)
+         end if
+      end if
+      if (mesh%bottom == end_transmit) then
+         top = 0
+         if (st%n_split > 0) top = st%split(st%n_split)
+         fc = face_equations(mesh, st, g, top, mesh%n, no_load, no_load)
+         if (fc%eq_top) then
+            call fragment_wave(mesh, st, g, top, mesh%n, no_load, no_load, e, jp, jr, ja, rho)
+            rho_bot = rho(2)
+         end if
+      end if
+   end subroutine start_zigzag
+
+   !> Add the zig-zag mode u_i = amp (-1)^i (at t^0) to the fragment top..bot: the halves it
+   !> owns, its cells' stresses s^0 and s^{-1}.
+   pure subroutine add_zigzag(mesh, st, top, bot, amp)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state at t^0
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      real(wp), intent(in) :: amp          !! the mode's amplitude A [m]
+      real(wp) :: a_i, ds
+      integer :: i
+      if (.not. abs(amp) > 0.0_wp) return
+      do i = top, bot
+         a_i = merge(amp, -amp, mod(i, 2) == 0)
+         if (i > top .or. top == 0) then
+            st%ua(i) = st%ua(i) + a_i
+            st%dua(i) = st%dua(i) + 2.0_wp * a_i
+         end if
+         if (i < bot .or. bot == mesh%n) then
+            st%ub(i) = st%ub(i) + a_i
+            st%dub(i) = st%dub(i) + 2.0_wp * a_i
+         end if
+         if (i > top) then
+            ds = -2.0_wp * mesh%stiff(i) * a_i       ! (E/dx)(du_{i-1} - du_i) of the mode
+            st%s(i) = st%s(i) + ds
+            st%s_old(i) = st%s_old(i) - ds
+         end if
+      end do
+      if (bot == mesh%n .and. mesh%bottom == end_base .and. .not. st%ends%base_contact) then
+         st%ends%u_base = st%ends%u_base + merge(amp, -amp, mod(bot, 2) == 0)
+      end if
+      st%s_scale = max(st%s_scale, maxval(abs(st%s(top+1:bot))))
+   end subroutine add_zigzag
 
    !> The characteristic intervals of the fragment's cells at t^n (at_n: read from s^n and
    !> du^{n+1}; the waves that arrive at the nodes during the step) or at t^{n+1} (from

@@ -18,7 +18,7 @@ module spb_sim
    use spb_load, only: load_t, build_load
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
-   use spb_wave, only: wave_t, wave_energy
+   use spb_wave, only: wave_t, wave_energy, start_without_zigzag
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t, &
       first_fractures
    use spb_events, only: event_list_t, ev_fracture
@@ -167,6 +167,8 @@ contains
       call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges)
       call watch_gauges(sim%mesh, sim%gauges)
       call init_state(sim%prob, sim%mesh, sim%st)
+      ! the start holds none of the lattice's zig-zag mode (spb_wave; issue 17)
+      call start_without_zigzag(sim%mesh, sim%prob%gravity, sim%st)
    end subroutine sim_setup
 
    !> The problem of a validated deck, its mesh and its load (the load table read here, after
