@@ -343,7 +343,7 @@ contains
    !> unstressed start under gravity as init_state builds it holds g dt^2/4 of it), and the
    !> intact scheme takes rho to -rho in every step, loads or not. The start the program runs
    !> holds none (start_without_zigzag), so rho stays at round-off; the work through the end
-   !> counts the incoming interval w_in + rho (spb_step). 0 without gravity (not computed:
+   !> counts the incoming interval w_in + rho (spb_step, which does not ask without gravity:
    !> with g = 0 nothing but the start, which the projection clears, makes any).
    pure subroutine transmit_residuals(mesh, st, g, i_top, i_bot, rho_top, rho_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
@@ -358,7 +358,6 @@ contains
       integer :: top, bot
       rho_top = 0.0_wp
       rho_bot = 0.0_wp
-      if (.not. abs(g) > 0.0_wp) return
       if (mesh%top == end_transmit) then
          bot = mesh%n
          if (st%n_split > 0) bot = st%split(1)
@@ -429,29 +428,7 @@ contains
       real(wp), intent(out) :: rho_top     !! rho at a transmitting top (else 0) [m]
       real(wp), intent(out) :: rho_bot     !! rho at a transmitting bottom (else 0) [m]
       real(wp), parameter :: no_load = 0.0_wp
-      real(wp) :: e, jp, jr, ja, rho(2)
-      type(faces_t) :: fc
-      integer :: top, bot
-      rho_top = 0.0_wp
-      rho_bot = 0.0_wp
-      if (mesh%top == end_transmit) then
-         bot = mesh%n
-         if (st%n_split > 0) bot = st%split(1)
-         fc = face_equations(mesh, st, g, 0, bot, no_load, no_load)
-         if (fc%eq_bot) then
-            call fragment_wave(mesh, st, g, 0, bot, no_load, no_load, e, jp, jr, ja, rho)
-            rho_top = rho(1)
-         end if
-      end if
-      if (mesh%bottom == end_transmit) then
-         top = 0
-         if (st%n_split > 0) top = st%split(st%n_split)
-         fc = face_equations(mesh, st, g, top, mesh%n, no_load, no_load)
-         if (fc%eq_top) then
-            call fragment_wave(mesh, st, g, top, mesh%n, no_load, no_load, e, jp, jr, ja, rho)
-            rho_bot = rho(2)
-         end if
-      end if
+      call transmit_residuals(mesh, st, g, no_load, no_load, rho_top, rho_bot)
    end subroutine start_zigzag
 
    !> Add the zig-zag mode u_i = amp (-1)^i (at t^0) to the fragment top..bot: the halves it
