@@ -178,6 +178,8 @@ contains
       call field(ck, writing, '/state', 'base_contact', st%ends%base_contact)
       call field(ck, writing, '/state', 'landing_top', st%ends%landing_top)
       call field(ck, writing, '/state', 'landing_bot', st%ends%landing_bot)
+      ! added later (a checkpoint without it was written by a version without the credit)
+      call later_field(ck, writing, '/state', 'u_credit', st%ends%u_credit)
       call array_field(ck, writing, 'ua', st%ua)
       call array_field(ck, writing, 'ub', st%ub)
       call array_field(ck, writing, 'dua', st%dua)
@@ -227,22 +229,23 @@ contains
       call field(ck, writing, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
       ! added later (a checkpoint without them restarts; its summary lists fewer fractures)
       do k = 1, first_fractures
-         call later_field(ck, writing, 'fracture_t_' // itoa(k), summary%fracture_t(k))
-         call later_field(ck, writing, 'fracture_x_' // itoa(k), summary%fracture_x(k))
-         call later_field(ck, writing, 'fracture_stress_' // itoa(k), summary%fracture_s(k))
+         call later_field(ck, writing, '/run', 'fracture_t_' // itoa(k), summary%fracture_t(k))
+         call later_field(ck, writing, '/run', 'fracture_x_' // itoa(k), summary%fracture_x(k))
+         call later_field(ck, writing, '/run', 'fracture_stress_' // itoa(k), summary%fracture_s(k))
       end do
    end subroutine summary_fields
 
-   !> A real attribute of /run added after checkpoints existed: always written; read back
+   !> A real attribute of group added after checkpoints existed: always written; read back
    !> (and counted in the checksum) only where the checkpoint has it, so that one written
    !> before it still matches its checksum.
-   subroutine later_field(ck, writing, name, v)
+   subroutine later_field(ck, writing, group, name, v)
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       logical, intent(in) :: writing       !! write (else read back)
+      character(len=*), intent(in) :: group   !! group path
       character(len=*), intent(in) :: name   !! field name
       real(wp), intent(inout) :: v         !! the value
-      if (writing .or. h5_has_attr(ck%h5, '/run', name)) call field_real(ck, writing, '/run', &
-                                                                        name, v)
+      if (writing .or. h5_has_attr(ck%h5, group, name)) call field_real(ck, writing, group, &
+                                                                       name, v)
    end subroutine later_field
 
    !> A scalar field: an attribute of group, written or read back.

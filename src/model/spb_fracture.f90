@@ -12,7 +12,8 @@ module spb_fracture
    use spb_state, only: state_t, open_node
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
    use spb_arrays, only: append
-   use spb_wave, only: fragment_characteristics, region_wave
+   use spb_wave, only: fragment_characteristics, region_wave, held_odd, vertex_offset, &
+      credit_position
    use spb_problem, only: events_admissible, events_paper
    implicit none
    private
@@ -261,11 +262,111 @@ contains
                            -mesh%stiff(i) * (du_a(m) - st%dua(i)), &
                            mesh%stiff(i + 1) * (du_b(m) - st%dub(i)))
       end do
+      if (nb > 0 .and. abs(st%ends%u_credit) > 0.0_wp) call pay_credit(mesh, st, g, brk(1), brk(nb), &
+                                                                   i_top, i_bot)
       do m = 1, nb
          call fragment_span(mesh, st, brk(m), j, k)
          call record_break(mesh, st, brk(m), j, s_brk(m), events)
       end do
    end subroutine break_admissible
+
+   !> The break of a bar held at both ends whose measure holds a landing's credit gamma
+   !> (spb_contact, keep_credit): the credit leaves the measure with the hold, so the break
+   !> would add gamma. The new end fragments pay it: the measure of a fragment held at one end
+   !> is a parabola in the step of its free face, whose vertex is not in general the step the
+   !> break redid (its alternating sum is not zero there, as the held bar's was); the face's
+   !> step moves towards the vertex by what lowers that fragment's measure by gamma (to the
+   !> vertex where that is not enough), first the lower fragment's (nodes i_low..n, held by
+   !> the base or a fixed bottom) top face, then the upper one's (0..i_up, fixed top) bottom
+   !> face, neither so far that the faces overlap at t^{n+1}. What is not paid stays booked in
+   !> e_lost_wave (doc/method.md, "A landing credit"). The faces' momentum change is the
+   !> supports' (i_support), which hold the bar.
+   pure subroutine pay_credit(mesh, st, g, i_up, i_low, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i_up          !! the uppermost section that broke
+      integer, intent(in) :: i_low         !! the lowest section that broke
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp) :: gamma
+      gamma = st%ends%u_credit / credit_position(mesh, g, 1.0_wp)
+      st%ends%u_credit = 0.0_wp
+      if (.not. gamma > 0.0_wp) return
+      call pay_from_face(mesh, st, g, i_low, .false., i_low, mesh%n, i_top, i_bot, gamma)
+      if (gamma > 0.0_wp) call pay_from_face(mesh, st, g, i_up, .true., 0, i_up, i_top, i_bot, &
+                                             gamma)
+   end subroutine pay_credit
+
+   !> Lower the measure of the fragment top..bot by up to credit (what remains is returned)
+   !> by moving the step of its face at split node i (the upper half's with upper) towards
+   !> the vertex of its measure, as little as that needs and no further than the other face
+   !> at node i allows (no overlap). The measure is quadratic in the step: its two
+   !> coefficients are taken from three evaluations, d* = g dt^2 / (Z C) apart.
+   pure subroutine pay_from_face(mesh, st, g, i, upper, top, bot, i_top, i_bot, credit)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! the split node of the face
+      logical, intent(in) :: upper         !! the upper half's face (else the lower's)
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), intent(inout) :: credit    !! the credit still to pay [J/m^2]
+      type(state_t) :: trial
+      real(wp) :: p0, p_plus, p_minus, h, a, b, disc, delta
+      h = abs(g) * mesh%dt**2 / (mesh%z(merge(i, i + 1, upper)) * sum(1.0_wp / mesh%z(top+1:bot)))
+      p0 = region_wave(mesh, st, g, i_top, i_bot, top, bot)
+      trial = st
+      call move_face(mesh, trial, g, i, upper, h)
+      p_plus = region_wave(mesh, trial, g, i_top, i_bot, top, bot)
+      trial = st
+      call move_face(mesh, trial, g, i, upper, -h)
+      p_minus = region_wave(mesh, trial, g, i_top, i_bot, top, bot)
+      a = (p_plus + p_minus - 2.0_wp * p0) / (2.0_wp * h**2)
+      b = (p_plus - p_minus) / (2.0_wp * h)
+      if (.not. a > 0.0_wp) return
+      disc = b**2 - 4.0_wp * a * credit
+      if (disc > 0.0_wp) then
+         delta = -2.0_wp * credit / (b + sign(sqrt(disc), b))
+      else
+         delta = -b / (2.0_wp * a)
+      end if
+      if (upper) then
+         delta = min(delta, st%ub(i) - st%ua(i))
+      else
+         delta = max(delta, st%ua(i) - st%ub(i))
+      end if
+      call move_face(mesh, st, g, i, upper, delta)
+      credit = credit - (p0 - region_wave(mesh, st, g, i_top, i_bot, top, bot))
+   end subroutine pay_from_face
+
+   !> Move the step of one face of split node i by delta (the upper half's with upper, else
+   !> the lower's): its u and du, the stress of its cell, e_fracture (the scheme's measure)
+   !> and i_support.
+   pure subroutine move_face(mesh, st, g, i, upper, delta)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! split node
+      logical, intent(in) :: upper         !! the upper half's face (else the lower's)
+      real(wp), intent(in) :: delta        !! change of its step [m]
+      real(wp) :: e0
+      e0 = node_energy(mesh, st, g, i)
+      if (upper) then
+         st%ua(i) = st%ua(i) + delta
+         st%dua(i) = st%dua(i) + delta
+         st%s(i) = st%s(i) - mesh%stiff(i) * delta
+         st%ledger%i_support = st%ledger%i_support + mesh%ma(i) * delta / mesh%dt
+      else
+         st%ub(i) = st%ub(i) + delta
+         st%dub(i) = st%dub(i) + delta
+         st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * delta
+         st%ledger%i_support = st%ledger%i_support + mesh%mb(i) * delta / mesh%dt
+      end if
+      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, i))
+   end subroutine move_face
 
    !> Open the joined section i: its halves' u and du change by dd_a (upper) and dd_b
    !> (lower), the cells above and below by ds_a and ds_b; the section has no strength from
@@ -329,6 +430,11 @@ contains
    !> base has no tensile strength): 'paper', stage 1 and 2 on the bar side only;
    !> 'admissible', as a break: the bar left at t^n, and its bottom face moves over the step
    !> by 2 f_n of the continuum state at t^n (the base's impulse of the step is given back).
+   !> A bar held by a fixed top with an odd cell count, under gravity: its bottom face moves
+   !> by 2 f_n + d*/2 (d* = g dt^2 / (Z_n C)), where the free bar's measure has its vertex,
+   !> K lower (vertex_offset), which pays the credit of its landing (K - credit >= 0 is
+   !> removed); it leaves only where that step is still off the base, 2 f_n + d*/2 < 0: the
+   !> base holds a pull of up to Z_n d* / (2 dt) (doc/method.md, "A landing credit").
    pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -338,7 +444,7 @@ contains
       integer, intent(in) :: rules         !! event rules (events_*)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      real(wp) :: s_base, d_a, e0, de, e_wave0
+      real(wp) :: s_base, d_a, e0, de, e_wave0, vertex
       real(wp), allocatable :: f(:), gw(:)
       integer :: n, j, k
       type(event_t) :: ev
@@ -351,13 +457,17 @@ contains
       if (rules == events_admissible .and. .not. mesh%full_mass) then
          allocate(f(j+1:n), gw(j+1:n))
          call fragment_characteristics(mesh, st, g, j, n, i_top, i_bot, .true., f, gw)
-         ! the base lets go where the continuum reading's base stress pulls too (as breaks)
-         if (.not. (2.0_wp * mesh%z(n) / mesh%dt * f(n) < -eps)) then
+         vertex = 0.0_wp
+         if (held_odd(mesh, st, j, n)) vertex = vertex_offset(mesh, g, j, n, n)
+         ! the base lets go where the continuum reading's base stress pulls too (as breaks),
+         ! beyond the pull it holds for the held bar's vertex
+         if (.not. (mesh%z(n) / mesh%dt * (2.0_wp * f(n) + vertex) < -eps)) then
             st%section(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
             return
          end if
-         ! the step redone from t^n for the bottom face: it moves by 2 f_n
-         d_a = st%dua(n) - 2.0_wp * f(n)
+         ! the step redone from t^n for the bottom face: it moves by 2 f_n (+ the vertex's
+         ! offset)
+         d_a = st%dua(n) - (2.0_wp * f(n) + vertex)
       else
          ! stage 1 on the bar side; the full-mass model lets go without corrections (it has
          ! no section stresses)
@@ -375,6 +485,7 @@ contains
          st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
       end if
       st%ends%base_contact = .false.
+      st%ends%u_credit = 0.0_wp
       st%section(n) = 0.0_wp
       st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, n))
       if (rules /= events_admissible .and. .not. anchored(mesh, st, j, n)) then

@@ -48,6 +48,10 @@ module spb_state
       real(wp) :: w_in_bot = 0.0_wp           !! the same through a transmitting bottom [m]
       logical :: base_contact = .false.       !! the bottom face rests on the base
       real(wp) :: u_base = 0.0_wp             !! displacement of node n at which it touches [m]
+      real(wp) :: u_credit = 0.0_wp           !! the landing credit of a bar held at both ends
+                                              !! with an odd cell count, as a position: its
+                                              !! gravity term is lower by g dt u_credit/(2C)
+                                              !! (spb_wave, held_weights); 0 otherwise [m]
       logical :: landing_top = .false.        !! the next support section stress starts from
       logical :: landing_bot = .false.        !! a moving bar half (collision with a support):
       real(wp) :: v_land_top = 0.0_wp         !! (3.1) then uses this velocity for v^n and

@@ -30,7 +30,8 @@ module spb_wave
    implicit none
    private
    public :: wave_t, wave_energy, fragment_wave, fragment_characteristics, region_wave, &
-      transmit_residuals, start_without_zigzag, start_zigzag
+      transmit_residuals, start_without_zigzag, start_zigzag, held_odd, credit_bound, &
+      vertex_offset, credit_position
 
    !> The whole bar's wave energy and the largest Jordan amplitude of its fragments.
    type :: wave_t
@@ -614,9 +615,7 @@ contains
       ! w_i = (-1)^(i-top-1) (1/2 - C_i/C), C_i the compliance (sum of dt/Z) of the cells
       ! above node i (found from the affine one-step map; exact, layered included), plus the
       ! bottom node's elastic position over C (held_weights)
-      if (.not. (fc%eq_top .or. fc%eq_bot) .and. mod(bot - top, 2) == 1 .and. top == 0 .and. &
-          mesh%top == end_fixed .and. bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-          (mesh%bottom == end_base .and. st%ends%base_contact))) jprime = held_weights(mesh, st, top, bot)
+      if (held_odd(mesh, st, top, bot)) jprime = held_weights(mesh, st, top, bot)
       if (fc%eq_top .and. .not. fc%eq_bot .and. mod(bot - top, 2) == 1) then
          jprime = jprime - 2.0_wp * fc%load_top
       end if
@@ -670,8 +669,57 @@ contains
               (mesh%ma(i) * (u_el - 0.5_wp * st%dua(i)) + mesh%mb(i) * (u_el - 0.5_wp * st%dub(i)))
          sgn = -sgn
       end do
-      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot)) / c_total
+      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot) + st%ends%u_credit) / c_total
    end function held_weights
+
+   !> Whether the fragment top..bot is held at both ends (a fixed top, and a fixed bottom or
+   !> the base it rests on) with an odd cell count: the case of held_weights, and of the
+   !> landing credit (doc/method.md, "A landing credit").
+   pure logical function held_odd(mesh, st, top, bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      held_odd = mod(bot - top, 2) == 1 .and. top == 0 .and. mesh%top == end_fixed .and. &
+                 bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+                 (mesh%bottom == end_base .and. st%ends%base_contact))
+   end function held_odd
+
+   !> K = g^2 dt^3 / (8 C), C = sum 1/Z over the cells of the fragment top..bot: for a
+   !> fragment with an odd cell count held at one end, how much lower its measure is where its
+   !> free face's step over the last step is the vertex of the measure (g dt^2 / (2 Z_k C)
+   !> beyond the g = 0 one, along gravity; vertex_offset) [J/m^2]; for one held at both ends,
+   !> the most a landing or a join can add to the measure (doc/method.md, "A landing credit").
+   pure real(wp) function credit_bound(mesh, g, top, bot) result(k)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      k = g**2 * mesh%dt**3 / (8.0_wp * sum(1.0_wp / mesh%z(top+1:bot)))
+   end function credit_bound
+
+   !> g dt^2 / (2 Z_k C): where the measure of a fragment (nodes top..bot, odd cell count, held
+   !> at its other end) has its vertex in the step of its free face next to cell k, beyond the
+   !> g = 0 one, along gravity [m] (bench/landing_rules/face_parabola.py). 0 for an even count.
+   pure real(wp) function vertex_offset(mesh, g, top, bot, k) result(d)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+      integer, intent(in) :: k             !! the cell next to the free face
+      d = 0.0_wp
+      if (mod(bot - top, 2) == 1) d = 0.5_wp * g * mesh%dt**2 / (mesh%z(k) * &
+                                                            sum(1.0_wp / mesh%z(top+1:bot)))
+   end function vertex_offset
+
+   !> The credit gamma [J/m^2] of the bar held at both ends with an odd cell count as the
+   !> position u_credit of held_weights (the measure is lower by g dt u_credit / (2C)) [m].
+   pure real(wp) function credit_position(mesh, g, gamma) result(u)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2], not 0
+      real(wp), intent(in) :: gamma        !! the credit [J/m^2]
+      u = 2.0_wp * gamma * sum(1.0_wp / mesh%z(1:mesh%n)) / (g * mesh%dt)
+   end function credit_position
 
    !> m du / dt of node i as the fragment top..bot owns it [kg/(m s)].
    pure real(wp) function node_momentum(mesh, st, top, bot, i) result(p)
