@@ -471,7 +471,7 @@ def part_held(check, exe, work, count, seed):
     check(ran >= 100, f"held bars: only {ran} ran")
     print(f"ok   {ran} bars with a fixed top under gravity: worst excess {worst[2]:.1e}, e_lost_w step "
           f"{worst[0]:.1e}; at the {credited} rows of landings and of joins of two anchored sides in odd "
-          f"bars (where a credit arises; each added up to K before it) {worst[1]:.1e}")
+          f"bars (where credits arise; such events added up to K before the credit) {worst[1]:.1e}")
 
 
 def part_open(check, exe, work, count, seed):

@@ -169,7 +169,7 @@ contains
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp), intent(in) :: e_wave0      !! region_wave of the event's region before it [J/m^2]
       real(wp) :: gain
-      if (.not. abs(g) > 0.0_wp .or. st%n_split > 0) return
+      if (.not. abs(g) > 0.0_wp .or. st%n_split > 0 .or. mesh%full_mass) return
       if (.not. held_odd(mesh, st, 0, mesh%n)) return
       gain = region_wave(mesh, st, g, i_top, i_bot, 0, mesh%n) - e_wave0
       if (.not. gain > 0.0_wp) return
