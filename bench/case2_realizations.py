@@ -39,6 +39,10 @@ def run_one(exe, work, cells, timing, shift, events, eps):
         p = subprocess.run([exe, name + ".nml", "-q"], cwd=work, capture_output=True, text=True)
         if p.returncode != 0:
             print(f"warning: {name}: exit {p.returncode} {p.stderr.strip()[:120]}")
+        # only the history is read; the events file of a fine 'fragment' run is ~1 GB
+        for ext in (".evt", ".xt", ".h5"):
+            if os.path.exists(os.path.join(work, name + ext)):
+                os.remove(os.path.join(work, name + ext))
     return name
 
 
