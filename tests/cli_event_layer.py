@@ -2,7 +2,8 @@
 """The event layer (issue 17): events that cannot create energy, frame independence, no
 penetration, under the default (admissible) rules.
 
-    cli_event_layer.py SPALLBAR WORKDIR [--only decks|metamorphic|random|held|open] [--random N]
+    cli_event_layer.py SPALLBAR WORKDIR [--only decks|metamorphic|random|held|open|cohesive]
+                       [--random N]
                        [--seed S]
 
 Three parts, each reading the history columns of the wave measure (doc/outputs.md):
@@ -31,7 +32,13 @@ Three parts, each reading the history columns of the wave measure (doc/outputs.m
   open         N bars of the same generator hanging from a transmitting top under gravity
                whose bottom face moves at t = 0: the ledger, Jordan and overlap conditions,
                e_lost_w never decreasing, the first landing's row included (the start holds
-               no zig-zag content, doc/method.md).
+               no zig-zag content, doc/method.md);
+  cohesive     the same with cohesive cracks (&segments fracture_energy, issue 31): the
+               metamorphic checks (Galilean, free fall, mirror, scaling with Gc x18) of the
+               three-segment bar, and N random bars of the same generator with a fracture
+               energy on every breakable segment (cohesive zones from well under a cell to
+               many cells): the conditions of 'random' at every row, and what the cracks
+               dissipated never above what their tractions took (e_cohesive <= w_cohesive).
 Prints one line per check and 'N passed, M failed'; exit 1 on any failure.
 """
 import os
@@ -170,11 +177,20 @@ R3 = [2400.0, 1800.0, 2700.0]
 S3 = [1.2e6, 0.6e6, 2.5e6]
 
 
-def gal0(timing, shift, var="base"):
+G3 = [2.0, 0.5, 8.0]      # fracture energies of the cohesive variant [J/m^2]
+
+
+def gal0(timing, shift, var="base", cohesive=False):
     j = lambda a: ", ".join(repr(x) for x in a)
     kw = dict(timing=timing, shift=shift, extra="", dt="8e-6", L=j(L3), E=j(E3), R=j(R3),
               S=j(S3), vel="", face="top", p0="5e6", tk="4e-3", tc="3e-3")
-    if var == "v3":
+    if cohesive:
+        # the cohesive length E Gc / R^2 scales with the lengths: Gc x (3^2 x 2) when scaled
+        g = [18.0 * x for x in G3] if var == "scaled" else (G3[::-1] if var == "mirror" else G3)
+        kw["vel"] = f", fracture_energy = {j(g)}"
+        if var == "v3":
+            kw["vel"] += ", velocity = 3, 3, 3"
+    if var == "v3" and not cohesive:
         kw["vel"] = ", velocity = 3, 3, 3"
     if var == "g":
         kw["extra"] = ", gravity = 9.81 "
@@ -232,14 +248,14 @@ CASE2 = """&run t_end = 0.6, gravity = 9.81, timing = '{timing}', shift = '{shif
 """
 
 
-def part_metamorphic(check, exe, work):
+def part_metamorphic(check, exe, work, cohesive=False, combos=None):
     mass = sum(l * r for l, r in zip(L3, R3))
-    for rule in RULES:
-        for policy in POLICIES:
-            base = f"m_{rule}_{policy}"
+    for rule, policy in combos or [(r, p) for r in RULES for p in POLICIES]:
+        if True:
+            base = f"m{'c' if cohesive else ''}_{rule}_{policy}"
             names = {v: f"{base}_{v}" for v in ("base", "v3", "g", "mirror", "scaled")}
             for v, n in names.items():
-                rc, err = run(exe, work, n, gal0(rule, policy, v))
+                rc, err = run(exe, work, n, gal0(rule, policy, v, cohesive))
                 check(rc == 0, f"{n}: exit {rc} {err}")
             p = lambda n, ext: os.path.join(work, n + ext)
             hb, eb, sb = his(p(names["base"], ".his")), events(p(names["base"], ".evt")), \
@@ -270,8 +286,14 @@ def part_metamorphic(check, exe, work):
             k = min(len(h["e_wave"]), len(hb["e_wave"]))
             dsc = np.max(np.abs(h["e_wave"][:k] - 18.0 * hb["e_wave"][:k])) / (18.0 * np.max(hb["e_wave"]))
             check(dsc <= 1e-9, f"{base}: scaling: e_wave differs from x18 by {dsc:.2e}")
+            if cohesive:
+                check(any(k == "crack" for _, k, _ in eb), f"{base}: no cohesive crack opened")
+                for v, n in names.items():
+                    admissible(check, work, n, quiet=True)
             print(f"ok   {base}: Galilean ds {ds:.1e} dp {dp:.1e}; free fall ds {dsg:.1e}; "
                   f"mirror de {de:.1e}; scaling {dsc:.1e}; {len(eb)} events")
+    if cohesive:
+        return
     # Galilean with a transmitting bottom (Example 2's own end): the continuation beyond it
     # moves with the bar, so V0 changes no event and no stress, and the momenta differ by a
     # constant (the transmitting node carries the half mass of the cell beyond)
@@ -333,9 +355,10 @@ def held_ends_stay(check, work, name, deck):
             check(b[-1] == 0.0, f"{name}: the fixed bottom moved by {b[-1]:.3e} m")
 
 
-def random_deck(r, top=None, bottom=None, gravity=None):
+def random_deck(r, top=None, bottom=None, gravity=None, cohesive=False):
     """A random layered bar; top, bottom, gravity: given instead of drawn (the draws are
-    made all the same, so the rest of the deck does not depend on them)."""
+    made all the same, so the rest of the deck does not depend on them); cohesive: a
+    fracture energy on every segment with a strength > 0, drawn last."""
     forced = (top, bottom, gravity)
     nseg = r.randint(1, 3)
     dt = 1.0e-6
@@ -374,6 +397,12 @@ def random_deck(r, top=None, bottom=None, gravity=None):
     if face:
         deck += (f"&load kind = 'power', face = '{face}', p0 = {p0!r}, t_k = {tk!r}, "
                  f"exponent = {expo!r}, t_cut = {tk!r} /\n")
+    if cohesive:
+        # Gc from E Gc / R^2 = 0.1 to 30 cells: zones from unresolved to well resolved
+        gc = [r.choice([0.1, 1.0, 3.0, 30.0]) * (s ** 2) * (e / d) ** 0.5 * dt / e if s > 0 else 0.0
+              for s, e, d in zip(strength, young, rho)]
+        deck = deck.replace(f"  strength = {j(strength)},",
+                            f"  strength = {j(strength)}, fracture_energy = {j(gc)},")
     return deck
 
 
@@ -403,6 +432,34 @@ def part_random(check, exe, work, count, seed):
     check(ran >= 100, f"random decks: only {ran} ran")
     print(f"ok   {ran} random layered bars: worst excess {worst[0]:.1e}, e_lost_w step {worst[1]:.1e}, "
           f"ledger {worst[2]:.1e}, Jordan {worst[3]:.1e}, overlap {worst[4]:.1e}")
+
+
+def part_cohesive(check, exe, work, count, seed):
+    part_metamorphic(check, exe, work, cohesive=True,
+                     combos=[("accelerate", "above"), ("min", "fragment")])
+    r = random.Random(seed + 31)
+    worst = [0.0, 0.0, 0.0, 0.0, 0.0]
+    ran = cracks = 0
+    for k in range(count):
+        name = f"cohesive_{k:03d}"
+        deck = random_deck(r, cohesive=True)
+        h = run_random(check, exe, work, name, deck)
+        if h is None:
+            continue
+        ran += 1
+        res = admissible(check, work, name, quiet=True)
+        held_ends_stay(check, work, name, deck)
+        cracks += int(np.max(h["cracks_open"]) > 0 or h["e_cohesive"][-1] > 0)
+        scale = energy_scale(h)
+        check(np.all(h["e_cohesive"] <= h["w_cohesive"] + 1e-12 * scale),
+              f"{name}: the cracks dissipated more than their tractions took")
+        worst = [max(worst[0], res[0]), min(worst[1], res[1]), max(worst[2], res[2]),
+                 max(worst[3], res[3]), max(worst[4], res[4])]
+    check(ran >= count * 2 // 3, f"cohesive random decks: only {ran} ran")
+    check(cracks >= ran // 4, f"cohesive random decks: only {cracks} of {ran} opened a crack")
+    print(f"ok   {ran} random cohesive bars ({cracks} with cracks): worst excess {worst[0]:.1e}, "
+          f"e_lost_w step {worst[1]:.1e}, ledger {worst[2]:.1e}, Jordan {worst[3]:.1e}, "
+          f"overlap {worst[4]:.1e}")
 
 
 def credit_bound(his_path, deck):
@@ -536,6 +593,8 @@ def main(argv):
         part_held(check, exe, work, count, seed)
     if only in ("all", "open"):
         part_open(check, exe, work, count, seed)
+    if only in ("all", "cohesive"):
+        part_cohesive(check, exe, work, count, seed)
     print(f"{check.passed} passed, {check.failed} failed")
     return 1 if check.failed else 0
 

@@ -69,17 +69,21 @@ def start(exe, work, name):
 
 
 def text_rows(path):
-    """Complete rows (31 numbers) and whether a partial last line was left."""
+    """Complete rows (as many numbers as the column line names) and whether a partial last
+    line was left."""
     rows, partial = [], False
     with open(path) as f:
         lines = f.read().split("\n")
     tail = lines.pop()                  # after the last newline: '' when complete
     partial = tail != ""
+    ncol = None
     for line in lines:
         if not line.startswith(" "):        # '#' lines, the column-name first line
+            if line.startswith("# t ") or line.startswith("t "):
+                ncol = len(line.lstrip("# ").split())
             continue
         vals = line.split()
-        if len(vals) != 31:
+        if len(vals) != ncol:
             return rows, partial, f"a row of {len(vals)} fields: {line[:80]!r}"
         rows.append([float(v) for v in vals])
     return rows, partial, None

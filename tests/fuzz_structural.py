@@ -60,7 +60,7 @@ KINDS = {
     ("mesh", "fit"): "word",
     ("segments", "n"): "int", ("segments", "length"): "real", ("segments", "young"): "real",
     ("segments", "density"): "real", ("segments", "area"): "real",
-    ("segments", "strength"): "real",
+    ("segments", "strength"): "real", ("segments", "fracture_energy"): "real",
     ("segments", "interface"): "word", ("segments", "velocity"): "real",
     ("segments", "gap"): "real",
     ("ends", "top"): "word", ("ends", "bottom"): "word", ("ends", "base_gap"): "real",
@@ -77,6 +77,7 @@ KINDS = {
 ARRAYS = {("run", "profile_times"): 100, ("segments", "length"): 100,
           ("segments", "young"): 100, ("segments", "density"): 100, ("segments", "area"): 100,
           ("segments", "strength"): 100, ("segments", "interface"): 100,
+          ("segments", "fracture_energy"): 100,
           ("segments", "velocity"): 100, ("segments", "gap"): 100, ("sweep", "values"): 1000,
           ("gauges", "x"): 100}
 

@@ -60,7 +60,8 @@ module spb_checkpoint
 
    !> Deck variables added after checkpoints existed ('group:name'): not given, they keep the
    !> behaviour of before, and a checkpoint that predates them fits a deck that leaves them out.
-   character(len=*), parameter :: later_variables(1) = ['segments:area']
+   character(len=*), parameter :: later_variables(2) = [character(len=24) :: 'segments:area', &
+      'segments:fracture_energy']
 
 contains
 
@@ -180,6 +181,7 @@ contains
       call field(ck, writing, '/state', 'landing_bot', st%ends%landing_bot)
       ! added later (a checkpoint without it was written by a version without the credit)
       call later_field(ck, writing, '/state', 'u_credit', st%ends%u_credit)
+      call cohesive_fields(ck, st, writing)
       call array_field(ck, writing, 'ua', st%ua)
       call array_field(ck, writing, 'ub', st%ub)
       call array_field(ck, writing, 'dua', st%dua)
@@ -200,6 +202,28 @@ contains
       call array_field(ck, writing, 'cracked', st%cracked)
    end subroutine state_fields
 
+   !> The cohesive cracks' part of the state (spb_state cohesive_t): only in a run that has
+   !> them, so a checkpoint of a run without them is what it was before they existed; read
+   !> back where the checkpoint has them.
+   subroutine cohesive_fields(ck, st, writing)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
+      type(state_t), intent(inout) :: st   !! the state
+      logical, intent(in) :: writing       !! write (else read back)
+      if (.not. writing) st%coh%on = h5_has_attr(ck%h5, '/state', 'coh_n_active')
+      if (.not. st%coh%on) return
+      call field(ck, writing, '/state', 'coh_n_active', st%coh%n_active)
+      call field(ck, writing, '/state', 'w_cohesive', st%ledger%w_cohesive)
+      call field(ck, writing, '/state', 'e_closing', st%ledger%e_closing)
+      call field(ck, writing, '/state', 'e_traction', st%ledger%e_traction)
+      call array_field(ck, writing, 'coh_gc', st%coh%gc)
+      call array_field(ck, writing, 'coh_r', st%coh%r)
+      call array_field(ck, writing, 'coh_dc', st%coh%dc)
+      call array_field(ck, writing, 'coh_dmax', st%coh%dmax)
+      call array_field(ck, writing, 'coh_q', st%coh%q)
+      call array_field(ck, writing, 'coh_offset', st%coh%offset)
+      call array_field(ck, writing, 'coh_active', st%coh%active)
+   end subroutine cohesive_fields
+
    !> The one list of what the checkpoint keeps of the run summary (attributes of /run).
    subroutine summary_fields(ck, summary, writing)
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
@@ -208,9 +232,14 @@ contains
       integer :: k
       call field(ck, writing, '/run', 'steps', summary%steps)
       call field(ck, writing, '/run', 'events', summary%events)
-      do k = 1, size(summary%n_kind)
+      do k = 1, 4
          call field(ck, writing, '/run', 'n_kind_' // itoa(k), summary%n_kind(k))
       end do
+      ! cracks (kind 7) only where there were some: older checkpoints have none
+      if ((writing .and. summary%n_kind(7) > 0) .or. (.not. writing .and. &
+          h5_has_attr(ck%h5, '/run', 'n_kind_7'))) then
+         call field(ck, writing, '/run', 'n_kind_7', summary%n_kind(7))
+      end if
       call field(ck, writing, '/run', 'checkpoints', summary%checkpoints)
       call field(ck, writing, '/run', 'ledger0', summary%ledger0)
       call field(ck, writing, '/run', 'ledger_drift', summary%ledger_drift)
@@ -534,6 +563,12 @@ contains
       else if (st%step < 0 .or. st%n_split < 0 .or. st%n_skip < 0 .or. st%fm%n_cut < 0 .or. &
                st%gen%n_frag_ids < 1 .or. st%n_breakable < 0 .or. st%n_breakable > n) then
          why = 'is damaged: a count of its state is out of range'
+      else if (st%coh%on .and. .not. (bounds_are(st%coh%gc, 0, n) .and. &
+               bounds_are(st%coh%r, 0, n) .and. bounds_are(st%coh%dc, 0, n) .and. &
+               bounds_are(st%coh%dmax, 0, n) .and. bounds_are(st%coh%q, 0, n) .and. &
+               bounds_are(st%coh%offset, 0, n) .and. &
+               allocated(st%coh%active))) then
+         why = 'is damaged: a cohesive crack array has other bounds than the mesh gives'
       else if (.not. (allocated(st%split) .and. allocated(st%skip_test) .and. &
                       allocated(st%fm%cut))) then
          why = 'is damaged: a list of its state is missing'

@@ -43,6 +43,8 @@ contains
       integer :: n, j
       n = deck%seg%n
       prob%nseg = n
+      allocate(prob%fracture_energy(n))
+      prob%fracture_energy(:) = deck%seg%fracture_energy(1:n)
       allocate(prob%length(n), prob%young(n), prob%density(n), prob%strength(n), &
                prob%velocity(n), prob%dry(n), prob%gap(n), prob%area(n))
       prob%length(:) = deck%seg%length(1:n)
@@ -580,6 +582,16 @@ contains
             else
                seg%strength(j) = -1.0_wp
             end if
+            if (is_set(seg%fracture_energy(j))) then
+               call need_positive(err, 'segments', 'fracture_energy' // sj, &
+                                  seg%fracture_energy(j), zero_ok=.true.)
+               if (.not. allocated(err) .and. seg%fracture_energy(j) > 0.0_wp .and. &
+                   .not. seg%strength(j) >= 0.0_wp) call make_error(err, '&segments: ' // &
+                  'fracture_energy' // sj // ' > 0 needs strength' // sj // ' >= 0 (an ' &
+                  // 'unbreakable segment opens no crack)')
+            else
+               seg%fracture_energy(j) = 0.0_wp
+            end if
             if (is_set(seg%velocity(j))) then
                call need_finite(err, 'segments', 'velocity' // sj, seg%velocity(j))
             else
@@ -615,6 +627,7 @@ contains
             call beyond_n('young', seg%young(j))
             call beyond_n('density', seg%density(j))
             call beyond_n('strength', seg%strength(j))
+            call beyond_n('fracture_energy', seg%fracture_energy(j))
             call beyond_n('velocity', seg%velocity(j))
             call beyond_n('area', seg%area(j))
             if (j >= seg%n) call beyond_n('gap', seg%gap(j))
@@ -775,6 +788,11 @@ contains
       if (deck%run%model == 'full-mass' .and. any(deck%seg%interface(1:deck%seg%n - 1) == 'dry')) then
          call make_error(err, '&segments: interface = ''dry'' needs &run model = ''half-mass'' ' &
                          // '(the full-mass model breaks springs, not nodes)')
+         return
+      end if
+      if (deck%run%model == 'full-mass' .and. any(deck%seg%fracture_energy(1:deck%seg%n) > 0.0_wp)) then
+         call make_error(err, '&segments: fracture_energy > 0 needs &run model = ''half-mass'' ' &
+                         // '(cohesive cracks open at nodes; the full-mass model breaks springs)')
          return
       end if
       call need_choice(err, 'initial', 'state', deck%init%state, state_words)

@@ -126,6 +126,9 @@ contains
                     // 'per unit area)', ra=s%area, count=n, sweep=.true.)
          call param(p, 'segments', 'strength', 'Pa (< 0: unbreakable)', 'tensile ' &
                     // 'strengths (default -1)', ra=s%strength, count=n, sweep=.true.)
+         call param(p, 'segments', 'fracture_energy', 'J/m^2', 'cohesive fracture ' &
+                    // 'energies Gc (default 0: brittle)', ra=s%fracture_energy, count=n, &
+                    sweep=.true.)
          call param(p, 'segments', 'interface', '', 'interface j between segments j and ' &
                     // 'j+1 (default ''bonded'')', ta=s%interface, count=n - 1, &
                     choices=interface_words)

@@ -90,6 +90,8 @@ module spb_deck_types
       real(wp) :: density(max_segments) = unset         !! [kg/m^3]
       real(wp) :: area(max_segments) = unset            !! cross-section area [m^2] (default 1)
       real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
+      real(wp) :: fracture_energy(max_segments) = unset !! cohesive fracture energy [J/m^2];
+                                                        !! 0 (default): brittle
       character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
       real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]
       real(wp) :: gap(max_segments) = unset             !! initial gap at a dry interface [m]

@@ -61,7 +61,7 @@ module spb_output
       column_t('shift', 'm', .false., 20, .false.) ]
 
    !> PREFIX.his and /history: the one list of the history columns, in order.
-   integer, parameter :: n_history = 31
+   integer, parameter :: n_history = 34
    type(column_t), parameter :: history_table(n_history) = [ &
       column_t('t', 's', .false.), &
       column_t('reaction_bottom', 'Pa', .false.), &
@@ -93,7 +93,10 @@ module spb_output
       column_t('w_wave', 'J/m^2', .false.), &
       column_t('e_lost_w', 'J/m^2', .false.), &
       column_t('ledger_w', 'J/m^2', .false.), &
-      column_t('overlap', '-', .false.) ]
+      column_t('overlap', '-', .false.), &
+      column_t('e_cohesive', 'J/m^2', .false.), &
+      column_t('w_cohesive', 'J/m^2', .false.), &
+      column_t('cracks_open', '-', .true.) ]
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
@@ -1211,8 +1214,9 @@ contains
    pure function kind_field(kind) result(f)
       integer, intent(in) :: kind   !! event kind (ev_*)
       character(len=16) :: f
-      character(len=16), parameter :: fields(4) = adjustr('  ' // event_kind_names)
-      f = fields(max(1, min(4, kind)))
+      character(len=16), parameter :: fields(size(event_kind_names)) = &
+         adjustr('  ' // event_kind_names)
+      f = fields(max(1, min(size(event_kind_names), kind)))
    end function kind_field
 
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.

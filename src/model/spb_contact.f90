@@ -65,6 +65,15 @@ contains
    end subroutine choose_time
 
    !> Test every open section (and the base) after the trial step; join what collides.
+   !> Whether split node i is a cohesive crack that still carries traction (its faces'
+   !> contact is the crack's own, spb_cohesive).
+   pure logical function cohesive_open(st, i)
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! split node
+      cohesive_open = .false.
+      if (st%coh%on) cohesive_open = st%coh%active(i)
+   end function cohesive_open
+
    pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -92,6 +101,7 @@ contains
          do c = 1, size(open_nodes)
             i = open_nodes(c)
             if (.not. (st%ua(i) - st%ub(i) > eps_rel * min(mesh%dx(i), mesh%dx(i + 1)))) cycle
+            if (cohesive_open(st, i)) cycle
             nc = nc + 1
             m = nc
             do while (m > 1)
@@ -111,6 +121,8 @@ contains
       do c = 1, size(open_nodes)
          if (open_nodes(c) == 0) exit
          i = open_nodes(c)
+         ! a cohesive crack's faces keep themselves apart (spb_cohesive): no collision
+         if (cohesive_open(st, i)) cycle
          tol = 0.0_wp
          if (rules == events_admissible) tol = eps_rel * min(mesh%dx(i), mesh%dx(i + 1))
          if (rules == events_admissible .and. pass == 1 .and. st%ua(i) - st%ub(i) > tol) then

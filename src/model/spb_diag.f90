@@ -9,7 +9,7 @@
 module spb_diag
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_state, only: state_t
+   use spb_state, only: state_t, separates
    implicit none
    private
    public :: energies_t, energies, frag_info_t, fragment_list, run_summary_t, first_fractures
@@ -47,7 +47,7 @@ module spb_diag
       real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
       real(wp) :: max_excess = 0.0_wp      !! largest (E - E0) - w_ext, relative to the guard's
                                            !! scale [-]
-      integer :: n_kind(4) = 0             !! events by kind (ev_fracture .. ev_base_collision)
+      integer :: n_kind(7) = 0             !! events by kind (ev_fracture .. ev_crack)
       real(wp) :: first_fracture_t = -1.0_wp   !! time of the first fracture; -1: none [s]
       real(wp) :: max_reaction_bottom = 0.0_wp !! largest section stress at the bottom node
                                                !! over all steps (compression > 0) [Pa]
@@ -85,7 +85,8 @@ contains
       e%e_strain = 0.5_wp * sum(st%s_old(1:n) * st%s(1:n) / mesh%stiff)
       e%e_pot = 0.0_wp - g * sum(mesh%ma * (st%ua - 0.5_wp * st%dua) + mesh%mb * (st%ub - 0.5_wp * st%dub))
       e%w_ext = st%ledger%w_load + st%ledger%w_transmit
-      e%e_lost = st%ledger%e_fracture + st%ledger%e_join + st%ledger%e_shift + st%ledger%e_contact
+      e%e_lost = st%ledger%e_fracture + st%ledger%e_join + st%ledger%e_shift + st%ledger%e_contact &
+                 + st%ledger%e_traction
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost
       e%momentum = sum(mesh%ma * st%dua + mesh%mb * st%dub) / dt
    end function energies
@@ -101,7 +102,9 @@ contains
       real(wp) :: mom, ekin, estr, dt
       dt = mesh%dt
       nf = 1 + st%fm%n_cut
-      if (mesh%n >= 2) nf = nf + count(.not. st%joined(1:mesh%n-1))
+      do i = 1, mesh%n - 1
+         if (separates(st, i)) nf = nf + 1
+      end do
       allocate(list(nf))
       top = 0
       whole_top = .true.
@@ -112,9 +115,9 @@ contains
             if (st%fm%is_cut(bot + 1)) exit
             bot = bot + 1
             if (bot == mesh%n) exit
-            if (.not. st%joined(bot)) exit
+            if (separates(st, bot)) exit
          end do
-         whole_bot = bot == mesh%n .or. st%joined(bot)
+         whole_bot = bot == mesh%n .or. .not. separates(st, bot)
          list(f)%id = st%gen%frag_id(top)
          list(f)%parent = st%gen%frag_parent(top)
          list(f)%birth_step = st%gen%frag_birth(top)

@@ -5,13 +5,16 @@ module spb_events
    implicit none
    private
    public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
-   public :: ev_base_collision, event_kind_names
+   public :: ev_base_collision, ev_crack, event_kind_names
 
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
+   !> A cohesive crack starts (its end, the full opening, is a fracture); codes 5 and 6 are
+   !> the striking mass's impact and release (INTERFACE.md)
+   integer, parameter :: ev_crack = 7
    !> Names of the kinds, in code order (the .evt 'kind' column; HDF5 stores the codes)
-   character(len=14), parameter :: event_kind_names(4) = [character(len=14) :: 'fracture', &
-      'collision', 'separation', 'base-collision']
+   character(len=14), parameter :: event_kind_names(7) = [character(len=14) :: 'fracture', &
+      'collision', 'separation', 'base-collision', 'impact', 'release', 'crack']
 
    type :: event_t
       integer :: kind = ev_fracture     !! ev_* constant

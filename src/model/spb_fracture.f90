@@ -9,8 +9,8 @@
 module spb_fracture
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, end_fixed, end_base
-   use spb_state, only: state_t, open_node
-   use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation
+   use spb_state, only: state_t, open_node, separates
+   use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation, ev_crack
    use spb_arrays, only: append
    use spb_wave, only: fragment_characteristics, region_wave, held_odd, vertex_offset, &
       credit_position
@@ -81,7 +81,8 @@ contains
    end function span_mass
 
    !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
-   !> rigidly by delta; returns the change of gravity potential energy.
+   !> rigidly by delta; returns the change of gravity potential energy. A cohesive crack at an
+   !> end keeps its opening: the shift goes to its offset (spb_state cohesive_t).
    pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -95,6 +96,14 @@ contains
          if (i > top .or. top == 0) st%ua(i) = st%ua(i) + delta
          if (i < bot .or. bot == mesh%n) st%ub(i) = st%ub(i) + delta
       end do
+      if (st%coh%on) then
+         if (top > 0) then
+            if (st%coh%active(top)) st%coh%offset(top) = st%coh%offset(top) + delta
+         end if
+         if (bot < mesh%n) then
+            if (st%coh%active(bot)) st%coh%offset(bot) = st%coh%offset(bot) - delta
+         end if
+      end if
       de_pot = -g * span_mass(mesh, top, bot) * delta
    end subroutine shift_span
 
@@ -121,13 +130,12 @@ contains
       integer, intent(in) :: rules       !! events_admissible | events_paper
       real(wp), intent(in) :: i_top      !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot      !! load integral on the bottom face over the step [Pa s]
-      integer, allocatable :: brk(:)
-      real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
       integer :: cand(mesh%n)
-      real(wp) :: eps, dt2, de, shift_up, shift_dn, e_wave0
-      integer :: i, m, nb, j, k, r_top, r_bot
-      logical :: anchored_up, anchored_dn
+      real(wp) :: eps
+      integer :: i, nb
 
+      if (st%coh%n_pending > 0) call crack_events(mesh, st, events)
+      if (st%coh%n_active > 0) call complete_cracks(mesh, st, events)
       if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%ends%base_contact)) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
       eps = eps_rel * st%s_scale
@@ -144,11 +152,63 @@ contains
          if (.not. st%joined(i)) cycle
          if (st%strength(i) < 0.0_wp) cycle
          if (.not. (st%section(i) < -st%strength(i) - eps)) cycle
+         if (st%coh%on) then
+            if (st%coh%gc(i) > 0.0_wp) cycle
+         end if
          if (any(st%skip_test(1:st%n_skip) == i)) cycle
          nb = nb + 1
          cand(nb) = i
       end do
-      if (nb == 0) return
+      if (nb > 0) call break_sections(mesh, st, g, cand(1:nb), eps, events, rules, i_top, i_bot)
+   end subroutine fracture_step
+
+   !> The events of the cohesive cracks the step opened (spb_crack): each holds from t^n.
+   pure subroutine crack_events(mesh, st, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      type(event_t) :: ev
+      integer :: m, i, j
+      do m = 1, st%coh%n_pending
+         i = st%coh%pending(m)
+         ev%kind = ev_crack
+         ev%step = st%step - 1
+         ev%node = i
+         ev%t = real(st%step - 1, wp) * mesh%dt
+         ev%x = mesh%x(i)
+         ev%stress = st%coh%pending_stress(m)
+         ev%dt_bound = mesh%dt
+         ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
+         ev%opening = st%ub(i) - st%ua(i)
+         j = i - 1
+         do while (j > 0)
+            if (separates(st, j)) exit
+            j = j - 1
+         end do
+         ev%frag_above = st%gen%frag_id(j)
+         ev%frag_below = st%gen%frag_id(j)
+         call push_event(events, ev)
+      end do
+      st%coh%n_pending = 0
+   end subroutine crack_events
+
+   !> Break the sections brk (ascending, joined, beyond their strength) by the rules given.
+   pure subroutine break_sections(mesh, st, g, cand, eps, events, rules, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g          !! gravity [m/s^2]
+      integer, intent(in) :: cand(:)     !! the sections to break, ascending
+      real(wp), intent(in) :: eps        !! round-off guard [Pa]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      integer, intent(in) :: rules       !! events_admissible | events_paper
+      real(wp), intent(in) :: i_top      !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot      !! load integral on the bottom face over the step [Pa s]
+      integer, allocatable :: brk(:)
+      real(wp), allocatable :: d_a(:), d_b(:), s_brk(:)
+      real(wp) :: dt2, de, shift_up, shift_dn, e_wave0
+      integer :: i, m, nb, j, k, r_top, r_bot
+      logical :: anchored_up, anchored_dn
+      nb = size(cand)
       allocate(brk(nb), d_a(nb), d_b(nb), s_brk(nb))
       brk = cand(1:nb)
       ! the wave energy of the fragments that break, before and after (e_lost_wave)
@@ -197,7 +257,33 @@ contains
       end do
       st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, &
                                                                r_top, r_bot)
-   end subroutine fracture_step
+   end subroutine break_sections
+
+   !> A cohesive crack whose largest opening reached the critical one has dissipated its Gc:
+   !> it is a fracture now (new fragments, the event), and its section opens no crack again
+   !> (Gc = 0: if it closes and parts again, that is a separation). Its faces still take the
+   !> last half of the traction of the step that opened it fully (the stepwise form), then
+   !> none (cohesive_step).
+   pure subroutine complete_cracks(mesh, st, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      integer :: c, i, j
+      do c = 1, st%n_split
+         i = st%split(c)
+         if (.not. (st%coh%gc(i) > 0.0_wp .and. st%coh%dmax(i) >= st%coh%dc(i))) cycle
+         if (.not. st%coh%dc(i) > 0.0_wp) cycle
+         st%coh%gc(i) = 0.0_wp
+         ! the fragment that parts is the one the crack held together: up to the node above
+         ! that separates
+         j = i - 1
+         do while (j > 0)
+            if (separates(st, j)) exit
+            j = j - 1
+         end do
+         call record_break(mesh, st, i, j, -st%coh%r(i), events)
+      end do
+   end subroutine complete_cracks
 
 
    !> The admissible break of the sections brk (ascending). A section found at t^{n+1} with

@@ -36,6 +36,8 @@ module spb_problem
       real(wp), allocatable :: area(:)             !! cross-section area [m^2] (1: the
                                                    !! model per unit area, as before)
       real(wp), allocatable :: strength(:)         !! tensile strength [Pa]; < 0 unbreakable
+      real(wp), allocatable :: fracture_energy(:)  !! cohesive fracture energy Gc [J/m^2]; 0:
+                                                   !! brittle (the paper's fracture)
       real(wp), allocatable :: velocity(:)         !! initial rigid velocity [m/s]
       logical, allocatable :: dry(:)               !! interface below segment j is dry
       real(wp), allocatable :: gap(:)              !! initial gap at that dry interface [m]

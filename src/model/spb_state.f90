@@ -12,7 +12,8 @@ module spb_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
    implicit none
    private
-   public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths
+   public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths, &
+      separates
 
    !> The running balances: work done on the bar, energy that events removed or changed,
    !> and the impulses of the momentum balance (the history's ledger columns).
@@ -34,6 +35,14 @@ module spb_state
                                               !! transmitting ends) on the end nodes [kg/(m s)]
       real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed ends, the
                                               !! base): the momentum they took [kg/(m s)]
+      real(wp) :: w_cohesive = 0.0_wp         !! work the cohesive tractions took from the
+                                              !! waves, sum of I (delta^{n+1} - delta^n)/dt:
+                                              !! dissipated plus held by the cracks (spb_cohesive;
+                                              !! in w_wave with the other sign) [J/m^2]
+      real(wp) :: e_closing = 0.0_wp          !! of w_cohesive, what closing faces' contact took
+                                              !! beyond the law's integral (>= 0) [J/m^2]
+      real(wp) :: e_traction = 0.0_wp         !! the same work in the scheme's own measure,
+                                              !! P^n (delta^{n+1} - delta^{n-1})/2 (in e_lost) [J/m^2]
    end type ledger_t
 
    !> The ends: what lies beyond a transmitting end, the rigid base, supports being hit.
@@ -77,6 +86,30 @@ module spb_state
       real(wp) :: strain_cut = 0.0_wp         !! strain energy measure of cut cells [J/m^2]
    end type full_mass_t
 
+   !> Cohesive cracks (spb_cohesive; doc/method.md, "Cohesive cracks"): per node, allocated
+   !> only where some segment has a fracture energy (on).
+   type :: cohesive_t
+      logical :: on = .false.                 !! some section has Gc > 0 (the arrays exist)
+      real(wp), allocatable :: gc(:)          !! (0:n) fracture energy of the section; 0 once
+                                              !! a crack there has opened fully [J/m^2]
+      real(wp), allocatable :: r(:)           !! (0:n) traction of the crack at zero opening
+                                              !! (the section's strength when it started) [Pa]
+      real(wp), allocatable :: dc(:)          !! (0:n) critical opening 2 Gc / r [m]
+      real(wp), allocatable :: dmax(:)        !! (0:n) largest opening so far [m]
+      real(wp), allocatable :: offset(:)      !! (0:n) what rigid shifts of one side added to the
+                                              !! faces' distance: the crack's opening is
+                                              !! ub - ua - offset (a shift is no opening) [m]
+      real(wp), allocatable :: q(:)           !! (0:n) integral of the traction over the last
+                                              !! step, I^n (tension > 0) [Pa s]
+      logical, allocatable :: active(:)       !! (0:n) a split node whose faces carry traction
+      integer :: n_active = 0                 !! such nodes
+      real(wp) :: eps_rel = 1.0e-9_wp         !! round-off guard of the opening test (as
+                                              !! fracture's) [-]
+      integer, allocatable :: pending(:)      !! cracks the step opened, for their events
+      real(wp), allocatable :: pending_stress(:)  !! their section stresses S^{n+1/2} [Pa]
+      integer :: n_pending = 0                !! such cracks
+   end type cohesive_t
+
    type :: state_t
       integer :: step = 0                     !! step index n: the state is at t^n = n dt
       real(wp), allocatable :: ua(:), ub(:)   !! displacements of the halves (0:n) [m]
@@ -103,6 +136,7 @@ module spb_state
       type(ends_t) :: ends                    !! transmitting ends, base, supports being hit
       type(genealogy_t) :: gen                !! the fragments' ids and parents
       type(full_mass_t) :: fm                 !! the full-mass model's cut springs
+      type(cohesive_t) :: coh                 !! cohesive cracks
    end type state_t
 
 contains
@@ -128,6 +162,7 @@ contains
       allocate(st%cell_strength(n), st%fm%is_cut(n))
       st%cell_strength = cell_strengths(prob, mesh)
       call init_strength(mesh, st)
+      call init_cohesive(prob, mesh, st)
       allocate(st%fm%cut(16), source=0)
       st%fm%is_cut = .false.
       if (mesh%full_mass) then
@@ -170,6 +205,7 @@ contains
          if (.not. prob%dry(j)) cycle
          st%cracked(i) = .true.
          st%strength(i) = 0.0_wp
+         if (st%coh%on) st%coh%gc(i) = 0.0_wp
          va = prob%velocity(j)
          vb = prob%velocity(j + 1)
          if (prob%gap(j) > 0.0_wp .or. abs(va - vb) > 0.0_wp) then
@@ -318,6 +354,39 @@ contains
       st%n_breakable = count(st%strength(1:mesh%n-1) >= 0.0_wp)
    end subroutine init_strength
 
+   !> The sections' fracture energies: each node takes the Gc of the cell whose strength it
+   !> took (the weaker side of a bonded interface; with a strength field, its cell's segment).
+   !> Only where some segment has Gc > 0; a dry interface stays brittle (it has no bond).
+   subroutine init_cohesive(prob, mesh, st)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state (strengths set)
+      integer :: i, n, k
+      real(wp) :: ra, rb
+      n = mesh%n
+      st%coh%on = .false.
+      if (.not. allocated(prob%fracture_energy)) return
+      if (.not. any(prob%fracture_energy > 0.0_wp) .or. mesh%full_mass) return
+      st%coh%on = .true.
+      allocate(st%coh%gc(0:n), st%coh%r(0:n), st%coh%dc(0:n), st%coh%dmax(0:n), st%coh%q(0:n), &
+               st%coh%offset(0:n), source=0.0_wp)
+      allocate(st%coh%active(0:n), source=.false.)
+      allocate(st%coh%pending(max(1, n)), source=0)
+      allocate(st%coh%pending_stress(max(1, n)), source=0.0_wp)
+      st%coh%n_active = 0
+      st%coh%eps_rel = prob%eps_rel
+      do i = 1, n - 1
+         ra = st%cell_strength(i)
+         rb = st%cell_strength(i + 1)
+         k = i
+         if (ra < 0.0_wp .or. (rb >= 0.0_wp .and. rb < ra)) k = i + 1
+         ! the model's energies are per unit area times the area (spb_mesh), as its forces
+         st%coh%gc(i) = prob%fracture_energy(mesh%seg(k)) * mesh%area(k)
+      end do
+      ! a section with no strength opens no cohesive crack
+      where (.not. st%strength > 0.0_wp) st%coh%gc = 0.0_wp
+   end subroutine init_cohesive
+
    !> Tensile strength of every cell [Pa] (< 0 unbreakable): its segment's, or with
    !> &strength_field kind = 'weibull' a Weibull sample (spb_random, the deck's seed) for
    !> every cell of a segment whose strength is >= 0, drawn from the top cell down.
@@ -344,8 +413,17 @@ contains
    !> Number of fragments: pieces between split interior nodes.
    pure integer function fragment_count(st) result(nf)
       type(state_t), intent(in) :: st      !! the state
-      nf = 1 + st%fm%n_cut + st%n_split
+      nf = 1 + st%fm%n_cut + st%n_split - st%coh%n_active
    end function fragment_count
+
+   !> Whether node i separates two fragments: split, and not a cohesive crack that still
+   !> carries traction (its faces are held together by it).
+   pure logical function separates(st, i)
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! node
+      separates = .not. st%joined(i)
+      if (separates .and. st%coh%on) separates = .not. st%coh%active(i)
+   end function separates
 
    !> Split interior node i (it must be joined): its halves move apart from now on. O(n_split).
    pure subroutine open_node(st, i)

@@ -6,6 +6,7 @@ module spb_step
    use spb_load, only: load_t, load_none, face_top, step_load, load_integral
    use spb_state, only: state_t
    use spb_wave, only: transmit_residuals
+   use spb_crack, only: start_cracks, cohesive_step
    implicit none
    private
    public :: section_stress_a, section_stress_b, advance, advance_joined, joined_only, &
@@ -143,7 +144,8 @@ contains
       real(wp) :: old_a(st%n_split), old_b(st%n_split), old_sec(st%n_split)
       real(wp) :: dt, dt2, d, w_cut, strain_cut
       integer :: split(st%n_split)
-      integer :: i, n, c, k, n_split
+      integer :: i, n, c, k, n_split, n_new
+      integer :: new_cracks(mesh%n)
       type(end_step_t) :: r
 
       n = mesh%n
@@ -194,6 +196,10 @@ contains
                                              mesh%z(i), mesh%dm(i), g)
          end do
       end if
+      ! cohesive sections beyond their strength open a crack at t^n, before the step, which
+      ! its faces then take under the crack's traction (spb_crack)
+      n_new = 0
+      if (st%coh%on .and. st%n_breakable > 0) call open_cracks(mesh, load, g, st, new_cracks, n_new)
       call joined_increments(mesh, g, st%s, st%dua, 0, n)
       st%dub = st%dua
       do c = 1, n_split
@@ -202,6 +208,8 @@ contains
          st%dub(i) = old_b(c) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
          st%section(i) = old_sec(c)
       end do
+      if (st%coh%n_active > 0) call crack_forces(mesh, g, st, split, old_a, old_b, &
+                                                 new_cracks(1:n_new))
       call hold_top(mesh, st, r)
       call hold_bottom(mesh, st, r)
       r%s_1 = st%s(1)
@@ -238,6 +246,46 @@ contains
       end if
       st%step = st%step + 1
    end subroutine advance
+
+   !> The cohesive sections that open a crack at t^n (spb_crack start_cracks, with the load
+   !> integrals of the step that ended there); new: those nodes, ascending.
+   pure subroutine open_cracks(mesh, load, g, st, new, n_new)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state at t^n, S^{n+1/2} in st%section
+      integer, intent(out) :: new(:)       !! the nodes opened (first n_new)
+      integer, intent(out) :: n_new        !! how many
+      real(wp) :: i_top, i_bot
+      call face_load_integrals(mesh, load, st%step, i_top, i_bot)
+      call start_cracks(mesh, g, st, i_top, i_bot, new, n_new)
+   end subroutine open_cracks
+
+   !> The open cohesive cracks' part of the step (spb_crack cohesive_step): those open before
+   !> it, whose halves the step has taken as free faces, and those opened now, whose halves
+   !> the step took as one joined node (with the increment du^n of both), taken again as free
+   !> faces first.
+   pure subroutine crack_forces(mesh, g, st, split, old_a, old_b, new)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state (increments of the step set)
+      integer, intent(in) :: split(:)      !! the nodes split before the step
+      real(wp), intent(in) :: old_a(:)     !! their upper halves' increments du^n [m]
+      real(wp), intent(in) :: old_b(:)     !! their lower halves' increments du^n [m]
+      integer, intent(in) :: new(:)        !! the cracks opened at t^n
+      real(wp) :: new_old(size(new)), dt2
+      integer :: c, i
+      dt2 = mesh%dt**2
+      do c = 1, size(new)
+         i = new(c)
+         new_old(c) = st%dua(i) - ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+                      * mesh%inv_m(i) * dt2
+         st%dua(i) = new_old(c) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
+         st%dub(i) = new_old(c) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
+      end do
+      call cohesive_step(mesh, st, split, old_a, old_b)
+      if (size(new) > 0) call cohesive_step(mesh, st, new, new_old, new_old)
+   end subroutine crack_forces
 
    !> advance_joined may stand in for nsteps calls of the whole step (advance, contact_step,
    !> fracture_step): every node is joined, none can break (no node, no spring), no rigid

@@ -79,7 +79,7 @@ contains
          else
             bot = mesh%n
          end if
-         if (top > 0 .and. bot < mesh%n .and. bot > top) then
+         if (top > 0 .and. bot < mesh%n .and. bot > top .and. .not. loaded(st, top, bot)) then
             ! between two split nodes (no transmitting end, no load): the short path
             call inner_wave(mesh, st, top, bot, .true., e, jp, jr, ja)
          else
@@ -121,7 +121,7 @@ contains
             if (.not. st%joined(b)) exit
             b = b + 1
          end do
-         if (t > 0 .and. b < mesh%n) then
+         if (t > 0 .and. b < mesh%n .and. .not. loaded(st, t, b)) then
             call inner_wave(mesh, st, t, b, .false., e, jp, jr, ja)
          else
             call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja)
@@ -130,6 +130,15 @@ contains
          t = b
       end do
    end function region_wave
+
+   !> Whether a face of the fragment top..bot is a cohesive crack's (it carries a traction).
+   pure logical function loaded(st, top, bot)
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the fragment
+      integer, intent(in) :: bot           !! bottom node of the fragment
+      loaded = .false.
+      if (st%coh%on) loaded = st%coh%active(top) .or. st%coh%active(bot)
+   end function loaded
 
    !> The continuum reading of one fragment, nodes top..bot (top: 0 or a split node whose
    !> lower half it owns; bot: n or a split node whose upper half it owns), at t^{n+1}.
@@ -758,14 +767,22 @@ contains
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp) :: grav
+      ! a cohesive crack's face is a loaded free face: the traction T pulls it towards the
+      ! other face, a load p = -T on it (I^{n+1} = st%coh%q, doc/method.md "Cohesive cracks")
       if (top > 0) then
          fc%eq_top = .true.
+         if (st%coh%on) then
+            if (st%coh%active(top)) fc%load_top = -0.5_wp * st%coh%q(top)
+         end if
       else
          fc%eq_top = mesh%top == end_free
          if (fc%eq_top) fc%load_top = 0.5_wp * i_top
       end if
       if (bot < mesh%n) then
          fc%eq_bot = .true.
+         if (st%coh%on) then
+            if (st%coh%active(bot)) fc%load_bot = -0.5_wp * st%coh%q(bot)
+         end if
       else
          fc%eq_bot = mesh%bottom == end_free .or. &
                      (mesh%bottom == end_base .and. .not. st%ends%base_contact)

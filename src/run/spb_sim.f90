@@ -16,6 +16,7 @@ module spb_sim
    use spb_mesh, only: mesh_t, build_mesh, mesh_size, end_base, mesh_fault_t, fault_none, &
       node_area
    use spb_load, only: load_t, build_load
+   use spb_cohesive, only: dissipated
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
@@ -129,15 +130,36 @@ contains
       e_lost_w = sim%st%ledger%e_lost_wave
    end subroutine measure
 
-   !> The largest overlap of two faces at a split node, or of the bottom face and the base,
-   !> in cells of that node (<= 0: none; -huge with no open face) [-].
+   !> Energy the cohesive cracks have dissipated so far, open and completed (spb_cohesive)
+   !> [J/m^2].
+   pure real(wp) function cohesive_dissipated(st) result(e)
+      type(state_t), intent(in) :: st      !! the state
+      e = 0.0_wp
+      if (st%coh%on) e = sum(dissipated(st%coh%dmax, st%coh%r, st%coh%dc))
+   end function cohesive_dissipated
+
+   !> What rigid shifts added to the faces' distance at an open cohesive crack, which is no
+   !> opening of the crack (spb_state cohesive_t); 0 elsewhere [m].
+   pure real(wp) function crack_offset(st, i) result(d)
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! split node
+      d = 0.0_wp
+      if (st%coh%on) then
+         if (st%coh%active(i)) d = st%coh%offset(i)
+      end if
+   end function crack_offset
+
+   !> The largest overlap of two faces at a split node (at an open cohesive crack, of its own
+   !> opening below 0), or of the bottom face and the base, in cells of that node (<= 0: none;
+   !> -huge with no open face) [-].
    pure real(wp) function largest_overlap(sim) result(ov)
       type(sim_t), intent(in) :: sim       !! the simulation
       integer :: c, i
       ov = -huge(1.0_wp)
       do c = 1, sim%st%n_split
          i = sim%st%split(c)
-         ov = max(ov, (sim%st%ua(i) - sim%st%ub(i)) / min(sim%mesh%dx(i), sim%mesh%dx(i + 1)))
+         ov = max(ov, (sim%st%ua(i) - sim%st%ub(i) + crack_offset(sim%st, i)) / &
+                      min(sim%mesh%dx(i), sim%mesh%dx(i + 1)))
       end do
       if (sim%mesh%bottom == end_base) ov = max(ov, (sim%st%ua(sim%mesh%n) - sim%st%ends%u_base) / &
                                                 sim%mesh%dx(sim%mesh%n))
@@ -376,6 +398,14 @@ contains
                                 err, xt_rows=opt%xt_rows)
             if (allocated(err)) return
             sim%st = resume%st
+            ! what a checkpoint does not keep of the cohesive cracks: the deck's guard and
+            ! the list of cracks a step opens (empty between steps)
+            if (sim%st%coh%on) then
+               sim%st%coh%eps_rel = sim%prob%eps_rel
+               allocate(sim%st%coh%pending(max(1, sim%mesh%n)), source=0)
+               allocate(sim%st%coh%pending_stress(max(1, sim%mesh%n)), source=0.0_wp)
+               sim%st%coh%n_pending = 0
+            end if
             summary = resume%summary
          else if (run%to_files) then
             call drop_set_aside(prefix)
@@ -624,7 +654,8 @@ contains
          e%ledger, sim%st%ledger%e_fracture, sim%st%ledger%e_join, sim%st%ledger%e_shift, sim%st%ledger%e_contact, &
          g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%ledger%i_ends, sim%st%ledger%i_support, sim%st%ledger%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
-         w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim)])
+         w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim), &
+         cohesive_dissipated(sim%st), sim%st%ledger%w_cohesive, real(sim%st%coh%n_active, wp)])
       if (sim%st%step == 0) summary%ledger0 = e%ledger
       call guard(sim, summary, e, wv, w_w, err)
       summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
