@@ -665,6 +665,9 @@ contains
    !> exact and is constant while the bar is held: it is what makes a lift-off or a break
    !> of a bar held at both ends change the measure by exactly what the g = 0 reading
    !> changes (0): without it they booked g dt u_bot / (2C), of either sign (doc/method.md).
+   !> With a constant-velocity end the positions are taken relative to the supports' line
+   !> U_top (1 - C_i/C) + U_bot C_i/C (U: a velocity end's mid-step position, else 0), the
+   !> lattice's exact quasi-static motion of the supports (doc/method.md, "Ends").
    pure real(wp) function held_weights(mesh, st, top, bot) result(jp)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
@@ -696,9 +699,9 @@ contains
            c_total
    end function held_weights
 
-   !> Whether the fragment top..bot is held at both ends (a fixed top, and a fixed bottom or
-   !> the base it rests on) with an odd cell count: the case of held_weights, and of the
-   !> landing credit (doc/method.md, "A landing credit").
+   !> Whether the fragment top..bot is held at both ends (a fixed or velocity top, and a fixed
+   !> or velocity bottom or the base it rests on) with an odd cell count: the case of
+   !> held_weights, and of the landing credit (doc/method.md, "A landing credit").
    pure logical function held_odd(mesh, st, top, bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
