@@ -139,6 +139,15 @@ def main():
                               os.path.join(work, "study_none"), "--figure", out("s0")], "s0")],
             (["--exe", exe, "--rates", "100", "--realizations", "1", "--out",
               os.path.join(work, "study_some"), "--figure", out("s1")], "s1")),
+        # the ZMR bar stopped long before its first crack; then one that breaks
+        "zmr_study": (
+            [("no fracture", ["--exe", exe, "--rates", "1", "--resolutions", "5",
+                              "--realizations", "1", "--ranks", "1", "--duration", "0.01",
+                              "--out", os.path.join(work, "zmr_none"), "--figure", out("z0")],
+              "z0")],
+            (["--exe", exe, "--rates", "10", "--resolutions", "5", "--realizations", "1",
+              "--ranks", "1", "--out", os.path.join(work, "zmr_some"), "--figure", out("z1")],
+             "z1")),
     }
     scripts = plot_scripts(plots)
     check(len(scripts) >= 7, f"plot scripts found in {plots}: {scripts}")

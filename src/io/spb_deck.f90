@@ -23,9 +23,10 @@ module spb_deck
    use spb_sys, only: fp_traps_off, fp_traps_restore
    use spb_mesh, only: mesh_fault_t, max_cells, max_steps, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
-   use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, load_none, &
-      load_power, load_table, load_exponential, face_top, face_bottom, timing_accelerate, &
-      timing_delay, timing_min, shift_above, shift_fragment, events_admissible, events_paper
+   use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, end_velocity, &
+      load_none, load_power, load_table, load_exponential, face_top, face_bottom, &
+      timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment, &
+      events_admissible, events_paper
    implicit none
    private
    public :: deck_t, deck_record_t, known_groups
@@ -64,9 +65,10 @@ contains
       prob%dt = deck%mesh%dt
       prob%stretch = deck%mesh%fit == 'stretch'
       prob%t_end = deck%run%t_end
-      prob%top = code_of(top_words, deck%ends%top, [end_free, end_fixed, end_transmit])
+      prob%top = code_of(top_words, deck%ends%top, [end_free, end_fixed, end_transmit, &
+                         end_velocity])
       prob%bottom = code_of(bottom_words, deck%ends%bottom, [end_free, end_fixed, end_base, &
-                            end_transmit])
+                            end_transmit, end_velocity])
       prob%base_gap = deck%ends%base_gap
       prob%load_kind = code_of(kind_words, deck%load%kind, [load_none, load_power, &
                                load_exponential, load_table])
@@ -802,7 +804,7 @@ contains
           deck%ends%bottom == 'fixed' .or. deck%ends%bottom == 'base')) then
          call make_error(err, '&initial: strain_rate = ' // rtoa(deck%init%strain_rate) // &
             ' needs ends that let the bar stretch about its centre of mass (&ends top, ' // &
-            'bottom = ''free'' or ''transmit'')')
+            'bottom = ''free'', ''transmit'' or ''velocity'')')
          return
       end if
       if (deck%init%state == 'static' .and. abs(deck%run%gravity) > 0.0_wp) then
@@ -818,7 +820,7 @@ contains
          end if
          if (deck%ends%top == 'free' .and. deck%ends%bottom == 'free') call make_error(err, &
             '&initial: state = ''static'' with gravity needs a supported end (&ends top or ' &
-            // 'bottom = ''fixed'', ''transmit'' or ''base''); both ends are free')
+            // 'bottom = ''fixed'', ''transmit'', ''velocity'' or ''base''); both ends are free')
       end if
    end subroutine validate_initial
 

@@ -27,9 +27,10 @@ module spb_deck_types
    character(len=*), parameter :: events_words(2) = [character(len=10) :: 'admissible', 'paper']
    character(len=*), parameter :: model_words(2) = [character(len=9) :: 'half-mass', 'full-mass']
    character(len=*), parameter :: fit_words(2) = [character(len=7) :: 'strict', 'stretch']
-   character(len=*), parameter :: top_words(3) = [character(len=8) :: 'free', 'fixed', 'transmit']
-   character(len=*), parameter :: bottom_words(4) = [character(len=8) :: 'free', 'fixed', &
-      'base', 'transmit']
+   character(len=*), parameter :: top_words(4) = [character(len=8) :: 'free', 'fixed', 'transmit', &
+      'velocity']
+   character(len=*), parameter :: bottom_words(5) = [character(len=8) :: 'free', 'fixed', &
+      'base', 'transmit', 'velocity']
    character(len=*), parameter :: interface_words(2) = [character(len=6) :: 'bonded', 'dry']
    character(len=*), parameter :: kind_words(4) = [character(len=11) :: 'none', 'power', &
       'exponential', 'table']
@@ -98,8 +99,9 @@ module spb_deck_types
    end type segments_cfg
 
    type :: ends_cfg
-      character(len=name_len) :: top = 'free'          !! 'free' | 'fixed' | 'transmit'
-      character(len=name_len) :: bottom = 'free'       !! 'free' | 'fixed' | 'base' | 'transmit'
+      character(len=name_len) :: top = 'free'          !! 'free' | 'fixed' | 'transmit' | 'velocity'
+      character(len=name_len) :: bottom = 'free'       !! 'free' | 'fixed' | 'base' | 'transmit' |
+                                                       !! 'velocity'
       real(wp) :: base_gap = 0.0_wp                    !! gap to the base [m]
    end type ends_cfg
 

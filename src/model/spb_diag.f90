@@ -18,7 +18,8 @@ module spb_diag
       real(wp) :: e_kin = 0.0_wp      !! [J/m^2]
       real(wp) :: e_strain = 0.0_wp   !! [J/m^2]
       real(wp) :: e_pot = 0.0_wp      !! gravity potential, zero at u = 0 [J/m^2]
-      real(wp) :: w_ext = 0.0_wp      !! work of loads and transmitting ends [J/m^2]
+      real(wp) :: w_ext = 0.0_wp      !! work of loads, transmitting and constant-velocity ends
+                                      !! [J/m^2]
       real(wp) :: e_lost = 0.0_wp     !! removed by events [J/m^2]
       real(wp) :: ledger = 0.0_wp     !! e_kin + e_strain + e_pot - w_ext + e_lost [J/m^2]
       real(wp) :: momentum = 0.0_wp   !! [kg/(m s)]
@@ -84,7 +85,7 @@ contains
       e%e_kin = 0.5_wp * sum(mesh%ma * st%dua**2 + mesh%mb * st%dub**2) / dt**2
       e%e_strain = 0.5_wp * sum(st%s_old(1:n) * st%s(1:n) / mesh%stiff)
       e%e_pot = 0.0_wp - g * sum(mesh%ma * (st%ua - 0.5_wp * st%dua) + mesh%mb * (st%ub - 0.5_wp * st%dub))
-      e%w_ext = st%ledger%w_load + st%ledger%w_transmit
+      e%w_ext = st%ledger%w_load + st%ledger%w_transmit + st%ledger%w_support
       e%e_lost = st%ledger%e_fracture + st%ledger%e_join + st%ledger%e_shift + st%ledger%e_contact &
                  + st%ledger%e_traction
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost

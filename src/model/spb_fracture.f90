@@ -8,7 +8,7 @@
 !> energy change is booked in e_fracture, so the ledger stays closed.
 module spb_fracture
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_fixed, end_base
+   use spb_mesh, only: mesh_t, end_fixed, end_base, end_velocity
    use spb_state, only: state_t, open_node, separates
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation, ev_crack
    use spb_arrays, only: append
@@ -39,14 +39,16 @@ contains
    end function node_energy
 
    !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
-   !> support that cannot move: a fixed end, or the base the bar rests on.
+   !> support that a rigid shift cannot move: a fixed end, a constant-velocity end (its
+   !> position is V t), or the base the bar rests on.
    pure logical function anchored(mesh, st, top, bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      anchored = (top == 0 .and. mesh%top == end_fixed) .or. &
+      anchored = (top == 0 .and. (mesh%top == end_fixed .or. mesh%top == end_velocity)) .or. &
                  (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
+                  mesh%bottom == end_velocity .or. &
                   (mesh%bottom == end_base .and. st%ends%base_contact)))
    end function anchored
 
@@ -230,8 +232,8 @@ contains
          d_b(m) = -s_brk(m) * dt2 / mesh%dm(i + 1)
          call open_section(mesh, st, g, i, -d_a(m), d_b(m), -s_brk(m), -s_brk(m))
       end do
-      ! stage 2: the opening becomes (dA + dB)/2; an anchored fragment (holding a fixed
-      ! end) does not move and the other one takes the whole correction
+      ! stage 2: the opening becomes (dA + dB)/2; an anchored fragment (holding a fixed or
+      ! a constant-velocity end) does not move and the other one takes the whole correction
       do m = 1, nb
          i = brk(m)
          call fragment_span(mesh, st, i, j, k)

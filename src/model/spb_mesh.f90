@@ -2,10 +2,11 @@
 module spb_mesh
    use spb_kinds, only: wp
    use spb_strings, only: itoa, rtoa
-   use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base
+   use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, end_velocity
    implicit none
    private
-   public :: mesh_t, build_mesh, mesh_size, end_free, end_fixed, end_transmit, end_base, node_area
+   public :: mesh_t, build_mesh, mesh_size, end_free, end_fixed, end_transmit, end_base, &
+      end_velocity, node_area
    public :: mesh_fault_t, max_cells, max_steps, fault_none, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
 

@@ -9,13 +9,14 @@ module spb_problem
    implicit none
    private
    public :: problem_t
-   public :: end_free, end_fixed, end_transmit, end_base
+   public :: end_free, end_fixed, end_transmit, end_base, end_velocity
    public :: load_none, load_power, load_table, load_exponential, face_top, face_bottom
    public :: timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment
    public :: events_admissible, events_paper
 
    !> End conditions of the bar.
-   integer, parameter :: end_free = 1, end_fixed = 2, end_transmit = 3, end_base = 4
+   integer, parameter :: end_free = 1, end_fixed = 2, end_transmit = 3, end_base = 4, &
+      end_velocity = 5
    !> Kinds of end load, and the face it acts on.
    integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
    integer, parameter :: face_top = 1, face_bottom = 2

@@ -7,7 +7,7 @@
 module spb_state
    use spb_kinds, only: wp
    use spb_problem, only: problem_t
-   use spb_mesh, only: mesh_t, end_fixed, end_free, end_base, end_transmit
+   use spb_mesh, only: mesh_t, end_fixed, end_free, end_base, end_transmit, end_velocity
    use spb_static, only: static_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
    implicit none
@@ -20,6 +20,7 @@ module spb_state
    type :: ledger_t
       real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
       real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
+      real(wp) :: w_support = 0.0_wp          !! work of constant-velocity ends so far [J/m^2]
       real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
       real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
       real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
@@ -33,8 +34,9 @@ module spb_state
                                               !! masses, moving them along their path [kg/(m s)]
       real(wp) :: i_ends = 0.0_wp             !! impulse of the end stresses (loads and
                                               !! transmitting ends) on the end nodes [kg/(m s)]
-      real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed ends, the
-                                              !! base): the momentum they took [kg/(m s)]
+      real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed and
+                                              !! constant-velocity ends, the base): the
+                                              !! momentum they took [kg/(m s)]
       real(wp) :: w_cohesive = 0.0_wp         !! work the cohesive tractions took from the
                                               !! waves, sum of I (delta^{n+1} - delta^n)/dt:
                                               !! dissipated plus held by the cracks (spb_cohesive;
@@ -52,6 +54,9 @@ module spb_state
       real(wp) :: v_far_top = 0.0_wp          !! velocity of the bar's continuation beyond a
                                               !! transmitting top: the end's at t = 0 [m/s]
       real(wp) :: v_far_bot = 0.0_wp          !! the same beyond a transmitting bottom [m/s]
+      real(wp) :: v_end_top = 0.0_wp          !! velocity of a constant-velocity top: node 0's
+                                              !! at t = 0, kept for the whole run [m/s]
+      real(wp) :: v_end_bot = 0.0_wp          !! the same of a constant-velocity bottom [m/s]
       real(wp) :: w_in_top = 0.0_wp           !! interval of the wave that came in through a
                                               !! transmitting top over the last step [m]
       real(wp) :: w_in_bot = 0.0_wp           !! the same through a transmitting bottom [m]
@@ -191,6 +196,9 @@ contains
       ! in it and no end depends on the frame of reference
       if (mesh%top == end_transmit) st%ends%v_far_top = v(0)
       if (mesh%bottom == end_transmit) st%ends%v_far_bot = v(n)
+      ! a constant-velocity end keeps the velocity its node starts with
+      if (mesh%top == end_velocity) st%ends%v_end_top = v(0)
+      if (mesh%bottom == end_velocity) st%ends%v_end_bot = v(n)
       ! what comes in through them before any load: the continuation's static stress and motion
       st%ends%w_in_top = 0.5_wp * (st%ends%s_static_top / mesh%z(1) + st%ends%v_far_top) * dt
       st%ends%w_in_bot = 0.5_wp * (-st%ends%s_static_bot / mesh%z(n) + st%ends%v_far_bot) * dt
@@ -269,7 +277,9 @@ contains
          v(i) = (mesh%ma(i) * va + mesh%mb(i) * vb) * mesh%inv_m(i)
       end do
       if (abs(prob%strain_rate) > 0.0_wp) then
-         ! uniform stretching about the centre of mass (free or transmitting ends)
+         ! uniform stretching about the centre of mass (free, transmitting or constant-velocity
+         ! ends; a constant-velocity end node takes its own v(x) exactly, so that with two of
+         ! them every cell stretches alike, s = -E strain_rate t, whatever the centre)
          associate (m => mesh%ma + mesh%mb)
             xc = sum(m * mesh%x) / sum(m)
             v = v + prob%strain_rate * (mesh%x - xc)
@@ -322,8 +332,9 @@ contains
             st%ends%landing_bot = .true.
             st%ends%v_land_bot = prob%velocity(mesh%nseg)
          end if
-         if (mesh%top == end_transmit) st%section(0) = s(1)
-         if (mesh%bottom == end_transmit) st%section(n) = s(n)
+         ! a transmitting or a constant-velocity end moves with the bar next to it: no collision
+         if (mesh%top == end_transmit .or. mesh%top == end_velocity) st%section(0) = s(1)
+         if (mesh%bottom == end_transmit .or. mesh%bottom == end_velocity) st%section(n) = s(n)
       end if
       if (mesh%bottom == end_base .and. .not. st%ends%base_contact) st%section(n) = 0.0_wp
       do i = 1, n - 1

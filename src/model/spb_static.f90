@@ -1,6 +1,7 @@
 !> Self-weight equilibrium (2.4) of the lumped-mass bar for the given supports.
 !>
-!> Supported ends are 'fixed', 'transmit' (a transmitting end continues the bar, so
+!> Supported ends are 'fixed', 'velocity' (a support that moves: the equilibrium is the
+!> same in its frame), 'transmit' (a transmitting end continues the bar, so
 !> it carries the weight like a support) and the base where the bar starts on it (not where
 !> its bottom face moves at t = 0: the base does not touch it then). With one support the cell stresses follow from
 !> the weight carried and the displacements by summing strains from the support; with two

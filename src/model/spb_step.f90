@@ -2,7 +2,7 @@
 !> section stresses (3.1)-(3.2) (METHOD.md §4) it evaluates at every breakable node.
 module spb_step
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base
+   use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base, end_velocity
    use spb_load, only: load_t, load_none, face_top, step_load, load_integral
    use spb_state, only: state_t
    use spb_wave, only: transmit_residuals
@@ -18,8 +18,10 @@ module spb_step
       real(wp) :: s_top = 0.0_wp, s_bot = 0.0_wp           !! end stresses of the step [Pa]
       real(wp) :: du_top_old = 0.0_wp, du_bot_old = 0.0_wp !! increments of B_0, A_n before it [m]
       real(wp) :: du_top = 0.0_wp, du_bot = 0.0_wp         !! the same after it [m]
-      logical :: held_top = .false., held_bot = .false.    !! a support stopped the end node
-      real(wp) :: p_top = 0.0_wp, p_bot = 0.0_wp           !! ma du_A + mb du_B it stopped [kg/m]
+      logical :: held_top = .false., held_bot = .false.    !! a support held the end node
+      real(wp) :: p_top = 0.0_wp, p_bot = 0.0_wp           !! ma du_A + mb du_B it stopped,
+                                                           !! relative to the support's V dt
+                                                           !! (0 at a fixed end) [kg/m]
       real(wp) :: s_1 = 0.0_wp, s_n = 0.0_wp               !! s^n of the end cells [Pa]
       real(wp) :: q_top = 0.0_wp, q_bot = 0.0_wp           !! integral of the load over the
                                                            !! step on that face [Pa s]
@@ -428,32 +430,41 @@ contains
       end if
    end subroutine joined_increments
 
-   !> A fixed top stops node 0; the momentum it takes is recorded.
+   !> A fixed top stops node 0, a constant-velocity top moves it by V dt; the momentum the
+   !> support takes (what the node would have had beyond m V) is recorded.
    pure subroutine hold_top(mesh, st, r)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       type(end_step_t), intent(inout) :: r   !! the step's end-node record (top part set)
-      r%held_top = mesh%top == end_fixed
+      real(wp) :: du
+      r%held_top = mesh%top == end_fixed .or. mesh%top == end_velocity
       if (r%held_top) then
-         r%p_top = mesh%ma(0) * st%dua(0) + mesh%mb(0) * st%dub(0)
-         st%dua(0) = 0.0_wp
-         st%dub(0) = 0.0_wp
+         du = 0.0_wp
+         if (mesh%top == end_velocity) du = st%ends%v_end_top * mesh%dt
+         r%p_top = mesh%ma(0) * (st%dua(0) - du) + mesh%mb(0) * (st%dub(0) - du)
+         st%dua(0) = du
+         st%dub(0) = du
       end if
       r%du_top = st%dub(0)
    end subroutine hold_top
 
-   !> A fixed bottom, or the base the bar rests on, stops node n.
+   !> A fixed bottom, or the base the bar rests on, stops node n; a constant-velocity bottom
+   !> moves it by V dt.
    pure subroutine hold_bottom(mesh, st, r)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       type(end_step_t), intent(inout) :: r   !! the step's end-node record (bottom part set)
       integer :: n
+      real(wp) :: du
       n = mesh%n
-      r%held_bot = mesh%bottom == end_fixed .or. (mesh%bottom == end_base .and. st%ends%base_contact)
+      r%held_bot = mesh%bottom == end_fixed .or. mesh%bottom == end_velocity .or. &
+                   (mesh%bottom == end_base .and. st%ends%base_contact)
       if (r%held_bot) then
-         r%p_bot = mesh%ma(n) * st%dua(n) + mesh%mb(n) * st%dub(n)
-         st%dua(n) = 0.0_wp
-         st%dub(n) = 0.0_wp
+         du = 0.0_wp
+         if (mesh%bottom == end_velocity) du = st%ends%v_end_bot * mesh%dt
+         r%p_bot = mesh%ma(n) * (st%dua(n) - du) + mesh%mb(n) * (st%dub(n) - du)
+         st%dua(n) = du
+         st%dub(n) = du
       end if
       r%du_bot = st%dua(n)
    end subroutine hold_bottom
@@ -489,6 +500,21 @@ contains
             st%ledger%w_load = st%ledger%w_load + w_bot
          end if
       end associate
+      ! a constant-velocity end's support force -p/dt^2 does the same product (its node moves
+      ! by V dt in both steps); in the continuum reading its work over the step is V times
+      ! the impulse the continuum's end section takes, -p/dt + Z (f^{n+1} - f^n) (f the
+      ! interval the support sends into the bar): the first part is booked here, the second
+      ! is a function of the reading at t^{n+1} (spb_wave, wave_t%w_support; doc/method.md)
+      if (mesh%top == end_velocity) then
+         st%ledger%w_support = st%ledger%w_support - r%p_top / dt**2 * 0.5_wp * &
+                               (r%du_top + r%du_top_old)
+         st%ledger%w_wave = st%ledger%w_wave - st%ends%v_end_top * r%p_top / dt
+      end if
+      if (mesh%bottom == end_velocity) then
+         st%ledger%w_support = st%ledger%w_support - r%p_bot / dt**2 * 0.5_wp * &
+                               (r%du_bot + r%du_bot_old)
+         st%ledger%w_wave = st%ledger%w_wave - st%ends%v_end_bot * r%p_bot / dt
+      end if
 
       ! the same work on the continuum state (spb_wave): I du / dt at a free loaded face; at a
       ! transmitting end the energy the incoming wave (the static stress carried and the
@@ -529,7 +555,7 @@ contains
       case (end_fixed)
          st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
                                        mesh%dm(1), g)
-      case (end_transmit)
+      case (end_transmit, end_velocity)
          st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, r%du_top / dt, &
                                        mesh%z(1), mesh%dm(1), g)
       case default
@@ -539,7 +565,7 @@ contains
       case (end_fixed)
          st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
                                        mesh%dm(n), g)
-      case (end_transmit)
+      case (end_transmit, end_velocity)
          st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, r%du_bot / dt, &
                                        mesh%z(n), mesh%dm(n), g)
       case (end_base)

@@ -25,7 +25,7 @@
 !> held, free and transmitting ends, homogeneous and layered; bench/transmit_gravity.py).
 module spb_wave
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_base, end_fixed, end_transmit
+   use spb_mesh, only: mesh_t, end_free, end_base, end_fixed, end_transmit, end_velocity
    use spb_state, only: state_t
    implicit none
    private
@@ -42,6 +42,10 @@ module spb_wave
                                        !! scale (sum of |m du/dt| and |s dt| over the nodes) [-]
       real(wp) :: jordan_abs = 0.0_wp  !! largest |J| [kg/(m s)]
       real(wp) :: momentum_scale = 0.0_wp  !! the bar's momentum scale (the sum above) [kg/(m s)]
+      real(wp) :: w_support = 0.0_wp   !! sum over the constant-velocity ends of V Z f_end, f_end
+                                       !! the interval the end sends into the bar (top: f_1,
+                                       !! bottom: g_n) at t^{n+1}: the part of their work on
+                                       !! the continuum state that is a function of it [J/m^2]
    end type wave_t
 
    !> What a fragment's two faces give its reading (face_equations).
@@ -69,7 +73,7 @@ contains
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       type(wave_t) :: w
-      real(wp) :: e, jp, jr, ja, total
+      real(wp) :: e, jp, jr, ja, total, ws
       integer :: c, top, bot
       total = 0.0_wp
       top = 0
@@ -83,7 +87,8 @@ contains
             ! between two split nodes (no transmitting end, no load): the short path
             call inner_wave(mesh, st, top, bot, .true., e, jp, jr, ja)
          else
-            call fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jp, jr, ja)
+            call fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jp, jr, ja, w_sup=ws)
+            w%w_support = w%w_support + ws
          end if
          w%e_wave = w%e_wave + e
          w%e_gravity = w%e_gravity - 0.5_wp * g * mesh%dt * jp
@@ -95,9 +100,10 @@ contains
       if (total > 0.0_wp) w%jordan = w%jordan_abs / total
    end function wave_energy
 
-   !> Wave energy with its gravity terms, e_wave - (g dt/2) J' + e_pot, of the fragments
-   !> between the fragment boundaries top and bot (0 or a split node, n or a split node)
-   !> [J/m^2]: what an event that acts there (breaks, joins, shifts) changes.
+   !> Wave energy with its gravity terms, e_wave - (g dt/2) J' + e_pot, less the reading's part
+   !> of the constant-velocity ends' work (wave_t%w_support), of the fragments between the
+   !> fragment boundaries top and bot (0 or a split node, n or a split node) [J/m^2]: what an
+   !> event that acts there (breaks, joins, shifts) changes.
    pure real(wp) function region_wave(mesh, st, g, i_top, i_bot, top, bot) result(e_sum)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
@@ -106,7 +112,7 @@ contains
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      real(wp) :: e, jp, jr, ja
+      real(wp) :: e, jp, jr, ja, ws
       integer :: t, b, i
       ! gravity potential at mid-step, -g m (u^n + u^{n+1})/2, of the halves the region owns
       e_sum = 0.0_wp
@@ -124,7 +130,8 @@ contains
          if (t > 0 .and. b < mesh%n .and. .not. loaded(st, t, b)) then
             call inner_wave(mesh, st, t, b, .false., e, jp, jr, ja)
          else
-            call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja)
+            call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja, w_sup=ws)
+            e_sum = e_sum - ws
          end if
          e_sum = e_sum + e - 0.5_wp * g * mesh%dt * jp
          t = b
@@ -153,7 +160,7 @@ contains
    !> interval minus the one its equation gives (the fragment's zig-zag content, not zero where
    !> the other face gives an equation too; transmit_residuals).
    pure subroutine fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jprime, jordan, &
-                                 jordan_abs, rho)
+                                 jordan_abs, rho, w_sup)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
@@ -168,6 +175,8 @@ contains
       real(wp), intent(out) :: jordan_abs    !! |J| (0 unless two free faces) [kg/(m s)]
       real(wp), intent(out), optional :: rho(2)  !! rho at a transmitting top and bottom (else
                                                  !! 0) [m]
+      real(wp), intent(out), optional :: w_sup   !! V Z f_end summed over the fragment's
+                                                 !! constant-velocity ends (wave_t) [J/m^2]
       real(wp) :: dt, r, sd, hd, hd_1, sgn, sgn_k, a, b, c, d, beta, iz
       type(faces_t) :: fc
       integer :: k
@@ -202,6 +211,7 @@ contains
       jordan_abs = 0.0_wp
       e = 0.0_wp
       if (present(rho)) rho = 0.0_wp
+      if (present(w_sup)) w_sup = 0.0_wp
       if (bot == top) return
       ! hd now holds hd_bot; d = h_bot from the bottom face's equation minus hd_bot
       d = r - fc%load_bot - hd
@@ -221,6 +231,13 @@ contains
          beta = -b / (2.0_wp * c)
       end if
       e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
+      if (present(w_sup)) then
+         ! Z_1 f_1 = h_1 + s_1 dt at a constant-velocity top, Z_n g_n = h_bot at the bottom
+         if (top == 0 .and. mesh%top == end_velocity) w_sup = st%ends%v_end_top * &
+            (hd_1 + beta * merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0) + st%s(1) * dt)
+         if (bot == mesh%n .and. mesh%bottom == end_velocity) w_sup = w_sup + &
+            st%ends%v_end_bot * (hd + beta)
+      end if
       if (.not. present(rho)) return
       ! h of the end cells: h_1 = hd_1 + beta (-1)^(bot-top-1), h_bot = hd_bot + beta
       if (top == 0 .and. mesh%top == end_transmit) then
@@ -657,41 +674,52 @@ contains
    !> exact and is constant while the bar is held: it is what makes a lift-off or a break
    !> of a bar held at both ends change the measure by exactly what the g = 0 reading
    !> changes (0): without it they booked g dt u_bot / (2C), of either sign (doc/method.md).
+   !> With a constant-velocity end the positions are taken relative to the supports' line
+   !> U_top (1 - C_i/C) + U_bot C_i/C (U: a velocity end's mid-step position, else 0), the
+   !> lattice's exact quasi-static motion of the supports (doc/method.md, "Ends").
    pure real(wp) function held_weights(mesh, st, top, bot) result(jp)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      real(wp) :: c_total, c_above, sgn, u_el
+      real(wp) :: c_total, c_above, sgn, u_el, ref_top, ref_bot, ref
       integer :: i
       c_total = sum(1.0_wp / mesh%z(top+1:bot))
       c_above = 0.0_wp
       sgn = -1.0_wp
       jp = 0.0_wp
+      ref_top = 0.0_wp
+      ref_bot = 0.0_wp
+      if (mesh%top == end_velocity) ref_top = st%ub(top) - 0.5_wp * st%dub(top)
+      if (mesh%bottom == end_velocity) ref_bot = st%ua(bot) - 0.5_wp * st%dua(bot)
       u_el = st%ub(top)
       do i = top, bot
          if (i > top) then
             c_above = c_above + 1.0_wp / mesh%z(i)
             u_el = u_el - st%s(i) / mesh%stiff(i)
          end if
+         ref = ref_top * (1.0_wp - c_above / c_total) + ref_bot * (c_above / c_total)
          jp = jp + sgn * (0.5_wp - c_above / c_total) * &
-              (mesh%ma(i) * (u_el - 0.5_wp * st%dua(i)) + mesh%mb(i) * (u_el - 0.5_wp * st%dub(i)))
+              (mesh%ma(i) * (u_el - 0.5_wp * st%dua(i) - ref) + &
+               mesh%mb(i) * (u_el - 0.5_wp * st%dub(i) - ref))
          sgn = -sgn
       end do
-      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot) + st%ends%u_credit) / c_total
+      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot) - ref_bot + st%ends%u_credit) / &
+           c_total
    end function held_weights
 
-   !> Whether the fragment top..bot is held at both ends (a fixed top, and a fixed bottom or
-   !> the base it rests on) with an odd cell count: the case of held_weights, and of the
-   !> landing credit (doc/method.md, "A landing credit").
+   !> Whether the fragment top..bot is held at both ends (a fixed or velocity top, and a fixed
+   !> or velocity bottom or the base it rests on) with an odd cell count: the case of
+   !> held_weights, and of the landing credit (doc/method.md, "A landing credit").
    pure logical function held_odd(mesh, st, top, bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      held_odd = mod(bot - top, 2) == 1 .and. top == 0 .and. mesh%top == end_fixed .and. &
-                 bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-                 (mesh%bottom == end_base .and. st%ends%base_contact))
+      held_odd = mod(bot - top, 2) == 1 .and. top == 0 .and. &
+                 (mesh%top == end_fixed .or. mesh%top == end_velocity) .and. &
+                 bot == mesh%n .and. (mesh%bottom == end_fixed .or. mesh%bottom == end_velocity &
+                 .or. (mesh%bottom == end_base .and. st%ends%base_contact))
    end function held_odd
 
    !> K = g^2 dt^3 / (8 C), C = sum 1/Z over the cells of the fragment top..bot: for a

@@ -13,8 +13,8 @@ module spb_sim
       deck_file
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
-   use spb_mesh, only: mesh_t, build_mesh, mesh_size, end_base, mesh_fault_t, fault_none, &
-      node_area
+   use spb_mesh, only: mesh_t, build_mesh, mesh_size, end_base, end_velocity, mesh_fault_t, &
+      fault_none, node_area
    use spb_load, only: load_t, build_load
    use spb_cohesive, only: dissipated
    use spb_state, only: state_t, init_state, fragment_count
@@ -126,7 +126,7 @@ contains
       end if
       call face_load_integrals(sim%mesh, sim%load, sim%st%step, q_top, q_bot)
       wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
-      w_wave = sim%st%ledger%w_wave
+      w_wave = sim%st%ledger%w_wave + wv%w_support
       e_lost_w = sim%st%ledger%e_lost_wave
    end subroutine measure
 
@@ -174,6 +174,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       logical, intent(in), optional :: restart   !! it goes on from a checkpoint
       logical, intent(in), optional :: files     !! it writes its outputs (default .true.)
+      type(wave_t) :: w0
       sim%record = deck_record(deck)
       sim%opt%history_every = deck%run%history_every
       sim%opt%field_every = deck%run%field_every
@@ -191,6 +192,12 @@ contains
       call init_state(sim%prob, sim%mesh, sim%st)
       ! the start holds none of the lattice's zig-zag mode (spb_wave; issue 17)
       call start_without_zigzag(sim%mesh, sim%prob%gravity, sim%st)
+      ! the work of constant-velocity ends on the continuum state counts from t = 0: its part
+      ! that is a function of the reading (wave_t%w_support) starts from its value then
+      if (sim%mesh%top == end_velocity .or. sim%mesh%bottom == end_velocity) then
+         w0 = wave_energy(sim%mesh, sim%st, sim%prob%gravity, 0.0_wp, 0.0_wp)
+         sim%st%ledger%w_wave = -w0%w_support
+      end if
    end subroutine sim_setup
 
    !> The problem of a validated deck, its mesh and its load (the load table read here, after

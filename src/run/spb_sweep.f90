@@ -21,7 +21,8 @@ module spb_sweep
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model, memory_text, &
       run_base_bytes
    use spb_diag, only: frag_info_t, fragment_list
-   use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
+   use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision, ev_crack
+   use spb_cohesive, only: dissipated
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
    use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_max, par_any, &
@@ -36,8 +37,9 @@ module spb_sweep
       'the varied variable''s (0 without vary); e_kin_end, w_ext_end, ledger_drift [J/m^2]; ' // &
       'max_excess [-] (of the energy scale); e_vib_end (fragments'' vibration energy at t_end), ' // &
       'e_fracture (the fracture corrections'' energy) [J/m^2]; mean_fracture_stress [Pa] ' // &
-      '(mean |section stress| at the fractures, 0: none)'
-   integer, parameter :: n_columns = 21
+      '(mean |section stress| at the fractures, 0: none); cracks [-] (cohesive cracks opened), ' // &
+      'e_cohesive [J/m^2] (energy they dissipated)'
+   integer, parameter :: n_columns = 23
    !> PREFIX.sweep and /cases: the one list of the sweep table's columns, in order.
    type(column_t), parameter :: sweep_table(n_columns) = [ &
       column_t('id', '-', .true.), &
@@ -60,11 +62,14 @@ module spb_sweep
       column_t('steps', '-', .true.), &
       column_t('e_vib_end', 'J/m^2', .false.), &
       column_t('mean_fracture_stress', 'Pa', .false.), &
-      column_t('e_fracture', 'J/m^2', .false.) ]
+      column_t('e_fracture', 'J/m^2', .false.), &
+      column_t('cracks', '-', .true.), &
+      column_t('e_cohesive', 'J/m^2', .false.) ]
    integer, parameter :: col_id = 1, col_fragments = 2, col_mean_length = 3, col_max_reaction = 4, &
       col_first_fracture = 5, col_value = 6, col_realization = 7, col_seed = 8, col_status = 9, &
       col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, &
-      col_steps = 18, col_e_vib = 19, col_fracture_stress = 20, col_e_fracture = 21
+      col_steps = 18, col_e_vib = 19, col_fracture_stress = 20, col_e_fracture = 21, &
+      col_cracks = 22, col_e_cohesive = 23
    integer, parameter :: status_not_run = -1
    integer, parameter :: tag_request = 1000000001, tag_work = 1000000002, tag_check = 1000000003
    !> Memory of the sweep's tables per case, besides its runs [bytes]: a row (n_columns
@@ -180,6 +185,9 @@ contains
       if (summary%n_kind(ev_fracture) > 0) row(col_fracture_stress) = &
          summary%fracture_stress_sum / real(summary%n_kind(ev_fracture), wp)
       row(col_e_fracture) = sim%st%ledger%e_fracture
+      row(col_cracks) = real(summary%n_kind(ev_crack), wp)
+      if (sim%st%coh%on) row(col_e_cohesive) = sum(dissipated(sim%st%coh%dmax, sim%st%coh%r, &
+                                                              sim%st%coh%dc))
    end subroutine run_case
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
