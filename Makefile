@@ -7,7 +7,8 @@
 #   make test-translator  the .pf unit tests again through tests/pf2f90.py (what CI adds)
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
-#   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): figure, table
+#   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): brittle Weibull bar
+#                  and the cohesive ZMR benchmark (plots/zmr_study.py): figures, tables
 #   make golden REF=REV  every output of the Release program against revision REV's (scripts/golden.py)
 #   make archive-check   every deck of input/ against the results archive (archive/, doc/archive.md)
 #   make rebaseline WHY="..."  rewrite archive/ with this program; WHY goes to archive/CHANGES.md
@@ -40,7 +41,7 @@ PREFIX ?= /usr/local
 all: build
 
 help:
-	@sed -n '1,15p' Makefile
+	@sed -n '1,16p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -85,6 +86,9 @@ fragmentation: build
 	$(PYTHON) plots/fragmentation_study.py --exe $(BUILD_RELEASE)/bin/spallbar --realizations 16 \
 	  --out $(BUILD_RELEASE)/fragmentation --figure doc/figures/fragmentation_rate.png \
 	  --table doc/fragmentation-table.md
+	$(PYTHON) plots/zmr_study.py --exe $(BUILD_RELEASE)/bin/spallbar --realizations 16 --ranks 2 \
+	  --out $(BUILD_RELEASE)/zmr --figure doc/figures/zmr_fragment_size.png \
+	  --table doc/zmr-table.md --json $(BUILD_RELEASE)/zmr/results.json
 
 clean:
 	rm -rf build

@@ -2,7 +2,7 @@
 """Golden comparison: every observable output of two spallbar programs, byte for byte.
 
     golden.py --exe NEW (--ref-exe OLD | --ref-rev GIT_REV) [--work DIR] [--long]
-              [--fuzz N] [--ranks 1,3] [--keep]
+              [--fuzz N] [--ranks 1,3] [--added]
 
 A refactoring that claims "no change in behaviour" (issue 18) runs this against the program
 it started from. For each case both programs run in the same directory with the same
@@ -14,6 +14,13 @@ relative paths (the outputs name the deck's path), one after the other; then:
     h5diff (data and attributes) and list the same objects (h5ls -r);
   * stdout must be identical but for the run time ("N steps in T s"), stderr and the exit
     status identical, and the same set of files left behind (empty PREFIX.lock files aside).
+
+--added: for a change that adds outputs and claims to change nothing else (issue 31: new
+history and sweep columns, a new deck variable echoed in every header, new event kinds): the
+text outputs are compared without their '#' header lines, a table with a column-name line
+by the old program's columns only (the new one may have more, anywhere), each value's text
+exactly; HDF5 files by every dataset and attribute of the old file, to the bit, in the new
+one (h5py). Exit status, stdout and stderr as always.
 
 Cases: every deck under input/ (input/long/ with --long), HDF5 and x-t field variants of
 four of them, a checkpointed run and its restart by the other program from the same
@@ -73,8 +80,9 @@ def snapshot(folder):
 
 
 class Golden:
-    def __init__(self, new, old, work):
+    def __init__(self, new, old, work, added=False):
         self.new, self.old, self.work = new, old, work
+        self.added = added
         self.cases = 0
         self.diffs = []
         self.files_compared = 0
@@ -123,6 +131,11 @@ class Golden:
         a = os.path.join(self.work, "old", rel)
         b = os.path.join(self.work, "new", rel)
         self.files_compared += 1
+        if self.added:
+            why = added_only(a, b, rel.endswith(HDF5_SUFFIXES) or rel.endswith(".h5.part"))
+            if why:
+                self.differ(case, f"{rel}: {why}")
+            return
         if rel.endswith(HDF5_SUFFIXES) or rel.endswith(".h5.part"):
             p = subprocess.run(["h5diff", "-c", a, b], capture_output=True, text=True)
             if p.returncode != 0:
@@ -136,6 +149,56 @@ class Golden:
             da, db = fa.read(), fb.read()
         if da != db:
             self.differ(case, f"{rel}: {first_diff(da, db)}")
+
+
+def added_only(a, b, hdf5):
+    """'' when b holds everything a holds (--added), else the first thing that differs."""
+    if hdf5:
+        import h5py
+        import numpy as np
+        with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+            names = []
+            fa.visit(names.append)
+            for name in [""] + names:
+                obj = fa[name] if name else fa
+                if name and name not in fb:
+                    return f"/{name} is missing"
+                other = fb[name] if name else fb
+                for key, val in obj.attrs.items():
+                    if key not in other.attrs:
+                        return f"/{name} attribute {key} is missing"
+                    if not np.array_equal(np.asarray(val), np.asarray(other.attrs[key])):
+                        return f"/{name} attribute {key} differs"
+                if isinstance(obj, h5py.Dataset):
+                    va, vb = np.asarray(obj[()]), np.asarray(other[()])
+                    same = va.dtype == vb.dtype and va.shape == vb.shape and \
+                        va.tobytes() == vb.tobytes()
+                    if not same:
+                        return f"/{name} differs"
+        return ""
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        la = [l for l in fa.read().splitlines() if not l.startswith(b"#")]
+        lb = [l for l in fb.read().splitlines() if not l.startswith(b"#")]
+    if len(la) != len(lb):
+        return f"{len(la)} vs {len(lb)} lines without the headers"
+    if not la:
+        return ""
+    ha, hb = la[0].split(), lb[0].split()
+    named = ha and ha[0][:1].isalpha() and all(n in hb for n in ha)
+    if not named:
+        for k, (x, y) in enumerate(zip(la, lb)):
+            if x != y:
+                return f"line {k + 1} without the headers: {x[:100]!r} -> {y[:100]!r}"
+        return ""
+    cols = [hb.index(n) for n in ha]
+    for k, (x, y) in enumerate(zip(la[1:], lb[1:])):
+        wx, wy = x.split(), y.split()
+        if len(wy) != len(hb) and len(wx) == len(ha):
+            return f"row {k + 1}: {len(wy)} values, its header names {len(hb)}"
+        if [wy[c] for c in cols if c < len(wy)] != wx:
+            bad = [ha[i] for i, c in enumerate(cols) if c >= len(wy) or i >= len(wx) or wy[c] != wx[i]]
+            return f"row {k + 1}: {', '.join(bad[:5])} differ"
+    return ""
 
 
 def first_diff(a, b):
@@ -167,6 +230,9 @@ def main(argv):
     ap.add_argument("--long", action="store_true")
     ap.add_argument("--fuzz", type=int, default=200)
     ap.add_argument("--ranks", default="1,3")
+    ap.add_argument("--added", action="store_true",
+                    help="the new program adds columns, variables, kinds: compare the old "
+                         "outputs' data within the new ones (see above)")
     a = ap.parse_args(argv[1:])
     work = os.path.abspath(a.work)
     os.makedirs(work, exist_ok=True)
@@ -176,7 +242,7 @@ def main(argv):
         old = os.path.abspath(a.ref_exe)
     else:
         ap.error("--ref-exe or --ref-rev")
-    g = Golden(os.path.abspath(a.exe), old, work)
+    g = Golden(os.path.abspath(a.exe), old, work, added=a.added)
 
     # every deck of input/
     decks = []
