@@ -7,6 +7,7 @@ module spb_crack
    use spb_state, only: state_t, open_node
    use spb_wave, only: fragment_characteristics, region_wave
    use spb_cohesive, only: cohesive_force, law_integral
+   use spb_fracture, only: fragment_span
    implicit none
    private
    public :: start_cracks, cohesive_step
@@ -49,14 +50,14 @@ contains
          new(n_new) = i
       end do
       if (n_new == 0) return
-      call span(mesh, st, new(1), r_top, k)
-      call span(mesh, st, new(n_new), j, r_bot)
+      call fragment_span(mesh, st, new(1), r_top, k)
+      call fragment_span(mesh, st, new(n_new), j, r_bot)
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
       allocate(f(r_top+1:r_bot), gw(r_top+1:r_bot))
       ! the readings of the fragments at t^n, before any of them splits
       m = 1
       do while (m <= n_new)
-         call span(mesh, st, new(m), j, k)
+         call fragment_span(mesh, st, new(m), j, k)
          call fragment_characteristics(mesh, st, g, j, k, i_top, i_bot, .false., f(j+1:k), &
                                        gw(j+1:k))
          do while (m <= n_new)
@@ -85,25 +86,6 @@ contains
       st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, &
                                                                            i_bot, r_top, r_bot)
    end subroutine start_cracks
-
-   !> Nodes of the fragment around node i: top = j (0 or a split node above i), bottom = k.
-   pure subroutine span(mesh, st, i, j, k)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: i             !! node
-      integer, intent(out) :: j            !! top node of its fragment
-      integer, intent(out) :: k            !! bottom node of its fragment
-      j = i - 1
-      do while (j > 0)
-         if (.not. st%joined(j)) exit
-         j = j - 1
-      end do
-      k = i + 1
-      do while (k < mesh%n)
-         if (.not. st%joined(k)) exit
-         k = k + 1
-      end do
-   end subroutine span
 
    !> The cohesive cracks' forces of the step (spb_cohesive): each open crack's faces, whose
    !> increments the step has set as free faces', take the force P^n that the stepwise form
