@@ -137,7 +137,7 @@ contains
    !> phi(P) = 2 P - i_prev/dt - mean_traction(a, dstar - c P) = 0 has its roots in
    !> [i_prev/(2 dt), (i_prev/dt + r)/2] (0 <= mean <= r); found by regula falsi (Illinois)
    !> inside that bracket to round-off. i_next = 2 dt P - i_prev keeps the stepwise form exact.
-   pure subroutine cohesive_force(a, dstar, c, dt, i_prev, dmax, r, dc, p, i_next)
+   pure subroutine cohesive_force(a, dstar, c, dt, i_prev, dmax, r, dc, p, i_next, contact)
       real(wp), intent(in) :: a         !! opening at t^n [m]
       real(wp), intent(in) :: dstar     !! opening at t^{n+1} the step gives without the force [m]
       real(wp), intent(in) :: c         !! opening the unit force closes over the step,
@@ -149,9 +149,12 @@ contains
       real(wp), intent(in) :: dc        !! critical opening [m]
       real(wp), intent(out) :: p        !! the force P^n on each face (tension > 0) [Pa]
       real(wp), intent(out) :: i_next   !! traction integral over this step [Pa s]
+      logical, intent(out) :: contact   !! the faces end the step touching under the force
+                                        !! that takes (not the law's root)
       real(wp) :: lo, hi, f_lo, f_hi, x, fx
       integer :: it, side
       logical :: found
+      contact = .false.
       if (dmax >= dc) then
          ! a crack opened fully carries nothing: the last half of its traction, I^n/(2 dt)
          p = 0.5_wp * i_prev / dt
@@ -160,14 +163,18 @@ contains
       end if
       lo = 0.5_wp * i_prev / dt
       hi = 0.5_wp * (i_prev / dt + r)
-      if (.not. dmax > 0.0_wp .and. .not. a > 0.0_wp) then
-         ! a fresh crack that has not opened: at delta = 0 its law takes any traction up to r
-         ! (the jump of the law). It stays closed where the force that keeps it so, p_c =
-         ! dstar / c, needs a traction I^{n+1}/dt = 2 p_c - I^n/dt of at most r; else it
-         ! opens, and the root lies where delta^{n+1} > 0, below p_c, where phi is continuous
+      if (a <= 1.0e-12_wp * dc) then
+         ! closed at t^n (to round-off: a step that ends in contact leaves delta^{n+1} = 0 to an
+         ! ulp of the faces' positions). At delta = 0+ the law's traction is r for a fresh crack
+         ! (its jump: at 0 it takes any traction up to r) and 0 on a damaged crack's unloading
+         ! line; in contact it takes any compression. The crack stays closed where the force
+         ! that keeps it so, p_c = dstar / c, needs a traction I^{n+1}/dt = 2 p_c - I^n/dt of
+         ! at most that; else it opens, and the root lies where delta^{n+1} > 0, below p_c,
+         ! where phi is continuous
          p = dstar / c
-         if (2.0_wp * p - i_prev / dt <= r) then
+         if (2.0_wp * p - i_prev / dt <= merge(r, 0.0_wp, .not. dmax > 0.0_wp)) then
             i_next = 2.0_wp * dt * p - i_prev
+            contact = .true.
             return
          end if
          hi = min(hi, p)
@@ -176,7 +183,8 @@ contains
       ! bracketed search below is the fallback where that finds none in [lo, hi]
       call exact_root(a, dstar, c, dt, i_prev, dmax, r, dc, lo, hi, p, found)
       if (found) then
-         if (dstar - c * p < 0.0_wp) p = dstar / c
+         contact = dstar - c * p < 0.0_wp
+         if (contact) p = dstar / c
          i_next = 2.0_wp * dt * p - i_prev
          return
       end if
@@ -217,7 +225,8 @@ contains
       ! the faces do not pass each other: where they would, the crack is in contact and its
       ! faces end the step touching, delta^{n+1} = 0, with the smaller tension (a compression
       ! where it is negative) that this takes
-      if (dstar - c * p < 0.0_wp) p = dstar / c
+      contact = dstar - c * p < 0.0_wp
+      if (contact) p = dstar / c
       i_next = 2.0_wp * dt * p - i_prev
    contains
       pure real(wp) function phi(pp)
@@ -260,25 +269,23 @@ contains
       span = max(abs(a), abs(dstar), dc)
       ! the pieces: below 0 (closed), 0..dm (unloading line), dm..dc (softening), beyond dc
       corner = [-huge(1.0_wp), 0.0_wp, dm, min(max(dc, dm), huge(1.0_wp))]
+      ! first the piece that holds a: its root is the nearest where it lies closer to a than
+      ! the piece's ends (no other piece's root can then be nearer): the usual step
       do k = 1, 4
-         p0 = corner(k)
-         if (k < 4) then
-            p1 = corner(k + 1)
-         else
-            p1 = huge(1.0_wp)
+         call piece(k, corner, dm, tm, r, dc, p0, p1, alpha, beta)
+         if (.not. (p1 > p0 .and. a >= p0 .and. a <= p1)) cycle
+         x = (kk - alpha - 0.5_wp * beta * a) / (2.0_wp / c + 0.5_wp * beta)
+         if (abs(x - a) <= min(a - p0, p1 - a) .and. (dstar - x) / c >= lo .and. &
+             (dstar - x) / c <= hi) then
+            p = (dstar - x) / c
+            found = .true.
+            return
          end if
+         exit
+      end do
+      do k = 1, 4
+         call piece(k, corner, dm, tm, r, dc, p0, p1, alpha, beta)
          if (.not. p1 > p0) cycle
-         select case (k)
-         case (2)
-            alpha = 0.0_wp
-            beta = tm / dm
-         case (3)
-            alpha = r
-            beta = -r / dc
-         case default
-            alpha = 0.0_wp
-            beta = 0.0_wp
-         end select
          nr = 0
          if (a >= p0 .and. a <= p1) then
             ! (K - 2x/c) - (alpha + beta (a + x)/2) = 0: the mean of a linear piece
@@ -318,4 +325,33 @@ contains
          end do
       end do
    end subroutine exact_root
+
+   !> Piece k of the law (1: closed, 2: unloading line, 3: softening, 4: fully open) with
+   !> corners as exact_root sets them: its ends p0, p1 and its line T = alpha + beta y.
+   pure subroutine piece(k, corner, dm, tm, r, dc, p0, p1, alpha, beta)
+      integer, intent(in) :: k            !! the piece
+      real(wp), intent(in) :: corner(4)   !! -huge, 0, dm, dc [m]
+      real(wp), intent(in) :: dm          !! the largest opening the path knows [m]
+      real(wp), intent(in) :: tm          !! the traction at dm [Pa]
+      real(wp), intent(in) :: r           !! strength [Pa]
+      real(wp), intent(in) :: dc          !! critical opening [m]
+      real(wp), intent(out) :: p0         !! lower end [m]
+      real(wp), intent(out) :: p1         !! upper end [m]
+      real(wp), intent(out) :: alpha      !! the line's value at 0 [Pa]
+      real(wp), intent(out) :: beta       !! its slope [Pa/m]
+      p0 = corner(k)
+      p1 = huge(1.0_wp)
+      if (k < 4) p1 = corner(k + 1)
+      alpha = 0.0_wp
+      beta = 0.0_wp
+      select case (k)
+      case (2)
+         if (dm > 0.0_wp) beta = tm / dm
+      case (3)
+         alpha = r
+         beta = -r / dc
+      case default
+         ! closed, or fully open: no traction
+      end select
+   end subroutine piece
 end module spb_cohesive
