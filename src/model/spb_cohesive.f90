@@ -229,8 +229,9 @@ contains
       if (contact) p = dstar / c
       i_next = 2.0_wp * dt * p - i_prev
    contains
+      !> The equation's left side at the force pp [Pa].
       pure real(wp) function phi(pp)
-         real(wp), intent(in) :: pp
+         real(wp), intent(in) :: pp   !! a trial force P^n [Pa]
          phi = 2.0_wp * pp - i_prev / dt - mean_traction(a, dstar - c * pp, dmax, r, dc)
       end function phi
    end subroutine cohesive_force

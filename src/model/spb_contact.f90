@@ -64,7 +64,6 @@ contains
       corr = merge(d_acc, d_del, at_n)
    end subroutine choose_time
 
-   !> Test every open section (and the base) after the trial step; join what collides.
    !> Whether split node i is a cohesive crack that still carries traction (its faces'
    !> contact is the crack's own, spb_cohesive).
    pure logical function cohesive_open(st, i)
@@ -74,6 +73,8 @@ contains
       if (st%coh%on) cohesive_open = st%coh%active(i)
    end function cohesive_open
 
+   !> Test every open section (and the base) after the trial step; join what collides; an
+   !> open cohesive crack is no collision (its faces' contact is the crack's own).
    pure subroutine contact_step(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
