@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Restart (issue 8, item 3): a restarted run is bit-identical to an uninterrupted one.
 
-For nine decks (the paper's Examples 1-3 with a transmitting end and table loads, the
+For eleven decks (the paper's Examples 1-3 with a transmitting end and table loads, the
 Goupillaud bar, the suspended bar, Example 3 case 2 with the delay rule and with the
 full-mass model, a Weibull strength field, Example 2 with &gauges: PREFIX.gau and
-/gauges) with PREFIX.h5, x-t fields and a history stride that does not divide the step
+/gauges, and with cohesive cracks open at the checkpoint the concrete spall test and the ZMR
+bar between constant-velocity ends) with PREFIX.h5, x-t fields and a history stride that does not divide the step
 count:
 
   * extension: a run to about 45 % of t_end writes a checkpoint at its end; the full deck
@@ -217,6 +218,10 @@ def main():
                                     "fullmass_accelerate_fragment_h19.nml")).read(),
         "weibull": WEIBULL,
         "credit": CREDIT,
+        # cohesive cracks open at the checkpoint (issue 31): the concrete spall test, and the
+        # ZMR bar between two constant-velocity ends with a Weibull field
+        "cohesive": open(os.path.join(work, "spall_cohesive.nml")).read(),
+        "zmr": open(os.path.join(work, "zmr_bar.nml")).read(),
         # gauges on the top face, in a cell, on the interface and on the transmitting bottom,
         # every 4 steps (neither a divisor of the step count nor of history_every)
         "gauges": open(os.path.join(work, "example2.nml")).read() +
@@ -240,6 +245,12 @@ def main():
             with h5py.File(os.path.join(work, name + ".ck.h5"), "r") as ck:
                 check(abs(ck["state"].attrs["u_credit"]) > 0.0,
                       f"{name}: the checkpoint holds the held bar's credit")
+        if name in ("cohesive", "zmr"):
+            with h5py.File(os.path.join(work, name + ".ck.h5"), "r") as ck:
+                check(ck["state"].attrs["coh_n_active"] > 0 and
+                      float(np.max(ck["state"]["coh_dmax"][()])) > 0.0,
+                      f"{name}: the checkpoint holds open cohesive cracks "
+                      f"({ck['state'].attrs['coh_n_active']})")
         p = run(exe, [name + "_full.nml", "--output", name + "_R", "--restart", name + ".ck.h5"],
                 work)
         check(p.returncode == 0, f"{name}: restart exits 0 ({p.stderr.strip()})")
