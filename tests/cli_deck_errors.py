@@ -28,6 +28,17 @@ BAD = [
     ("nan", GOOD.replace("t_end = 1.0e-5", "t_end = NaN"), "spallbar: &run: t_end must be a finite"),
     ("inf", GOOD.replace("young = 200e9", "young = Inf"), "spallbar: &segments: young(1) must be a finite"),
     ("bad_choice", GOOD + "&ends top = 'glued' /\n", "spallbar: &ends: top must be"),
+    # cohesive cracks (issue 31): Gc needs a strength to open at, a breakable segment, the
+    # half-mass model, and is not negative
+    ("gc_no_strength", GOOD.replace("density = 8000", "density = 8000, strength = 0, fracture_energy = 100"),
+     "spallbar: &segments: fracture_energy(1) > 0 needs strength(1) > 0"),
+    ("gc_unbreakable", GOOD.replace("density = 8000", "density = 8000, fracture_energy = 100"),
+     "spallbar: &segments: fracture_energy(1) > 0 needs strength(1) >= 0"),
+    ("gc_negative", GOOD.replace("density = 8000", "density = 8000, strength = 1e6, fracture_energy = -1"),
+     "spallbar: &segments: fracture_energy(1) must be"),
+    ("gc_full_mass", GOOD.replace("density = 8000", "density = 8000, strength = 1e6, fracture_energy = 10")
+     .replace("title = 'cli'", "title = 'cli', model = 'full-mass'"),
+     "spallbar: &segments: fracture_energy > 0 needs &run model = 'half-mass'"),
     ("strict_fit", GOOD.replace("n = 1, length = 0.05, young = 200e9, density = 8000",
                                 "n = 2, length = 0.05, 0.0512, young = 2*200e9, density = 2*8000"),
      "spallbar: &segments: length(2)"),

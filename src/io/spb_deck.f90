@@ -787,6 +787,7 @@ contains
    subroutine validate_initial(deck, err)
       type(deck_t), intent(in) :: deck     !! the deck
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer :: j
       if (deck%run%model == 'full-mass' .and. any(deck%seg%interface(1:deck%seg%n - 1) == 'dry')) then
          call make_error(err, '&segments: interface = ''dry'' needs &run model = ''half-mass'' ' &
                          // '(the full-mass model breaks springs, not nodes)')
@@ -797,6 +798,17 @@ contains
                          // '(cohesive cracks open at nodes; the full-mass model breaks springs)')
          return
       end if
+      ! a cohesive crack opens at its strength: with none (and no strength field to draw one)
+      ! the section could only break brittle, which would leave Gc unused without a word
+      do j = 1, deck%seg%n
+         if (deck%seg%fracture_energy(j) > 0.0_wp .and. .not. deck%seg%strength(j) > 0.0_wp &
+             .and. deck%field%kind /= 'weibull') then
+            call make_error(err, '&segments: fracture_energy(' // itoa(j) // ') > 0 needs ' // &
+               'strength(' // itoa(j) // ') > 0 (a cohesive crack opens at the strength), or ' // &
+               'a &strength_field')
+            return
+         end if
+      end do
       call need_choice(err, 'initial', 'state', deck%init%state, state_words)
       call need_finite(err, 'initial', 'strain_rate', deck%init%strain_rate)
       if (allocated(err)) return

@@ -366,7 +366,8 @@ contains
    end subroutine init_strength
 
    !> The sections' fracture energies: each node takes the Gc of the cell whose strength it
-   !> took (the weaker side of a bonded interface; with a strength field, its cell's segment).
+   !> took (the weaker side of a bonded interface, the smaller Gc where both sides are as
+   !> strong; with a strength field, its cell's segment).
    !> Only where some segment has Gc > 0; a dry interface stays brittle (it has no bond).
    subroutine init_cohesive(prob, mesh, st)
       type(problem_t), intent(in) :: prob   !! the problem
@@ -393,6 +394,10 @@ contains
          if (ra < 0.0_wp .or. (rb >= 0.0_wp .and. rb < ra)) k = i + 1
          ! the model's energies are per unit area times the area (spb_mesh), as its forces
          st%coh%gc(i) = prob%fracture_energy(mesh%seg(k)) * mesh%area(k)
+         ! two sides as strong: the smaller Gc, whichever side is up (mirror)
+         if (ra >= 0.0_wp .and. .not. abs(ra - rb) > 0.0_wp) st%coh%gc(i) = min( &
+            prob%fracture_energy(mesh%seg(i)) * mesh%area(i), &
+            prob%fracture_energy(mesh%seg(i + 1)) * mesh%area(i + 1))
       end do
       ! a section with no strength opens no cohesive crack
       where (.not. st%strength > 0.0_wp) st%coh%gc = 0.0_wp
