@@ -10,6 +10,10 @@ lost, nothing half made.
   * two runs on the same PREFIX at once: the second exits 2 at once and touches nothing,
     the first finishes with exit 0 and outputs identical to a run alone;
   * a checkpoint that is the deck, an output of the run or a folder: exit 2, deck intact;
+  * an output (or the lock) that is one of the run's inputs (issue 32): the deck named
+    PREFIX.his, a load table named PREFIX.prf or PREFIX.lock, an output that is a symbolic or
+    a hard link to the deck, a sweep deck named PREFIX.sweep: exit 2, one line, the
+    inputs intact, no output made;
   * deck reals that the "not given" marker would swallow, or whose products overflow:
     exit 2 naming the variable;
   * memory: a mesh, an x-t buffer or a sweep table beyond the limit (SPALLBAR_MEMORY_LIMIT,
@@ -190,6 +194,52 @@ def checkpoint_paths(exe, work, check):
         check(open(os.path.join(d, "ck.nml")).read() == text, f"checkpoint = {value!r}: deck changed")
         check(not os.path.exists(os.path.join(d, "ck.his")), f"checkpoint = {value!r}: wrote ck.his")
         print(f"ok   checkpoint {name}: {lines[0] if lines else ''}")
+
+
+def outputs_over_inputs(exe, work, check):
+    d = os.path.join(work, "over_inputs")
+    os.makedirs(d)
+    with open(os.path.join(d, "x.prf"), "w") as f:
+        f.write("0 0\n1e-4 1e6\n2e-4 0\n")
+    shutil.copy(os.path.join(d, "x.prf"), os.path.join(d, "y.lock"))
+    table = SMALL.replace("kind = 'power', p0 = 1e6, t_k = 1e-4", "kind = 'table', table = 'x.prf'")
+    with open(os.path.join(d, "a.nml"), "w") as f:
+        f.write(table)
+    with open(os.path.join(d, "b.nml"), "w") as f:
+        f.write(table.replace("'x.prf'", "'y.lock'"))
+    for name in ("foo.his", "d.nml"):
+        with open(os.path.join(d, name), "w") as f:
+            f.write(SMALL)
+    os.symlink("d.nml", os.path.join(d, "s.his"))
+    os.link(os.path.join(d, "d.nml"), os.path.join(d, "h.evt"))
+    inputs = ("x.prf", "y.lock", "foo.his", "d.nml", "a.nml", "b.nml")
+    before = {n: open(os.path.join(d, n), "rb").read() for n in inputs}
+    cases = (("table_prf", "a.nml", "x", "'x.prf' is the load table of this deck"),
+             ("table_lock", "b.nml", "y", "'y.lock' is the load table of this deck"),
+             ("deck_his", "foo.his", "foo", "'foo.his' is the deck itself"),
+             ("symlink", "d.nml", "s", "'s.his' is the deck itself"),
+             ("hard_link", "d.nml", "h", "'h.evt' is the deck itself"))
+    for name, deck, prefix, expect in cases:
+        left = set(os.listdir(d))
+        r = run(exe, [deck, "--quiet", "--output", prefix], d)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0],
+              f"output over input {name}: exit {r.returncode}, {r.stderr!r}")
+        check(set(os.listdir(d)) == left, f"output over input {name}: files made "
+              f"{sorted(set(os.listdir(d)) - left)}")
+        print(f"ok   output over input {name}: {lines[0] if lines else ''}")
+    # a sweep's table named like its deck
+    sweep = SMALL + "&sweep vary = 'p0', values = 1e6, 2e6 /\n"
+    with open(os.path.join(d, "z.sweep"), "w") as f:
+        f.write(sweep)
+    r = run(exe, ["--sweep", "z.sweep", "--quiet", "--output", "z"], d)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "'z.sweep' is the deck itself" in lines[0]
+          and open(os.path.join(d, "z.sweep")).read() == sweep,
+          f"output over input, sweep: exit {r.returncode}, {r.stderr!r}")
+    print(f"ok   output over input sweep: {lines[0] if lines else ''}")
+    for n in inputs:
+        check(open(os.path.join(d, n), "rb").read() == before[n], f"output over input: {n} changed")
 
 
 def deck_reals(exe, work, check):
@@ -533,6 +583,7 @@ def main():
     output_is_folder(exe, work, check)
     concurrent(exe, work, check)
     checkpoint_paths(exe, work, check)
+    outputs_over_inputs(exe, work, check)
     deck_reals(exe, work, check)
     load_tables(exe, work, check)
     tampered_checkpoints(exe, work, check)

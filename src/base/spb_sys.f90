@@ -9,7 +9,8 @@ module spb_sys
    private
    public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
    public :: fp_traps_off, fp_traps_restore, heap_for_large_arrays
-   public :: sys_file_size, sys_lock, sys_real_path, sys_is_directory, sys_file_kind
+   public :: sys_file_size, sys_lock, sys_real_path, sys_is_directory, sys_file_kind, &
+      sys_same_file
    public :: file_missing, file_regular, file_folder, file_other
    integer, parameter :: file_missing = -1   !! sys_file_kind: nothing there
    integer, parameter :: file_regular = 0    !! sys_file_kind: a regular file
@@ -42,6 +43,17 @@ module spb_sys
          character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
          integer(c_int) :: r
       end function c_file_kind
+
+      !> spb_same_file (spb_sys_c.c): whether two paths name one file, through stat(2).
+      function c_same_file(a, b) bind(c, name='spb_same_file') result(r)
+         import :: c_char, c_int
+         implicit none
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: a(*)   !! NUL-terminated path
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: b(*)   !! NUL-terminated path
+         integer(c_int) :: r
+      end function c_same_file
 
       !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
@@ -238,6 +250,14 @@ contains
       character(len=*), intent(in) :: path   !! a path
       sys_file_kind = int(c_file_kind(trim(path) // c_null_char))
    end function sys_file_kind
+
+   !> Whether two paths name the same existing file (a hard link, a symbolic link or another
+   !> spelling of it); false where either is missing.
+   logical function sys_same_file(a, b)
+      character(len=*), intent(in) :: a   !! a path
+      character(len=*), intent(in) :: b   !! another path
+      sys_same_file = c_same_file(trim(a) // c_null_char, trim(b) // c_null_char) /= 0
+   end function sys_same_file
 
    !> Whether path names a folder.
    logical function sys_is_directory(path)

@@ -15,6 +15,7 @@ module spb_output
       h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, block_name, buffer_rows
    use spb_xdmf, only: write_xdmf, xdmf_path
    use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
+      sys_same_file, &
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
@@ -442,6 +443,12 @@ contains
          n = n + 2
       end if
       files(n + 1) = prefix // '.lock'
+      ! no output (nor the lock, which is truncated) may be one of the run's inputs: by name,
+      ! by a symbolic link or by a hard link (issue 32)
+      do k = 1, n + 1
+         call not_an_input('--output: ''' // trim(files(k)) // '''', trim(files(k)), rec, err)
+         if (allocated(err)) return
+      end do
       do k = 1, n
          call check_writable('--output', trim(files(k)), err)
          if (allocated(err)) return
@@ -471,13 +478,9 @@ contains
             return
          end if
       end do
-      if (ck == sys_real_path(rec%path)) then
-         call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is the deck ' // &
-                         'itself; give the checkpoint a file of its own')
-      else if (len(rec%table) > 0 .and. ck == sys_real_path(rec%table)) then
-         call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is the load ' // &
-                         'table of this deck; give the checkpoint a file of its own')
-      else if (sys_is_directory(checkpoint)) then
+      call not_an_input('&run: checkpoint = ''' // checkpoint // '''', checkpoint, rec, err)
+      if (allocated(err)) return
+      if (sys_is_directory(checkpoint)) then
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is a folder; ' // &
                          'give a file such as ''' // checkpoint // '/run.h5''')
       else if (sys_file_kind(checkpoint) == file_other) then
@@ -487,6 +490,25 @@ contains
       if (.not. allocated(err)) call check_writable('&run: checkpoint = ''' // checkpoint // &
                                                     '''', checkpoint // '.part', err)
    end subroutine claim_checkpoint
+
+   !> Refuse (err) a file the run writes that is one of its inputs, the deck or its load
+   !> table: the same path, or the same file through a symbolic or a hard link.
+   subroutine not_an_input(what, path, rec, err)
+      character(len=*), intent(in) :: what         !! the file as the message names it
+      character(len=*), intent(in) :: path         !! the file the run would write
+      type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, table)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
+      character(len=:), allocatable :: real
+      real = sys_real_path(path)
+      if (real == sys_real_path(rec%path) .or. sys_same_file(path, rec%path)) then
+         call make_error(err, what // ' is the deck itself; give the run''s files other names')
+      else if (len(rec%table) > 0) then
+         if (real == sys_real_path(rec%table) .or. sys_same_file(path, rec%table)) then
+            call make_error(err, what // ' is the load table of this deck (' // rec%table // &
+                            '); give the run''s files other names')
+         end if
+      end if
+   end subroutine not_an_input
 
    !> Hold PREFIX.lock for the life of the process: a second run on the same PREFIX is refused.
    subroutine hold_lock(prefix, err)
@@ -504,19 +526,27 @@ contains
    end subroutine hold_lock
 
    !> A sweep's claim_outputs, before any case runs: PREFIX.sweep, PREFIX_sweep.h5 and the
-   !> .part files they are written as can be written (none is a folder), PREFIX.lock held.
-   subroutine claim_sweep_outputs(prefix, err)
+   !> .part files they are written as can be written (none is a folder, none an input of the
+   !> sweep), PREFIX.lock held.
+   subroutine claim_sweep_outputs(prefix, rec, err)
       character(len=*), intent(in) :: prefix       !! output path prefix
+      type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, table)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
-      character(len=*), parameter :: tails(4) = [character(len=14) :: '.sweep', &
-         '.sweep.part', '_sweep.h5', '_sweep.h5.part']
+      character(len=*), parameter :: tails(5) = [character(len=14) :: '.sweep', &
+         '.sweep.part', '_sweep.h5', '_sweep.h5.part', '.lock']
       integer :: k
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
                          'such as ''' // prefix // '/run''')
          return
       end if
+      ! none of them (nor the lock) may be the deck or its load table (issue 32)
       do k = 1, size(tails)
+         call not_an_input('--output: ''' // prefix // trim(tails(k)) // '''', &
+                           prefix // trim(tails(k)), rec, err)
+         if (allocated(err)) return
+      end do
+      do k = 1, size(tails) - 1
          call check_writable('--output', prefix // trim(tails(k)), err)
          if (allocated(err)) return
       end do

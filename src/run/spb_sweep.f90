@@ -220,7 +220,7 @@ contains
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
       ! the outputs once every rank can run the cases (PREFIX.lock is made last)
-      if (rank == 0) call claim_sweep_outputs(prefix, err)
+      if (rank == 0) call claim_sweep_outputs(prefix, deck_record(deck), err)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
       allocate(rows(n_columns, nc), hists(nbins, nc))
