@@ -27,7 +27,7 @@ module spb_output
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
-   public :: write_gauge_row, gauge_columns, text_count, claim_sweep_outputs
+   public :: write_gauge_row, gauge_columns, text_count, claim_sweep_outputs, bar_units
    public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
       check_written
    ! for spb_restart, which continues the outputs of a checkpointed run

@@ -27,6 +27,7 @@ module spb_sim
    use spb_contact, only: contact_step
    use spb_gauge, only: gauge_t, locate_gauges, watch_gauges, read_gauges
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
+      bar_units, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
       claim_outputs, check_written, write_gauge_row
    use spb_restart, only: resume_outputs, drop_set_aside
@@ -693,10 +694,12 @@ contains
       associate (limit => sim%opt%energy_guard)
          if (limit > 0.0_wp .and. excess > limit * summary%guard_scale .and. &
              summary%guard_scale > 0.0_wp) then
-            write(b1, '(es10.3)') excess
-            write(b2, '(es10.3)') excess / summary%guard_scale
+            ! three exponent digits: es10.3 drops the E of an exponent beyond 99 (1.661+152)
+            write(b1, '(es12.3e3)') excess
+            write(b2, '(es12.3e3)') excess / summary%guard_scale
             call make_error(err, 'run: mechanical energy exceeds the initial energy plus the ' // &
-               'work of the loads by ' // trim(adjustl(b1)) // ' J/m^2 (' // &
+               'work of the loads by ' // trim(adjustl(b1)) // ' ' // bar_units('J/m^2', sim%mesh) &
+               // ' (' // &
                trim(adjustl(b2)) // ' of the energy scale, above ' // &
                '&run energy_guard = ' // rtoa(limit) // ') at step ' // &
                itoa(sim%st%step) // ' (t = ' // rtoa(real(sim%st%step, wp) * sim%mesh%dt) // &
