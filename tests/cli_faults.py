@@ -228,6 +228,18 @@ def outputs_over_inputs(exe, work, check):
         check(set(os.listdir(d)) == left, f"output over input {name}: files made "
               f"{sorted(set(os.listdir(d)) - left)}")
         print(f"ok   output over input {name}: {lines[0] if lines else ''}")
+    # a checkpoint written as CK.part, renamed at the end: CK.part the deck
+    with open(os.path.join(d, "ck.h5.part"), "w") as f:
+        f.write(SMALL.replace("title = 'small'", "title = 'small', checkpoint = 'ck.h5'"))
+    deck_text = open(os.path.join(d, "ck.h5.part")).read()
+    r = run(exe, ["ck.h5.part", "--quiet", "--output", "ckp"], d)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "written as 'ck.h5.part'" in lines[0]
+          and "is the deck itself" in lines[0]
+          and open(os.path.join(d, "ck.h5.part")).read() == deck_text
+          and not os.path.exists(os.path.join(d, "ckp.his")),
+          f"output over input, checkpoint.part: exit {r.returncode}, {r.stderr!r}")
+    print(f"ok   output over input checkpoint.part: {lines[0] if lines else ''}")
     # a sweep's table named like its deck
     sweep = SMALL + "&sweep vary = 'p0', values = 1e6, 2e6 /\n"
     with open(os.path.join(d, "z.sweep"), "w") as f:

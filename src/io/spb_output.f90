@@ -480,6 +480,10 @@ contains
       end do
       call not_an_input('&run: checkpoint = ''' // checkpoint // '''', checkpoint, rec, err)
       if (allocated(err)) return
+      ! it is written as checkpoint.part and renamed: that may not be an input either
+      call not_an_input('&run: checkpoint = ''' // checkpoint // ''' (written as ''' // &
+                        checkpoint // '.part'')', checkpoint // '.part', rec, err)
+      if (allocated(err)) return
       if (sys_is_directory(checkpoint)) then
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is a folder; ' // &
                          'give a file such as ''' // checkpoint // '/run.h5''')
