@@ -6,7 +6,8 @@
 !> that step); 0: success.
 program spallbar
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, compiler_version, compiler_options
-   use spb_kinds, only: wp, version, path_len
+   use spb_kinds, only: wp, path_len
+   use spb_identity, only: program_identity, build_revision
    use spb_error, only: spb_error_t, make_error, exit_input
    use spb_strings, only: itoa
    use spb_deck, only: deck_t, read_deck, write_deck_help, deck_warnings
@@ -27,10 +28,11 @@ program spallbar
    type(spb_error_t), allocatable :: err
    character(len=:), allocatable :: deck_path, prefix, restart_path
    logical :: quiet, sweep
+   logical :: any_version   ! --restart-any-version: a checkpoint of another program restarts
    real(wp) :: batch   ! seconds between progress lines when stderr is not a terminal (0: none)
 
    call heap_for_large_arrays()
-   call parse_command_line(deck_path, prefix, quiet, sweep, restart_path, batch, err)
+   call parse_command_line(deck_path, prefix, quiet, sweep, restart_path, any_version, batch, err)
    if (quiet .or. stderr_is_terminal()) batch = 0.0_wp
    if (allocated(err)) call fail(err)
    if (sweep) call sweep_main()
@@ -41,10 +43,17 @@ program spallbar
    if (len(restart_path) > 0) then
       block
          type(checkpoint_t) :: ck
-         call read_checkpoint(restart_path, sim%record, sim%mesh, sim%load, ck, err)
+         call read_checkpoint(restart_path, sim%record, sim%mesh, sim%load, ck, err, &
+                              any_version=any_version)
          if (allocated(err)) call fail(err)
+         if (ck%program /= program_identity()) then
+            sim%record%restarted_from = ck%program
+            write(error_unit, '(a)') 'spallbar: --restart-any-version: ''' // restart_path // &
+               ''' was written by ' // ck%program // ', this is ' // program_identity() // &
+               '; the outputs are not one uninterrupted run of one program (every header says so)'
+         end if
          if (.not. quiet) then
-            write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
+            write(output_unit, '(a)') program_identity() // ': ' // trim(deck%run%title)
             call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
             write(output_unit, '(a,i0,a,es12.5,a)') '  restart from ' // restart_path // &
                ' at step ', ck%st%step, ' (t = ', real(ck%st%step, wp) * sim%mesh%dt, ' s)'
@@ -56,7 +65,7 @@ program spallbar
       end block
    else
       if (.not. quiet) then
-         write(output_unit, '(a)') 'spallbar ' // version // ': ' // trim(deck%run%title)
+         write(output_unit, '(a)') program_identity() // ': ' // trim(deck%run%title)
          call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
       end if
       flush(output_unit)   ! a log of stdout and stderr together: the header first
@@ -141,7 +150,7 @@ contains
       rank = par_rank()
       call read_deck(deck_path, deck, err, sweep=.true.)
       if (.not. allocated(err)) then
-         if (rank == 0 .and. .not. quiet) write(output_unit, '(a)') 'spallbar ' // version // &
+         if (rank == 0 .and. .not. quiet) write(output_unit, '(a)') program_identity() // &
             ' sweep: ' // trim(deck%run%title)
          flush(output_unit)
          if (rank == 0) call warn(warnings(deck, 0))
@@ -182,7 +191,7 @@ contains
    !> The usage lines of --help, on standard output.
    subroutine usage()
       write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet] ' // &
-         '[--progress SECONDS] [--restart CHECKPOINT.h5]'
+         '[--progress SECONDS] [--restart CHECKPOINT.h5 [--restart-any-version]]'
       write(output_unit, '(a)') '       (--progress: when stderr is not a terminal, a ' // &
          'progress line every SECONDS, default 30, 0 none; on a terminal it updates in place)'
       write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
@@ -223,7 +232,8 @@ contains
    !> --version: the program and how it was built (compiler and its options, sweeps on MPI or
    !> serial, the HDF5 library), so that a result can name the build that made it.
    subroutine print_version()
-      write(output_unit, '(a)') 'spallbar ' // version
+      write(output_unit, '(a)') program_identity()
+      write(output_unit, '(a)') '  sources:  ' // build_revision()
       write(output_unit, '(a)') '  compiler: ' // compiler_version()
       write(output_unit, '(a)') '  options:  ' // build_options(compiler_options())
       write(output_unit, '(a)') '  sweeps:   ' // par_kind
@@ -272,18 +282,20 @@ contains
    !> Read the command line: the deck, --output, --quiet, --sweep and --restart (--help,
    !> --version and --deck-help print and exit 0); the prefix defaults to the deck path
    !> without .nml.
-   subroutine parse_command_line(path, pre, q, sw, rst, every, e)
+   subroutine parse_command_line(path, pre, q, sw, rst, any_ver, every, e)
       character(len=:), allocatable, intent(out) :: path   !! the deck path
       character(len=:), allocatable, intent(out) :: pre    !! output path prefix
       character(len=:), allocatable, intent(out) :: rst   !! --restart FILE ('' none)
       logical, intent(out) :: q                !! --quiet
       logical, intent(out) :: sw               !! --sweep
+      logical, intent(out) :: any_ver          !! --restart-any-version
       real(wp), intent(out) :: every           !! --progress SECONDS (default 30)
       type(spb_error_t), allocatable, intent(out) :: e   !! the error (allocated: it failed)
       integer :: k, nargs, lenarg
       character(len=path_len) :: arg
       q = .false.
       sw = .false.
+      any_ver = .false.
       every = 30.0_wp
       path = ''
       pre = ''
@@ -315,6 +327,8 @@ contains
             pre = trim(arg)
          case ('--sweep')
             sw = .true.
+         case ('--restart-any-version')
+            any_ver = .true.
          case ('--progress')
             call option_value(k, nargs, arg, e, '--progress needs SECONDS (0: no lines)')
             if (allocated(e)) return
@@ -349,6 +363,10 @@ contains
       if (len(path) == 0) then
          call make_error(e, 'command line: no deck given (usage: spallbar DECK.nml ' // &
                          '[--output PREFIX] [--quiet])', code=exit_input)
+         return
+      end if
+      if (any_ver .and. len(rst) == 0) then
+         call make_error(e, 'command line: --restart-any-version goes with --restart CHECKPOINT')
          return
       end if
       if (sw .and. len(rst) > 0) then

@@ -6,6 +6,7 @@ from any folder (paths in a deck are relative to the deck) and says how it was b
 usage: cli_install.py BUILD_DIR WORKDIR
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -39,11 +40,14 @@ def main():
     exe = os.path.join(prefix, "bin", "spallbar")
     r = run(exe, ["--version"], work)
     lines = r.stdout.splitlines()
-    opts = lines[2].split() if len(lines) > 2 else []
-    check(len(opts) == len(set(opts)), f"--version: an option repeated: {lines[2:3]}")
-    check(r.returncode == 0 and len(lines) == 5 and lines[0].startswith("spallbar ") and
-          lines[1].startswith("  compiler: ") and lines[3].startswith("  sweeps: ") and
-          lines[4].startswith("  HDF5: "), f"--version: {r.stdout!r}")
+    opts = lines[3].split() if len(lines) > 3 else []
+    check(len(opts) == len(set(opts)), f"--version: an option repeated: {lines[3:4]}")
+    # the identity (version and the sources' digest, doc/build.md) and where they came from
+    check(r.returncode == 0 and len(lines) == 6 and
+          re.fullmatch(r"spallbar \d+\.\d+\.\d+ \(source [0-9a-f]{12}\)", lines[0]) and
+          lines[1].startswith("  sources:  ") and
+          lines[2].startswith("  compiler: ") and lines[4].startswith("  sweeps: ") and
+          lines[5].startswith("  HDF5: "), f"--version: {r.stdout!r}")
     print("ok   installed --version: " + " | ".join(l.strip() for l in lines))
     deck = os.path.join(prefix, "share", "spallbar", "examples", "example1.nml")
     r = run(exe, [deck, "--output", "ex1", "--quiet"], work)

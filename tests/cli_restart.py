@@ -26,6 +26,8 @@ count:
     checkpoint counts, a file that is no checkpoint or no HDF5, none at all, --restart
     without a file or with --sweep, a checkpoint path that cannot be written,
     checkpoint_every without checkpoint.
+  * another program (issue 32): a checkpoint whose /identity program is not this one's is
+    refused naming both; --restart-any-version restarts it and every header says so.
 
 usage: cli_restart.py SPALLBAR WORKDIR INPUT_DIR     (needs h5py)
 """
@@ -382,7 +384,50 @@ def main():
     refused("checkpoint_every without checkpoint", ["refused.nml", "-q"],
             "&run: checkpoint_every = 10 needs checkpoint",
             set_run(text_without_checkpoint(full), checkpoint_every="10"), prefix="refused")
+    other_program(check, exe, work, name, full, refused)
     return check.finish()
+
+
+def other_program(check, exe, work, name, full, refused):
+    """Issue 32, item 1: a checkpoint another program wrote (here the identity a build of
+    other sources writes, 'spallbar 0.1.0' as every build before the identity wrote) is
+    refused naming both programs; --restart-any-version accepts it, says so on stderr and in
+    every header and PREFIX.h5, and gives this program's continuation."""
+    mine = run(exe, ["--version"], work).stdout.splitlines()[0]
+    ck = name + ".ck.h5"
+    shutil.copy(os.path.join(work, ck), os.path.join(work, "other.ck.h5"))
+    with h5py.File(os.path.join(work, "other.ck.h5"), "r+") as h:
+        check(h["identity"].attrs["program"].decode() == mine,
+              f"identity: the checkpoint names this program ({mine})")
+        # fixed-length, as spallbar writes it (h5py's str would be variable-length)
+        h["identity"].attrs["program"] = np.bytes_(b"spallbar 0.1.0")
+    refused("a checkpoint of another program", [name + "_full.nml", "--output", name + "_R",
+            "--restart", "other.ck.h5"],
+            f"was written by spallbar 0.1.0, this is {mine}")
+    refused("--restart-any-version without --restart", [name + "_full.nml",
+            "--restart-any-version"], "--restart-any-version goes with --restart")
+    for e in EXTS + [".h5"]:
+        shutil.copy(os.path.join(work, name + "_R" + e), os.path.join(work, "any_R" + e))
+    p = run(exe, [name + "_full.nml", "--output", "any_R", "--restart", "other.ck.h5",
+                  "--restart-any-version", "-q"], work)
+    check(p.returncode == 0 and "--restart-any-version" in p.stderr and
+          "was written by spallbar 0.1.0" in p.stderr,
+          f"--restart-any-version: exit 0 and a note on stderr ({p.returncode}, {p.stderr!r})")
+    note = "# restarted (--restart-any-version) from a checkpoint of spallbar 0.1.0"
+    for e in EXTS:
+        with open(os.path.join(work, "any_R" + e)) as f:
+            head = [line for line in f.read().splitlines() if line.startswith("#")]
+        check(head and head[0].startswith("# " + mine + " built from ") and note in
+              "\n".join(head[:2]), f"--restart-any-version: any_R{e} header names both programs")
+        with open(os.path.join(work, "any_R" + e)) as f, \
+                open(os.path.join(work, name + "_U" + e)) as g:
+            body_a = [line for line in f.read().splitlines() if not line.startswith("#")]
+            body_u = [line for line in g.read().splitlines() if not line.startswith("#")]
+        check(body_a == body_u, f"--restart-any-version: any_R{e} rows are this program's run")
+    with h5py.File(os.path.join(work, "any_R.h5"), "r") as h:
+        check(h.attrs["restarted_from"].decode() == "spallbar 0.1.0" and
+              h.attrs["program"].decode() == mine,
+              "--restart-any-version: PREFIX.h5 names both programs")
 
 
 BIG = WEIBULL.replace("t_end = 3.0e-4", "t_end = 2.0e-2\n  hdf5 = .true.\n  field_every = 97")

@@ -1,17 +1,19 @@
-!> Restart files (&run checkpoint, spallbar DECK --restart FILE, INTERFACE.md).
+!> Restart files (&run checkpoint, spallbar DECK --restart FILE, doc/outputs.md).
 !>
 !> A checkpoint holds everything a run needs to go on as if it had never stopped: every
 !> component of state_t (float64 written and read back bit for bit), the summary the run
 !> carries from step to step (the energy guard's reference and scale among it) and the
 !> marks of its outputs (bytes of each text file, rows of each PREFIX.h5 table). With it,
-!> what identifies the run, checked on restart: the program version, the deck (every echoed
+!> what identifies the run, checked on restart: the program (version and source digest,
+!> doc/build.md), the deck (every echoed
 !> value except title, t_end, checkpoint, checkpoint_every and profile times after the
 !> checkpoint), the mesh's dt and cells, a load table's values. Layout in doc/outputs.md.
 !> The file is written as FILE.part and renamed: a run killed while writing it keeps the
 !> previous checkpoint.
 module spb_checkpoint
    use, intrinsic :: iso_fortran_env, only: int64
-   use spb_kinds, only: wp, version
+   use spb_kinds, only: wp
+   use spb_identity, only: program_identity, build_revision
    use spb_error, only: spb_error_t, make_error, exit_input, exit_runtime
    use spb_strings, only: itoa, rtoa
    use spb_deck, only: deck_record_t
@@ -56,6 +58,7 @@ module spb_checkpoint
       type(state_t) :: st
       type(run_summary_t) :: summary
       type(output_marks_t) :: marks
+      character(len=:), allocatable :: program   !! who wrote it (/identity program)
    end type checkpoint_t
 
    !> Deck variables added after checkpoints existed ('group:name'): not given, they keep the
@@ -103,7 +106,8 @@ contains
       call h5_attr(cf%h5, '/', 't', real(st%step, wp) * mesh%dt)
       ! what identifies the run
       call h5_group(cf%h5, '/identity')
-      call h5_attr(cf%h5, '/identity', 'program', 'spallbar ' // version)
+      call h5_attr(cf%h5, '/identity', 'program', program_identity())
+      call h5_attr(cf%h5, '/identity', 'revision', build_revision())
       call h5_attr(cf%h5, '/identity', 'deck', deck_identity(rec))
       call h5_attr(cf%h5, '/identity', 'dt', mesh%dt)
       call h5_attr(cf%h5, '/identity', 'cells', mesh%n)
@@ -443,13 +447,14 @@ contains
 
    !> Read a checkpoint for the run set up from deck (mesh, load) and check that the
    !> restart can be identical to an uninterrupted run; every refusal is exit status 2.
-   subroutine read_checkpoint(path, rec, mesh, load, ck, err)
+   subroutine read_checkpoint(path, rec, mesh, load, ck, err, any_version)
       character(len=*), intent(in) :: path   !! checkpoint file
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       type(checkpoint_t), intent(out) :: ck   !! the checkpoint read
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      logical, intent(in), optional :: any_version   !! accept another program's (ck%program)
       type(ck_file_t) :: cf
       character(len=:), allocatable :: text, why
       real(wp), allocatable :: times(:)
@@ -474,10 +479,19 @@ contains
          return
       end if
       call h5_get_attr(cf%h5, '/identity', 'program', text)
-      if (text /= 'spallbar ' // version) then
-         call refuse('was written by ' // text // ', this is spallbar ' // version // &
-                     ' (a restart is bit-identical only with the program that wrote it)')
+      if (allocated(cf%h5%error)) then
+         call refuse('is damaged: it does not name the program that wrote it (/identity program)')
          return
+      end if
+      ck%program = text
+      if (text /= program_identity()) then
+         if (.not. present(any_version)) then
+            call refuse_program()
+            return
+         else if (.not. any_version) then
+            call refuse_program()
+            return
+         end if
       end if
       why = identity_problem(cf%h5, rec, mesh, load)
       if (len(why) > 0) then
@@ -540,6 +554,12 @@ contains
       end if
       call h5_close(cf%h5)
    contains
+      !> Refuse a checkpoint of another program (exit 2), naming both.
+      subroutine refuse_program()
+         call refuse('was written by ' // text // ', this is ' // program_identity() // &
+                     ': a restart continues the run of the program that wrote it ' // &
+                     '(--restart-any-version accepts it, and every output then says so)')
+      end subroutine refuse_program
       !> Refuse the checkpoint (exit 2) with the reason, and close it.
       subroutine refuse(why)
          character(len=*), intent(in) :: why   !! the reason, after the checkpoint's path

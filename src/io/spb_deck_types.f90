@@ -167,6 +167,7 @@ module spb_deck_types
       real(wp), allocatable :: gauge_x(:)             !! &gauges x [m] (none: no PREFIX.gau)
       integer :: gauge_every = 1                      !! &gauges every [steps]
       logical :: names_first = .true.                 !! &run header = 'names'
+      character(len=:), allocatable :: restarted_from !! --restart-any-version: its program
    end type deck_record_t
 
    type :: deck_t

@@ -14,6 +14,7 @@ module spb_hdf5
       h5dset_extent_f, h5sget_simple_extent_dims_f, h5acreate_f, h5awrite_f, h5aclose_f, &
       h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
       h5aopen_f, h5aread_f, h5aget_type_f, h5tget_size_f, h5aexists_f, h5ocopy_f, &
+      h5tget_class_f, h5tis_variable_str_f, H5T_STRING_F, &
       h5get_libversion_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
       H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       H5T_NATIVE_CHARACTER, H5P_FILE_CREATE_F
@@ -807,18 +808,29 @@ contains
       character(len=:), allocatable, intent(out) :: value   !! its value
       integer(hid_t) :: obj, attr, atype
       integer(size_t) :: n
-      integer :: hdferr
+      integer :: hdferr, tclass
+      logical :: vlen
       value = ''
       call open_attr(h5, path, name, obj, attr)
       if (attr >= 0) then
          call h5aget_type_f(attr, atype, hdferr)
          call h5tget_size_f(atype, n, hdferr)
+         call h5tget_class_f(atype, tclass, hdferr)
+         vlen = .false.
+         if (tclass == H5T_STRING_F) call h5tis_variable_str_f(atype, vlen, hdferr)
+         if (tclass /= H5T_STRING_F .or. vlen) then
+            ! another writer's attribute (h5py writes variable-length strings): not read
+            call check(h5, -1, 'reading ' // path // ':' // name // ' (not a fixed-length string)')
+            n = 0
+         end if
+         if (n > 0) then
          block
             character(len=n) :: text
             call h5aread_f(attr, atype, text, [1_hsize_t], hdferr)
             call check(h5, hdferr, 'h5aread_f ' // path // ':' // name)
             value = trim(text)
          end block
+         end if
          call h5tclose_f(atype, hdferr)
       end if
       call close_attr(obj, attr)

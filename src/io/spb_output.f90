@@ -6,7 +6,8 @@
 !> mesh, units); the last header line names the columns. Every writer here writes both.
 module spb_output
    use, intrinsic :: iso_fortran_env, only: int64
-   use spb_kinds, only: wp, version
+   use spb_kinds, only: wp
+   use spb_identity, only: program_identity, build_revision
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa, es20_12, int_right, int_into
    use spb_deck, only: deck_record_t, write_echo
@@ -28,6 +29,7 @@ module spb_output
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
    public :: write_gauge_row, gauge_columns, text_count, claim_sweep_outputs, bar_units
+   public :: program_line
    public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
       check_written
    ! for spb_restart, which continues the outputs of a checkpointed run
@@ -263,12 +265,32 @@ contains
          character(len=*), intent(in) :: what   !! what the file holds (its first line)
          integer, intent(in) :: k          !! text file (text_extensions)
          if (rec%names_first) write(u, '(a)') text_columns(k, size(rec%gauge_x))
-         write(u, '(a)') '# spallbar ' // version // ' -- ' // what
+         write(u, '(a)') '# ' // program_line() // ' -- ' // what
+         if (len(foreign(rec)) > 0) write(u, '(a)') '# ' // foreign(rec)
          write(u, '(a)') '# title: ' // rec%title
          call write_echo(u, rec, '# ')
          call write_mesh_summary(u, mesh, report, '# ')
       end subroutine header
    end subroutine open_outputs
+
+   !> The program as every header's first line names it: its identity and where its sources
+   !> came from, 'spallbar 0.2.0 (source 1a2b3c4d5e6f) built from git b82964e1a2b3'.
+   function program_line() result(text)
+      character(len=:), allocatable :: text   !! the line, without '# '
+      text = program_identity() // ' built from ' // build_revision()
+   end function program_line
+
+   !> The header line of a run restarted with --restart-any-version from another program's
+   !> checkpoint ('' for any other run).
+   function foreign(rec) result(text)
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      character(len=:), allocatable :: text   !! the line, without '# '
+      text = ''
+      if (allocated(rec%restarted_from)) then
+         if (len(rec%restarted_from) > 0) text = 'restarted (--restart-any-version) from a ' // &
+            'checkpoint of ' // rec%restarted_from // ': not one uninterrupted run of one program'
+      end if
+   end function foreign
 
    !> The header lines of PREFIX.gau after the common ones: where each gauge is, what it
    !> reads, units, the column line.
@@ -823,7 +845,9 @@ contains
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       integer :: k
-      call h5_attr(h5, '/', 'program', 'spallbar ' // version)
+      call h5_attr(h5, '/', 'program', program_identity())
+      call h5_attr(h5, '/', 'revision', build_revision())
+      if (len(foreign(rec)) > 0) call h5_attr(h5, '/', 'restarted_from', foreign(rec))
       call h5_attr(h5, '/', 'title', rec%title)
       call h5_attr(h5, '/', 'deck_path', rec%path)
       call h5_attr(h5, '/', 'layout', 'doc/outputs.md; h5py shows a Fortran a(nx, nt) ' // &

@@ -9,7 +9,7 @@
 !> same for any number of ranks and either distribution.
 module spb_sweep
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
-   use spb_kinds, only: wp, version
+   use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
    use spb_sys, only: stop_signal, sys_rename, sys_file_size, sys_memory_limit
@@ -24,7 +24,7 @@ module spb_sweep
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision, ev_crack
    use spb_cohesive, only: dissipated
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
-   use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs
+   use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs, program_line
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_max, par_any, &
       par_kind
    implicit none
@@ -479,7 +479,7 @@ contains
          return
       end if
       if (deck%run%header == 'names') write(u, '(a)') sweep_columns()
-      write(u, '(a)') '# spallbar ' // version // ' -- sweep: one row per case, in case order'
+      write(u, '(a)') '# ' // program_line() // ' -- sweep: one row per case, in case order'
       write(u, '(a)') '# title: ' // trim(deck%run%title)
       call write_echo(u, deck_record(deck), '# ')
       write(u, '(a)') '# cases: ' // itoa(size(rows, 2)) // ' = ' // &
