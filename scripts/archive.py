@@ -26,6 +26,7 @@ import argparse
 import datetime
 import glob
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -163,6 +164,18 @@ def describe(exe):
     return version, commit, (compiler[0] if compiler else "unknown")
 
 
+def version_number(text):
+    """'0.3.0' from --version's text (its first line 'spallbar 0.3.0 (source ...)')."""
+    m = re.match(r"spallbar (\d+\.\d+\.\d+)", text.strip())
+    return m.group(1) if m else ""
+
+
+def archived_version():
+    """The version the archive was made with ('' when there is none)."""
+    path = os.path.join(ARCHIVE, "VERSION")
+    return version_number(open(path).readline()) if os.path.isfile(path) else ""
+
+
 def rebaseline(args):
     if not args.why or not args.why.strip():
         raise Missing("rebaseline needs --why \"what changed and why\" (archive/CHANGES.md)")
@@ -170,7 +183,7 @@ def rebaseline(args):
     work = fresh_work(args.work)
     version, commit, compiler = describe(exe)
     os.makedirs(ARCHIVE, exist_ok=True)
-    moved_lines = []
+    moved_lines, made, moved_any = [], [], False
     for name, rel, sweep in decks():
         out = run_deck(exe, work, rel, name, sweep)
         dst = os.path.join(ARCHIVE, name + (".sweep" if sweep else ".his"))
@@ -178,8 +191,17 @@ def rebaseline(args):
             status, moved, _ = compare(COMPARE, dst, out, name)
             if status:
                 moved_lines.append(f"  * {rel}: {'; '.join(moved)}")
+                moved_any = True
         else:
             moved_lines.append(f"  * {rel}: new")
+        made.append((out, dst, sweep, rel))
+    # results that moved are a new version (doc/build.md "Program identity")
+    before = archived_version()
+    if moved_any and before and before == version_number(version):
+        raise Missing(f"results moved against the archive ({len(moved_lines)} decks) but the "
+                      f"version is still {before}: raise `version` in src/base/spb_kinds.f90 "
+                      "(doc/build.md \"Program identity\")")
+    for out, dst, sweep, rel in made:
         if sweep:
             shutil.copyfile(out, dst)
         else:

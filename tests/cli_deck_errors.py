@@ -68,7 +68,42 @@ BAD = [
      "spallbar: &run: t_end%x: unknown variable in this group"),
     ("stray_word", GOOD.replace("&mesh cells = 10", "&mesh ten cells = 10"),
      "spallbar: &mesh: cannot read the value 'ten'"),
+    # issue 32, item 9: the message names the real cause ("x is required" before)
+    ("gauge_101", GOOD + "&gauges x(101) = 0.05 /\n", "spallbar: &gauges: x(101): at most 100 gauges"),
+    ("gauge_gap", GOOD + "&gauges x(3) = 0.01 /\n",
+     "spallbar: &gauges: x(3) is given but x(1) is not"),
 ]
+
+
+def read_as_nothing(exe, work, check):
+    """Issue 32, item 9: a deck or a load table that starts with a UTF-8 byte-order mark (an
+    editor on Windows writes one) runs as without it ("text outside any &group" before); a
+    table line holding only a tab (or a CR) is blank like an empty line (refused before)."""
+    bom = b"\xef\xbb\xbf"
+    with open(os.path.join(work, "plain.nml"), "w") as f:
+        f.write(GOOD)
+    with open(os.path.join(work, "bom.nml"), "wb") as f:
+        f.write(bom + GOOD.encode())
+    for name in ("plain", "bom"):
+        r = run(exe, [name + ".nml", "--quiet"], work)
+        check(r.returncode == 0 and not r.stderr, f"{name} deck: exit {r.returncode} {r.stderr!r}")
+    rows = [[l for l in open(os.path.join(work, n + ".his")) if not l.startswith(("#", "t "))]
+            for n in ("plain", "bom")]
+    check(rows[0] == rows[1] and rows[0], "a deck with a BOM: other rows than without")
+    table = "0 0\n1e-6 1e6\n1e-5 1e6\n"
+    for name, data in (("tplain", table.encode()), ("tbom", bom + table.encode()),
+                       ("ttab", b"0 0\n\t\n1e-6\t1e6\r\n \t \n1e-5 1e6\n")):
+        with open(os.path.join(work, name + ".txt"), "wb") as f:
+            f.write(data)
+        with open(os.path.join(work, name + ".nml"), "w") as f:
+            f.write(GOOD.replace("&load kind = 'power', p0 = 1e6 /",
+                                 f"&load kind = 'table', table = '{name}.txt' /"))
+        r = run(exe, [name + ".nml", "--quiet"], work)
+        check(r.returncode == 0 and not r.stderr, f"table {name}: exit {r.returncode} {r.stderr!r}")
+    rows = [[l for l in open(os.path.join(work, n + ".his")) if not l.startswith(("#", "t "))]
+            for n in ("tplain", "tbom", "ttab")]
+    check(rows[0] and rows[0] == rows[1] == rows[2], "tables with a BOM, tabs, CRs: other rows")
+    print("ok   a BOM in a deck or table, a table line of a tab: read as nothing")
 
 
 def deck_help_matches_doc(exe, work, check):
@@ -142,6 +177,7 @@ def main():
     r = run(exe, ["--help"], work)
     check(r.returncode == 0 and "usage" in r.stdout, "--help")
     deck_help_matches_doc(exe, work, check)
+    read_as_nothing(exe, work, check)
 
     # a good deck runs, writes the three files, and --output chooses the prefix
     with open(os.path.join(work, "good.nml"), "w") as f:

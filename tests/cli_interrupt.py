@@ -11,6 +11,10 @@ A long run (a 400-cell bar, history every step, x-t fields, HDF5 on) is stopped 
     PREFIX.h5 opens and holds at least the first flush (1024 rows), and each of its rows
     equals the text row of the same index.
 
+Since issue 32 a run writes PREFIX.ext.part and renames them at its end: a run stopped by a
+signal (no checkpoint) leaves a previous set of PREFIX outputs as it was, and its own rows are
+in the .part files, which the SIGTERM message names.
+
 usage: cli_interrupt.py SPALLBAR WORKDIR    (needs h5py)
 """
 import os
@@ -52,12 +56,19 @@ DECK = """&run
 """
 
 
+PREVIOUS = b"# the previous run's results: a run stopped by a signal leaves them (issue 32)\n"
+
+
 def start(exe, work, name):
     with open(os.path.join(work, name + ".nml"), "w") as f:
         f.write(DECK)
+    # a previous set of outputs on the same prefix
+    for ext in (".his", ".prf", ".evt", ".frg", ".h5", ".xmf"):
+        with open(os.path.join(work, name + ext), "wb") as f:
+            f.write(PREVIOUS)
     p = subprocess.Popen([exe, name + ".nml", "-q"], cwd=work, stdout=subprocess.DEVNULL,
                          stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
-    his = os.path.join(work, name + ".his")
+    his = os.path.join(work, name + ".his.part")   # the temporaries, until the run ends
     t0 = time.monotonic()
     # wait for a few thousand rows and more than one flush interval
     while time.monotonic() - t0 < 60:
@@ -89,6 +100,13 @@ def text_rows(path):
     return rows, partial, None
 
 
+def previous_kept(check, work, name, what):
+    """The previous outputs of the prefix are as they were (issue 32, item 3)."""
+    for ext in (".his", ".prf", ".evt", ".frg", ".h5", ".xmf"):
+        with open(os.path.join(work, name + ext), "rb") as f:
+            check(f.read() == PREVIOUS, f"{what}: the previous {name}{ext} was touched")
+
+
 def h5_history(path):
     with h5py.File(path, "r") as f:
         return np.asarray(f["history/t"]), np.asarray(f["history/step"]), \
@@ -107,13 +125,15 @@ def main():
     err = p.communicate(timeout=60)[1].decode()
     lines = err.splitlines()
     check(p.returncode == 143, f"SIGTERM: exit {p.returncode}, expected 143; {err!r}")
-    check(len(lines) == 1 and "stopped by signal 15 at step" in lines[0],
+    check(len(lines) == 1 and "stopped by signal 15 at step" in lines[0] and
+          "outputs are term.*.part, the previous term.* are as they were" in lines[0],
           f"SIGTERM: message {err!r}")
-    rows, partial, bad = text_rows(os.path.join(work, "term.his"))
+    previous_kept(check, work, "term", "SIGTERM")
+    rows, partial, bad = text_rows(os.path.join(work, "term.his.part"))
     check(bad is None and not partial, f"SIGTERM: history text {bad}, partial {partial}")
     step = int(lines[0].split("at step ")[1].split()[0]) if lines else -1
     check(rows and int(rows[-1][10]) == step, f"SIGTERM: last row step {rows[-1][10]} vs {step}")
-    t, st, ek, nxt = h5_history(os.path.join(work, "term.h5"))
+    t, st, ek, nxt = h5_history(os.path.join(work, "term.h5.part"))
     check(len(t) == len(rows), f"SIGTERM: {len(t)} HDF5 rows vs {len(rows)} text rows")
     txt = np.array(rows)
     n = min(len(t), len(rows))
@@ -121,7 +141,7 @@ def main():
     check(np.allclose(ek[:n], txt[:n, 4], rtol=1e-12, atol=0), "SIGTERM: e_kin differs")
     check(nxt == step // 100 + 1, f"SIGTERM: {nxt} x-t rows for step {step}")
     for ext in ("evt", "prf", "frg"):
-        with open(os.path.join(work, "term." + ext), "rb") as f:
+        with open(os.path.join(work, "term." + ext + ".part"), "rb") as f:
             data = f.read()
         check(data.endswith(b"\n"), f"SIGTERM: term.{ext} does not end with a full line")
     print(f"SIGTERM: exit {p.returncode}, stopped at step {step}; {len(rows)} text rows = "
@@ -132,10 +152,11 @@ def main():
     p.send_signal(signal.SIGKILL)
     p.communicate(timeout=60)
     check(p.returncode == -signal.SIGKILL, f"SIGKILL: returncode {p.returncode}")
-    rows, partial, bad = text_rows(os.path.join(work, "kill.his"))
+    previous_kept(check, work, "kill", "SIGKILL")
+    rows, partial, bad = text_rows(os.path.join(work, "kill.his.part"))
     check(bad is None, f"SIGKILL: history text {bad}")
     try:
-        t, st, ek, nxt = h5_history(os.path.join(work, "kill.h5"))
+        t, st, ek, nxt = h5_history(os.path.join(work, "kill.h5.part"))
         ok = True
     except Exception as e:               # the check below reports it
         ok, t = False, []

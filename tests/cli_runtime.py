@@ -29,13 +29,16 @@ def guard_stops(check, exe, work, name, deck):
     r = run(exe, [name + ".nml", "-q"], work)
     lines = r.stderr.splitlines()
     check(r.returncode == 3, f"{name}: exit status {r.returncode}, expected 3")
-    check(len(lines) == 1 and "mechanical energy exceeds" in lines[0], f"{name}: stderr {r.stderr!r}")
-    head = [l for l in open(os.path.join(work, name + ".his")) if l.startswith("t ")][0].split()
-    rows = [[float(x) for x in l.split()] for l in open(os.path.join(work, name + ".his"))
-            if l.startswith(" ")]
+    # a run that fails leaves its outputs as the temporaries and says so (issue 32)
+    check(len(lines) == 1 and "mechanical energy exceeds" in lines[0] and
+          f"outputs are {name}.*.part" in lines[0], f"{name}: stderr {r.stderr!r}")
+    his = os.path.join(work, name + ".his.part")
+    head = [l for l in open(his) if l.startswith("t ")][0].split()
+    rows = [[float(x) for x in l.split()] for l in open(his) if l.startswith(" ")]
     check(len(rows) >= 3 and all(len(x) == len(head) for x in rows), f"{name}: history rows complete")
     for ext in (".prf", ".evt", ".frg"):
-        check(os.path.getsize(os.path.join(work, name + ext)) > 0, f"{name}: {ext} written")
+        check(os.path.getsize(os.path.join(work, name + ext + ".part")) > 0,
+              f"{name}: {ext}.part written")
     print(f"ok   {name}: guard stopped the run at t = {rows[-1][0] if rows else None}: "
           f"{lines[0] if lines else ''}")
     return head, rows

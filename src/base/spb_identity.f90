@@ -11,7 +11,7 @@ module spb_identity
 
 contains
 
-   !> 'spallbar 0.2.0 (source 1a2b3c4d5e6f)': the version and the sources' digest, as the
+   !> 'spallbar 0.3.0 (source 1a2b3c4d5e6f)': the version and the sources' digest, as the
    !> headers, PREFIX.h5 and the checkpoint write it; a restart needs the same.
    pure function program_identity() result(text)
       character(len=:), allocatable :: text   !! the identity

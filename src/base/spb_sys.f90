@@ -9,6 +9,7 @@ module spb_sys
    private
    public :: sys_exit, stderr_is_terminal, sys_rename, catch_stop_signals, stop_signal
    public :: fp_traps_off, fp_traps_restore, heap_for_large_arrays
+   public :: sys_lock_held, sys_write_trouble
    public :: sys_file_size, sys_lock, sys_real_path, sys_is_directory, sys_file_kind, &
       sys_same_file
    public :: file_missing, file_regular, file_folder, file_other
@@ -54,6 +55,24 @@ module spb_sys
          character(kind=c_char), intent(in) :: b(*)   !! NUL-terminated path
          integer(c_int) :: r
       end function c_same_file
+
+      !> spb_lock_held (spb_sys_c.c): whether another open file holds a flock on path.
+      function c_lock_held(path) bind(c, name='spb_lock_held') result(r)
+         import :: c_char, c_int
+         implicit none
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
+         integer(c_int) :: r
+      end function c_lock_held
+
+      !> spb_fs_state (spb_sys_c.c): whether path's file system is read-only or full.
+      function c_fs_state(path) bind(c, name='spb_fs_state') result(r)
+         import :: c_char, c_int
+         implicit none
+         ! allow(assumed-size)
+         character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
+         integer(c_int) :: r
+      end function c_fs_state
 
       !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
@@ -219,6 +238,30 @@ contains
       state = 2
       if (c_flock(fd, 6_c_int) == 0_c_int) state = 0
    end subroutine sys_lock
+
+   !> Whether another process (or another open file of this one) holds a flock(2) lock on
+   !> path, shared or exclusive: an HDF5 reader (h5py, ParaView) or a spallbar run's lock.
+   !> .false. when path is missing.
+   logical function sys_lock_held(path)
+      character(len=*), intent(in) :: path   !! the file
+      sys_lock_held = c_lock_held(path // c_null_char) /= 0_c_int
+   end function sys_lock_held
+
+   !> Why the file system of path refuses writes, as words for a message: 'the file system
+   !> is read-only', 'the disk is full (or over quota)', or 'full, or over quota?' when
+   !> statvfs(3) shows neither.
+   function sys_write_trouble(path) result(text)
+      character(len=*), intent(in) :: path   !! a file on that file system
+      character(len=:), allocatable :: text
+      select case (c_fs_state(path // c_null_char))
+      case (1)
+         text = 'the file system is read-only'
+      case (2)
+         text = 'the disk is full (or over quota)'
+      case default
+         text = 'full, or over quota?'
+      end select
+   end function sys_write_trouble
 
    !> The absolute path with links and '..' resolved (realpath(3)) of a file that may not
    !> exist yet: its folder resolved, its name kept; path itself when the folder is missing.

@@ -359,7 +359,17 @@ contains
             g%n = k
          end do
          if (g%n == 0 .and. .not. has_group(deck%scan, 'gauges')) return
-         if (g%n == 0) then
+         if (g%n == 0 .and. any(is_set(g%x))) then
+            ! positions given, but not from x(1) on: name the first one given
+            k = findloc(is_set(g%x), .true., dim=1)
+            if (k > max_gauges) then
+               call make_error(err, '&gauges: x(' // itoa(k) // '): at most ' // &
+                               itoa(max_gauges) // ' gauges')
+            else
+               call make_error(err, '&gauges: x(' // itoa(k) // ') is given but x(1) is not: ' // &
+                               'give the positions in order from x(1)')
+            end if
+         else if (g%n == 0) then
             call make_error(err, '&gauges: x is required (the positions of the gauges, m)')
          else if (g%n > max_gauges) then
             call make_error(err, '&gauges: x: at most ' // itoa(max_gauges) // &

@@ -21,6 +21,7 @@ module spb_hdf5
    use, intrinsic :: iso_c_binding, only: c_int, c_bool, c_int64_t, c_long_long
    use spb_kinds, only: wp
    use spb_strings, only: itoa
+   use spb_sys, only: sys_lock_held
    implicit none
    private
    public :: h5_library_version
@@ -128,6 +129,9 @@ contains
                                      .false._c_bool, 1_c_long_long) < 0) call check(h5, -1, &
                                      'H5Pset_file_space_strategy')
       call h5fcreate_f(path, H5F_ACC_TRUNC_F, h5%file, hdferr, creation_prp=fcpl)
+      ! HDF5 locks a file it opens (flock): a reader that holds this one is the likely cause
+      if (hdferr < 0 .and. sys_lock_held(path)) call check(h5, hdferr, 'h5fcreate_f (another ' // &
+         'process holds the file open, e.g. h5py, a notebook or ParaView: close it)')
       call check(h5, hdferr, 'h5fcreate_f')
       call h5pclose_f(fcpl, hdferr)
       if (hdferr < 0) h5%file = -1

@@ -56,6 +56,14 @@ contains
             exit
          end if
          buf(nchar + 1:) = ' '
+         ! a UTF-8 byte-order mark on the first line is nothing; tabs and carriage returns
+         ! are blanks (a line of only a tab is as blank as an empty one)
+         if (line == 1 .and. nchar >= 3) then
+            if (buf(1:3) == achar(239) // achar(187) // achar(191)) buf(1:3) = ' '
+         end if
+         do k = 1, nchar
+            if (buf(k:k) == achar(9) .or. buf(k:k) == achar(13)) buf(k:k) = ' '
+         end do
          k = scan(buf, '#!')
          if (k > 0) buf(k:) = ' '
          if (len_trim(buf) == 0) cycle

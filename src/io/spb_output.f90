@@ -16,7 +16,7 @@ module spb_output
       h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, block_name, buffer_rows
    use spb_xdmf, only: write_xdmf, xdmf_path
    use spb_sys, only: sys_rename, sys_file_size, sys_lock, sys_real_path, sys_is_directory, &
-      sys_same_file, &
+      sys_same_file, sys_lock_held, sys_write_trouble, &
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
@@ -29,7 +29,7 @@ module spb_output
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
    public :: write_gauge_row, gauge_columns, text_count, claim_sweep_outputs, bar_units
-   public :: program_line
+   public :: program_line, publish_outputs, where_outputs, out_path, is_temporary, remove_file
    public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
       check_written
    ! for spb_restart, which continues the outputs of a checkpointed run
@@ -136,6 +136,8 @@ module spb_output
 
    type :: outputs_t
       character(len=:), allocatable :: prefix
+      character(len=:), allocatable :: part   !! '.part' while written as temporaries, else ''
+      logical :: with_h5 = .false.                        !! PREFIX.h5 is one of them
       integer :: his = no_unit, prf = no_unit, evt = no_unit, frg = no_unit   !! units
       integer :: gau = no_unit                            !! PREFIX.gau's unit (no gauges: none)
       integer :: n_gauges = 0                             !! gauges (columns 3 n_gauges + 1)
@@ -160,6 +162,8 @@ module spb_output
    character(len=4), parameter :: text_extensions(5) = ['.his', '.prf', '.evt', '.frg', '.gau']
 
    integer, parameter :: tail_len = 240   !! bytes of each text file a mark remembers
+   !> the suffix of an output written as a temporary until the run publishes it
+   character(len=*), parameter :: part_suffix = '.part'
 
    !> How far the outputs reach at one step: what a restart keeps of them.
    type :: output_marks_t
@@ -176,8 +180,10 @@ module spb_output
 
 contains
 
-   !> Open PREFIX.his, .prf, .evt and write their headers.
-   subroutine open_outputs(prefix, rec, mesh, report, out, err, xt_rows)
+   !> Open PREFIX.his, .prf, .evt, .frg (.gau, .h5) and write their headers. temporaries:
+   !> write them as PREFIX.ext.part, which publish_outputs renames (a run that fails before
+   !> leaves the previous outputs as they were; doc/outputs.md).
+   subroutine open_outputs(prefix, rec, mesh, report, out, err, xt_rows, temporaries)
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
@@ -185,7 +191,12 @@ contains
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
+      logical, intent(in), optional :: temporaries   !! as PREFIX.ext.part (default: no)
       out%prefix = prefix
+      out%part = ''
+      if (present(temporaries)) then
+         if (temporaries) out%part = part_suffix
+      end if
       out%per_area = per_unit_area(mesh)
       call open_one('.his', out%his)
       if (.not. allocated(err)) call open_one('.prf', out%prf)
@@ -250,11 +261,12 @@ contains
          integer, intent(out) :: u         !! open formatted unit
          integer :: ios
          character(len=256) :: msg
-         open(newunit=u, file=prefix // ext, status='replace', action='write', iostat=ios, &
-              iomsg=msg)
+         open(newunit=u, file=prefix // ext // out%part, status='replace', action='write', &
+              iostat=ios, iomsg=msg)
          if (ios /= 0) then
             u = no_unit
-            call make_error(err, '--output: cannot write ''' // prefix // ext // ''': ' // trim(msg))
+            call make_error(err, '--output: cannot write ''' // prefix // ext // out%part // &
+                            ''': ' // trim(msg))
          end if
       end subroutine open_one
       !> The header lines every text file starts with: with &run header = 'names' a first
@@ -274,7 +286,7 @@ contains
    end subroutine open_outputs
 
    !> The program as every header's first line names it: its identity and where its sources
-   !> came from, 'spallbar 0.2.0 (source 1a2b3c4d5e6f) built from git b82964e1a2b3'.
+   !> came from, 'spallbar 0.3.0 (source 1a2b3c4d5e6f) built from git b82964e1a2b3'.
    function program_line() result(text)
       character(len=:), allocatable :: text   !! the line, without '# '
       text = program_identity() // ' built from ' // build_revision()
@@ -437,32 +449,42 @@ contains
       end do
    end function unit_text
 
-   !> Before any output is created or truncated: check that every file of the run can be
-   !> written without touching it, that the checkpoint ('' : none) is none of the run's other
-   !> files, the deck or its load table and can be written, then hold PREFIX.lock (a second
-   !> run on the same PREFIX is refused). The lock comes last: a refusal leaves no file.
+   !> Before any output is created or truncated: check that every file of the run (its
+   !> outputs, the temporaries they are written as, PREFIX.xmf) can be written without
+   !> touching it, that none is the deck or its load table, that the checkpoint ('' : none)
+   !> is none of them and can be written; then hold PREFIX.lock and the checkpoint's lock
+   !> (CHECKPOINT.lock) and refuse when another run holds the lock of a file this run would
+   !> write (its checkpoint among this run's outputs, or this run's checkpoint among its
+   !> outputs). A refusal leaves no file; the locks are taken before the last test, so of two
+   !> runs started together at least one sees the other.
    subroutine claim_outputs(prefix, rec, checkpoint, err)
       character(len=*), intent(in) :: prefix       !! output path prefix
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
-      character(len=len(prefix) + 5) :: files(8)
+      character(len=len(prefix) + 10) :: files(15)
       integer :: k, n, nt
+      logical :: made(2)
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
                          'such as ''' // prefix // '/run''')
          return
       end if
-      ! the text files, PREFIX.h5 when written, then the lock
+      ! the text files, PREFIX.h5 and PREFIX.xmf when written, each as itself and as the
+      ! temporary it is written as first; then the lock
       nt = text_count(rec)
+      n = 0
       do k = 1, nt
-         files(k) = prefix // text_extensions(k)
+         files(n + 1) = prefix // text_extensions(k)
+         files(n + 2) = prefix // trim(text_extensions(k)) // part_suffix
+         n = n + 2
       end do
-      n = nt
       if (rec%hdf5) then
          files(n + 1) = prefix // '.h5'
-         files(n + 2) = xdmf_path(prefix)
-         n = n + 2
+         files(n + 2) = prefix // '.h5' // part_suffix
+         files(n + 3) = xdmf_path(prefix)
+         files(n + 4) = xdmf_path(prefix) // part_suffix
+         n = n + 4
       end if
       files(n + 1) = prefix // '.lock'
       ! no output (nor the lock, which is truncated) may be one of the run's inputs: by name,
@@ -477,8 +499,53 @@ contains
       end do
       call claim_checkpoint(checkpoint, rec, files(1:n + 1), err)
       if (allocated(err)) return
-      call hold_lock(prefix, err)
+      made = .false.
+      call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made(1), err)
+      if (len(checkpoint) > 0 .and. .not. allocated(err)) call hold_lock(checkpoint // &
+         '.lock', '&run: checkpoint = ''' // checkpoint // '''', made(2), err)
+      if (.not. allocated(err)) call others_writing(prefix, files(1:n), checkpoint, err)
+      if (allocated(err)) then
+         ! leave no file: the lock files this run made go again
+         if (made(1)) call remove_file(prefix // '.lock')
+         if (made(2)) call remove_file(checkpoint // '.lock')
+      end if
    end subroutine claim_outputs
+
+   !> Refuse (err) when another run holds the lock of a file this one writes: another run's
+   !> checkpoint (CHECKPOINT.lock) that is one of files, or this run's checkpoint that is an
+   !> output or temporary of another run's prefix (PREFIX.lock of the prefix it belongs to).
+   subroutine others_writing(prefix, files, checkpoint, err)
+      character(len=*), intent(in) :: prefix       !! output path prefix
+      character(len=*), intent(in) :: files(:)     !! the run's outputs and temporaries
+      character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
+      character(len=*), parameter :: tails(14) = [character(len=10) :: '.his', '.prf', &
+         '.evt', '.frg', '.gau', '.h5', '.xmf', '.his.part', '.prf.part', '.evt.part', &
+         '.frg.part', '.gau.part', '.h5.part', '.xmf.part']
+      integer :: k, m
+      do k = 1, size(files)
+         if (sys_lock_held(trim(files(k)) // '.lock')) then
+            call make_error(err, '--output: ''' // trim(files(k)) // ''' is the checkpoint ' // &
+               'of another spallbar run (' // trim(files(k)) // '.lock is locked); wait for ' // &
+               'it or give another --output than ''' // prefix // '''')
+            return
+         end if
+      end do
+      if (len(checkpoint) == 0) return
+      do k = 1, size(tails)
+         m = len(checkpoint) - len_trim(tails(k))
+         if (m < 1) cycle
+         if (checkpoint(m + 1:) /= trim(tails(k))) cycle
+         ! this run's own prefix holds its lock here (its outputs were checked before)
+         if (sys_real_path(checkpoint(:m)) == sys_real_path(prefix)) cycle
+         if (sys_lock_held(checkpoint(:m) // '.lock')) then
+            call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is an output ' // &
+               'of another spallbar run on the prefix ''' // checkpoint(:m) // ''' (' // &
+               checkpoint(:m) // '.lock is locked); give the checkpoint a file of its own')
+            return
+         end if
+      end do
+   end subroutine others_writing
 
    !> The checkpoint's part of claim_outputs: not a file of the run (files: its outputs and
    !> lock), the deck, its load table, a folder or a FIFO/device, and its .part writable
@@ -536,20 +603,33 @@ contains
       end if
    end subroutine not_an_input
 
-   !> Hold PREFIX.lock for the life of the process: a second run on the same PREFIX is refused.
-   subroutine hold_lock(prefix, err)
-      character(len=*), intent(in) :: prefix       !! output path prefix
+   !> Hold the lock file path for the life of the process: a second run that would write
+   !> the same files is refused (what: how the message names them). made: the file did not
+   !> exist before.
+   subroutine hold_lock(path, what, made, err)
+      character(len=*), intent(in) :: path         !! the lock file
+      character(len=*), intent(in) :: what         !! --output PREFIX or the checkpoint
+      logical, intent(out) :: made                 !! the lock file is new
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
       integer :: state
-      call sys_lock(prefix // '.lock', state)
+      inquire(file=path, exist=made)
+      made = .not. made
+      call sys_lock(path, state)
       if (state == 1) then
-         call make_error(err, '--output: cannot make the lock file ''' // prefix // '.lock''')
+         call make_error(err, what // ': cannot make the lock file ''' // path // '''')
       else if (state /= 0) then
-         call make_error(err, '--output: ''' // prefix // ''' is in use by another ' // &
-            'spallbar run (' // prefix // '.lock is locked); wait for it or give ' // &
-            'another --output')
+         call make_error(err, what // ' is in use by another spallbar run (' // path // &
+            ' is locked); wait for it or give other names')
       end if
    end subroutine hold_lock
+
+   !> Remove a file (missing: nothing to do).
+   subroutine remove_file(path)
+      character(len=*), intent(in) :: path   !! the file
+      integer :: u, ios
+      open(newunit=u, file=path, status='old', iostat=ios)
+      if (ios == 0) close(u, status='delete')
+   end subroutine remove_file
 
    !> A sweep's claim_outputs, before any case runs: PREFIX.sweep, PREFIX_sweep.h5 and the
    !> .part files they are written as can be written (none is a folder, none an input of the
@@ -576,7 +656,10 @@ contains
          call check_writable('--output', prefix // trim(tails(k)), err)
          if (allocated(err)) return
       end do
-      call hold_lock(prefix, err)
+      block
+         logical :: made
+         call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made, err)
+      end block
    end subroutine claim_sweep_outputs
 
    !> Error unless path can be written: an existing file is opened for appending and closed
@@ -621,11 +704,12 @@ contains
          flush(u)
          inquire(unit=u, size=wrote)
          wrote = max(wrote, out%expect(k))
-         have = sys_file_size(out%prefix // text_extensions(k))
+         have = sys_file_size(out_path(out, k))
          if (have < wrote .or. out%refused(k)) then
-            call make_error(err, 'run: cannot write ''' // out%prefix // text_extensions(k) // &
+            call make_error(err, 'run: cannot write ''' // out_path(out, k) // &
                ''': ' // itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached ' // &
-               'the disk (full, or over quota?); the outputs end there', code=exit_runtime)
+               'the disk (' // sys_write_trouble(out_path(out, k)) // '); the outputs end there', &
+               code=exit_runtime)
             return
          end if
       end do
@@ -656,8 +740,9 @@ contains
          out%hdf5 = .false.
          if (allocated(out%h5%error)) then
             if (present(err)) call make_error(err, out%h5%error, code=exit_runtime)
-         else
-            ! PREFIX.xmf describes the file as it is now, complete
+         else if (.not. is_temporary(out)) then
+            ! PREFIX.xmf describes the file as it is now, complete (temporaries: once they
+            ! are published)
             call write_xdmf(out%prefix, xdmf_err)
             if (allocated(xdmf_err) .and. present(err)) call move_alloc(xdmf_err, err)
          end if
@@ -690,6 +775,64 @@ contains
       end do
    end subroutine text_sizes
 
+   !> Whether the outputs are still the temporaries PREFIX.ext.part.
+   pure logical function is_temporary(out)
+      type(outputs_t), intent(in) :: out   !! the outputs
+      is_temporary = .false.
+      if (allocated(out%part)) is_temporary = len(out%part) > 0
+   end function is_temporary
+
+   !> The file text file k (text_extensions) is written to now: PREFIX.ext, or PREFIX.ext.part
+   !> while the outputs are temporaries.
+   pure function out_path(out, k) result(path)
+      type(outputs_t), intent(in) :: out   !! the outputs
+      integer, intent(in) :: k             !! text file (text_extensions)
+      character(len=:), allocatable :: path
+      path = out%prefix // trim(text_extensions(k))
+      if (is_temporary(out)) path = path // out%part
+   end function out_path
+
+   !> Give the temporaries their names: rename each PREFIX.ext.part over PREFIX.ext (each
+   !> rename atomic; a reader holding the previous file keeps reading it), PREFIX.h5 too; the
+   !> open files go on being written under the new names. Once the HDF5 file is closed,
+   !> PREFIX.xmf is written for it. Nothing to do when they are not temporaries.
+   subroutine publish_outputs(out, err)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: failed)
+      integer :: k
+      logical :: ok
+      if (.not. is_temporary(out)) return
+      do k = 1, 4 + merge(1, 0, out%n_gauges > 0)
+         call sys_rename(out_path(out, k), out%prefix // trim(text_extensions(k)), ok)
+         if (.not. ok) then
+            call make_error(err, 'run: cannot rename ''' // out_path(out, k) // ''' to ''' // &
+               out%prefix // trim(text_extensions(k)) // '''', code=exit_runtime)
+            return
+         end if
+      end do
+      if (out%with_h5) then
+         call sys_rename(out%prefix // '.h5' // out%part, out%prefix // '.h5', ok)
+         if (.not. ok) then
+            call make_error(err, 'run: cannot rename ''' // out%prefix // '.h5' // out%part // &
+               ''' to ''' // out%prefix // '.h5''', code=exit_runtime)
+            return
+         end if
+      end if
+      out%part = ''
+      if (out%with_h5 .and. .not. out%hdf5) call write_xdmf(out%prefix, err)
+   end subroutine publish_outputs
+
+   !> Where the outputs of a run that stopped before publishing them are, for its message:
+   !> '; this run's outputs are PREFIX.*.part, the previous PREFIX.* are as they
+   !> were', or '' when they are published.
+   function where_outputs(out) result(text)
+      type(outputs_t), intent(in) :: out   !! the outputs
+      character(len=:), allocatable :: text
+      text = ''
+      if (is_temporary(out)) text = '; this run''s outputs are ' // out%prefix // &
+         '.*' // out%part // ', the previous ' // out%prefix // '.* are as they were'
+   end function where_outputs
+
    !> Where the outputs stand now (everything written through to the files): the body
    !> length of each text file and its last bytes, the rows of each PREFIX.h5 table.
    subroutine mark_outputs(out, marks)
@@ -706,14 +849,14 @@ contains
          if (u == no_unit) cycle
          close(u)
          marks%tail_n(k) = int(min(int(tail_len, int64), marks%body(k)))
-         open(newunit=r, file=out%prefix // text_extensions(k), access='stream', &
+         open(newunit=r, file=out_path(out, k), access='stream', &
               form='unformatted', status='old', action='read', iostat=ios)
          if (ios == 0 .and. marks%tail_n(k) > 0) then
             read(r, pos=bytes(k) - marks%tail_n(k) + 1, iostat=ios) marks%tail(k)(1:marks%tail_n(k))
          end if
          if (ios == 0) close(r)
          if (ios /= 0) marks%tail_n(k) = -1     ! a restart from this mark will refuse
-         open(newunit=u, file=out%prefix // text_extensions(k), status='old', action='write', &
+         open(newunit=u, file=out_path(out, k), status='old', action='write', &
               position='append', iostat=ios)
          if (ios /= 0) u = no_unit
          call set_text_unit(out, k, u)
@@ -847,7 +990,7 @@ contains
       integer :: k
       call h5_attr(h5, '/', 'program', program_identity())
       call h5_attr(h5, '/', 'revision', build_revision())
-      if (len(foreign(rec)) > 0) call h5_attr(h5, '/', 'restarted_from', foreign(rec))
+      if (len(foreign(rec)) > 0) call h5_attr(h5, '/', 'restarted_from', rec%restarted_from)
       call h5_attr(h5, '/', 'title', rec%title)
       call h5_attr(h5, '/', 'deck_path', rec%path)
       call h5_attr(h5, '/', 'layout', 'doc/outputs.md; h5py shows a Fortran a(nx, nt) ' // &
@@ -884,8 +1027,9 @@ contains
       logical :: whole(n_history), whole_evt(n_event_columns)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
-      call h5_create(out%h5, prefix // '.h5')
+      call h5_create(out%h5, prefix // '.h5' // out%part)
       out%hdf5 = .true.
+      out%with_h5 = .true.
       call h5_deck_header(out%h5, rec)
       ! the mesh
       n = mesh%n

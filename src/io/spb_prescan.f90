@@ -13,6 +13,8 @@ module spb_prescan
    public :: deck_scan_t, scan_deck, has_group, has_var, assignment_text, group_preamble
 
    integer, parameter :: key_len = 64
+   !> the UTF-8 byte-order mark, read as nothing at the start of a deck or table
+   character(len=3), parameter :: utf8_bom = achar(239) // achar(187) // achar(191)
 
    !> Where the scan of the deck text is.
    type :: lexer_t
@@ -90,6 +92,10 @@ contains
       lx%n = len(text)
       lx%group = ''
       lx%var = ''
+      ! a UTF-8 byte-order mark (editors on Windows write one) is no text of the deck
+      if (lx%n >= 3) then
+         if (text(1:3) == utf8_bom) lx%i = 4
+      end if
       do while (lx%i <= lx%n)
          c = text(lx%i:lx%i)
          if (c == achar(10)) then

@@ -12,7 +12,7 @@ module spb_restart
    use spb_mesh, only: mesh_t
    use spb_output, only: outputs_t, output_marks_t, open_outputs, text_extensions, tail_len, &
       history_columns, event_columns, find_header, column_line, text_unit, set_text_unit, &
-      no_unit, block_name, split, text_count
+      no_unit, block_name, split, text_count, remove_file
    implicit none
    private
    public :: resume_outputs, drop_set_aside
@@ -341,12 +341,4 @@ contains
          end do
       end do
    end subroutine replay_gauges
-
-   !> Delete a file if it is there.
-   subroutine remove_file(path)
-      character(len=*), intent(in) :: path   !! table path in the file
-      integer :: u, ios
-      open(newunit=u, file=path, status='old', iostat=ios)
-      if (ios == 0) close(u, status='delete')
-   end subroutine remove_file
 end module spb_restart

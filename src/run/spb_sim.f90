@@ -29,7 +29,7 @@ module spb_sim
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       bar_units, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
-      claim_outputs, check_written, write_gauge_row
+      claim_outputs, check_written, write_gauge_row, publish_outputs, where_outputs
    use spb_restart, only: resume_outputs, drop_set_aside
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
@@ -381,6 +381,10 @@ contains
             type(spb_error_t), allocatable :: err_close
             call close_outputs(run%out, err_close)
             if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
+            ! the outputs of a complete run replace the previous ones; a run that failed
+            ! leaves them as they were and says where its own are (doc/outputs.md)
+            if (.not. allocated(err)) call publish_outputs(run%out, err)
+            if (allocated(err)) err%message = err%message // where_outputs(run%out)
          end block
       end if
       summary%steps = sim%st%step
@@ -418,7 +422,7 @@ contains
          else if (run%to_files) then
             call drop_set_aside(prefix)
             call open_outputs(prefix, sim%record, sim%mesh, sim%report, run%out, err, &
-                              xt_rows=opt%xt_rows)
+                              xt_rows=opt%xt_rows, temporaries=.true.)
             if (allocated(err)) return
          end if
          run%sched%n_end = sim%mesh%nsteps
@@ -561,6 +565,7 @@ contains
             rtoa(real(sim%st%step, wp) * sim%mesh%dt) // ' s); outputs up to here are ' // &
             'written and closed' // trim(merge(' (and the checkpoint)', '                     ', &
             run%ck_on)), code=128 + sig)
+         ! (sim_run adds where they are when they are still the temporaries)
          return
       end if
       if (is_due(run%sched, act_progress, n)) then
@@ -616,6 +621,8 @@ contains
       summary%steps = sim%st%step
       call write_checkpoint(sim%opt%checkpoint, sim%record, sim%mesh, sim%load, &
                             sim%st, summary, marks, err)
+      ! a checkpoint continues these outputs: from here on they are the run's (doc/outputs.md)
+      if (.not. allocated(err)) call publish_outputs(run%out, err)
    end subroutine checkpoint
 
    !> One history row (and the run summary's running values); a state that is not finite

@@ -12,7 +12,7 @@ module spb_sweep
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
-   use spb_sys, only: stop_signal, sys_rename, sys_file_size, sys_memory_limit
+   use spb_sys, only: stop_signal, sys_rename, sys_file_size, sys_memory_limit, sys_write_trouble
    use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo, deck_record
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t
@@ -513,7 +513,8 @@ contains
       if (have < wrote) then
          call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // &
             itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached the disk ' // &
-            '(full, or over quota?); the cut table is left as ' // prefix // '.sweep.part', &
+            '(' // sys_write_trouble(prefix // '.sweep.part') // '); the cut table is left as ' // &
+            prefix // '.sweep.part', &
             code=exit_runtime)
          return
       end if
