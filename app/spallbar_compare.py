@@ -41,6 +41,7 @@ Only the Python standard library is needed; --plot needs matplotlib (the project
 """
 import argparse
 import bisect
+import itertools
 import math
 import os
 import shutil
@@ -140,21 +141,30 @@ class Table:
         raise BadInput(f"{self.path}: no rows of numbers")
 
     def rows(self):
-        """Every row's numbers, the first included; the abscissa must not decrease."""
-        prev = self._first
+        """Every row's numbers, the first included; the abscissa must not decrease, but
+        after a `#` line (a .prf's next profile time) where self.block counts up."""
+        prev, comment, self.block = self._first, False, 1
         yield prev
         for text in self._lines:
             if text[0] in "#!":
+                comment = True
                 continue
             values = self._values(text)
             if len(values) != len(prev):
                 raise BadInput(f"{self.path}: line {self.line_no}: {len(values)} numbers, the "
                                f"first row has {len(prev)}")
             if values[0] < prev[0]:
-                raise BadInput(f"{self.path}: the abscissa ({self.names[0]}) decreases at line "
-                               f"{self.line_no}; the first column must be non-decreasing")
-            prev = values
+                if not comment:
+                    raise BadInput(f"{self.path}: the abscissa ({self.names[0]}) decreases at "
+                                   f"line {self.line_no}; the first column must be "
+                                   "non-decreasing (but after a '#' line: the next block)")
+                self.block += 1
+            prev, comment = values, False
             yield values
+
+    def blocks(self):
+        """(block number, its rows) in order."""
+        return itertools.groupby(self.rows(), key=lambda _: self.block)
 
 
 def pairs_to_compare(ref_names, cand_names, asked):
@@ -325,15 +335,15 @@ class Measures:
         self.s_sq += err * err
         return err <= band
 
-    def miss(self, t, shift):
-        """A point at t outside the band: passed by the tube (shift: the shift it needed)
-        or failed (shift None)."""
+    def miss(self, b, t, shift):
+        """A point at t of block b outside the band: passed by the tube (shift: the shift
+        it needed) or failed (shift None)."""
         if shift is not None:
             self.max_shift = max(self.max_shift, shift)
         else:
             self.failures += 1
             if self.first_fail is None:
-                self.first_fail = t
+                self.first_fail = f"{t:.6g}" + (f" (block {b})" if b > 1 else "")
 
     def result(self):
         s_abs, s_sq = self.s_abs, self.s_sq
@@ -362,9 +372,25 @@ def compare(ref, cand, pairs, rtol, atols, time_tol, t_max):
     candidate from both sides: the first row its left limit, the last its right limit, those
     between its rows there in order; a single row the nearer side."""
     jr = [ref.names.index(r) for r, _ in pairs]
-    window = Window(cand.rows(), [cand.names.index(c) for _, c in pairs])
+    jc = [cand.names.index(c) for _, c in pairs]
     measures = [Measures(a) for a in atols]
-    for t, group in reference_groups(ref.rows(), t_max):
+    for ref_block, cand_block in itertools.zip_longest(ref.blocks(), cand.blocks()):
+        if ref_block and cand_block:      # else: read on, to count the blocks
+            compare_block(ref_block[0], ref_block[1], Window(cand_block[1], jc), jr, measures,
+                          rtol, time_tol, t_max)
+    if ref.block != cand.block:
+        raise BadInput(f"{ref.path} has {ref.block} blocks (profile times), {cand.path} "
+                       f"{cand.block}; a block begins where the abscissa decreases after a '#' "
+                       "line")
+    if measures[0].points == 0:
+        raise BadInput(f"--t-max {t_max:g}: no reference point up to it")
+    return [m.result() for m in measures]
+
+
+def compare_block(b, ref_rows, window, jr, measures, rtol, time_tol, t_max):
+    """Add block b of the reference (its rows) to measures, the candidate's block in
+    window."""
+    for t, group in reference_groups(ref_rows, t_max):
         where = window.locate(t) if window.advance(t, time_tol) else None
         last = len(group) - 1
         for k, (j, m) in enumerate(zip(jr, measures)):
@@ -379,13 +405,10 @@ def compare(ref, cand, pairs, rtol, atols, time_tol, t_max):
                     c = window.middle(k, where, n)
                 band = m.atol + rtol * abs(r)
                 if not m.point(r, c, band):
-                    m.miss(t, window.tube_shift(k, t, r, band, time_tol)
+                    m.miss(b, t, window.tube_shift(k, t, r, band, time_tol)
                            if time_tol > 0.0 else None)
-    for _ in window.rows:    # the rest of the candidate, checked
+    for _ in window.rows:    # the rest of the candidate's block, checked
         pass
-    if measures and measures[0].points == 0:
-        raise BadInput(f"--t-max {t_max:g}: no reference point up to it")
-    return [m.result() for m in measures]
 
 
 def writable(option, path):
@@ -411,7 +434,7 @@ def report_lines(ref, cand, results, args):
            "|---|---|---|---|---|---|---|---|---|"]
     for (r, c), m in results:
         name = r if r == c else f"{r}:{c}"
-        first = "" if m["first_fail"] is None else f"{m['first_fail']:.6g}"
+        first = m["first_fail"] or ""
         if m["outside"]:
             first += f" ({m['outside']} points outside the candidate's range)"
         out.append(f"| {name} | {m['points']} | {m['max_abs']:.3e} | {m['max_rel']:.3e} | "
@@ -438,11 +461,19 @@ def plot_module():
     return plt
 
 
-def columns(table, names):
-    """The abscissa and the named columns of table, as lists (a pass over it)."""
+def columns(table, names, t_max=None):
+    """The abscissa and the named columns of table up to t_max, as lists (a pass over it);
+    a NaN row between blocks, so that a plotted line breaks there."""
     js = [0] + [table.names.index(n) for n in names]
     out = [[] for _ in js]
+    prev = None
     for row in table.rows():
+        if t_max is not None and row[0] > t_max:
+            continue
+        if prev is not None and row[0] < prev:
+            for col in out:
+                col.append(math.nan)
+        prev = row[0]
         for col, j in zip(out, js):
             col.append(row[j])
     return out
@@ -450,14 +481,13 @@ def columns(table, names):
 
 def plot(plt, path, ref, cand, results, t_max):
     """One panel a column: the candidate's curve, the reference's points (up to t_max)."""
-    rx, *rcols = columns(ref, [r for (r, _), _ in results])
+    rx, *rcols = columns(ref, [r for (r, _), _ in results], t_max)
     cx, *ccols = columns(cand, [c for (_, c), _ in results])
-    n = len(rx) if t_max is None else bisect.bisect_right(rx, t_max)
     fig, axes = plt.subplots(len(results), 1, figsize=(8, 2.6 * len(results)), squeeze=False,
                              sharex=True)
     for ax, ((r, c), m), ry, cy in zip(axes[:, 0], results, rcols, ccols):
         ax.plot(cx, cy, "-", lw=1.0, color="tab:blue", label="candidate")
-        ax.plot(rx[:n], ry[:n], "o", ms=2.5, color="black", label="reference")
+        ax.plot(rx, ry, "o", ms=2.5, color="black", label="reference")
         ax.set_ylabel(c)
         ax.set_title(f"{r if r == c else r + ' vs ' + c}: {m['failures']} of {m['points']} "
                      f"points outside, rel L1 {m['l1']:.2e}", fontsize=9)
