@@ -7,21 +7,30 @@
 REFERENCE and CANDIDATE are spallbar column outputs (.his, .gau, .sweep: `#` header lines,
 the last one naming the columns) or plain tables `t value ...` (`#` or `!` comments, blanks
 or commas between numbers, an optional first line naming the columns, Fortran `D`
-exponents read): a digitised curve, a legacy printout. The first column is the abscissa.
-A plain table without a header names its columns by position: 1 (the abscissa), 2, 3, ...
+exponents read; a UTF-8 byte-order mark is read as nothing): a digitised curve, a legacy
+printout. The first column is the abscissa. A plain table without a header names its
+columns by position: 1 (the abscissa), 2, 3, ...
 
-Each compared column (default: every column the two tables share but the abscissa; a
-headerless two-column reference against a named candidate needs --column NAME, which maps
-the reference's one value column to the candidate's NAME; --column 2:reaction_bottom maps
-explicitly) is evaluated at the reference's abscissae, the candidate interpolated linearly
-(at a repeated abscissa -- a jump -- the later row). A point passes when
+Each compared column (default: every value column of the reference, which the candidate
+must have; --column NAME compares the columns named only; a headerless two-column reference
+against a named candidate needs --column NAME, which maps the reference's one value column
+to the candidate's NAME; --column 2:reaction_bottom maps explicitly) is evaluated at the
+reference's abscissae, the candidate interpolated linearly. A repeated abscissa is a jump,
+compared from both sides: the first reference row there against the candidate's left limit,
+the last against its right limit (a single reference row at a jump of the candidate against
+the nearer side). A point passes when
     |c - r| <= atol + rtol |r|
-(atol default: 1e-9 of the column's largest |r|, so round-off near a zero passes); with
---time-tol T it also passes when the candidate curve comes within that band somewhere within
-+-T of the point's abscissa (a tube: timing differences within T pass; for curves read off a
-figure), and the shift it needed is reported. A reference point outside the candidate's
-abscissa range fails (unless the tube reaches it). --t-max T compares the reference's
-points up to abscissa T only.
+(rtol default 1e-6, applied at each point; atol default 1e-12 of the column's largest |r|,
+round-off around a zero of the curve: a 400 % error fails wherever |r| is above 2.5e-13 of
+the column's largest); with --time-tol T it also passes when the candidate curve comes
+within that band somewhere within +-T of the point's abscissa (a tube: timing differences
+within T pass; for curves read off a figure), and the shift it needed is reported. A
+reference point outside the candidate's abscissa range fails (unless the tube reaches it).
+--t-max T compares the reference's points up to abscissa T only.
+
+Both tables are read row by row and merged in abscissa order (the reference twice when atol
+is the default), so memory stays bounded whatever their length; only --plot holds the
+plotted columns.
 
 Prints per column: points, max absolute and relative error, relative L1 and L2 norms
 (sum |c - r| / sum |r|, sqrt(sum (c - r)^2 / sum r^2)), failures, the largest time shift
@@ -32,10 +41,15 @@ Only the Python standard library is needed; --plot needs matplotlib (the project
 """
 import argparse
 import bisect
+import itertools
 import math
+import os
+import shutil
 import sys
+import tempfile
 
 PROG = "spallbar-compare"
+ATOL_OF_SCALE = 1e-12      # the default atol, a fraction of the column's largest |r|
 
 
 class BadInput(Exception):
@@ -43,59 +57,10 @@ class BadInput(Exception):
 
 
 def _number(word):
-    return float(word.replace("D", "E").replace("d", "e"))
-
-
-def read_table(path):
-    """(names, columns) of a spallbar column output or a plain table; columns are lists."""
     try:
-        with open(path, encoding="utf-8", errors="replace") as f:
-            lines = f.read().splitlines()
-    except OSError as e:
-        raise BadInput(f"{path}: cannot read: {e.strerror}") from None
-    names, rows, last_comment = None, [], None
-    for k, line in enumerate(lines, 1):
-        text = line.strip()
-        if not text:
-            continue
-        if text[0] in "#!":
-            last_comment = text[1:].strip()
-            continue
-        words = text.replace(",", " ").split()
-        try:
-            values = [_number(w) for w in words]
-        except ValueError:
-            if rows or names is not None:
-                raise BadInput(f"{path}: line {k}: not a row of numbers: {text[:60]!r}") from None
-            names = words            # a plain table's header line
-            continue
-        if not rows and names is None and last_comment:
-            cand = last_comment.split()
-            if len(cand) == len(values) and all(not _is_number(w) for w in cand):
-                names = cand         # a spallbar output: the last '#' line names the columns
-        if rows and len(values) != len(rows[0]):
-            raise BadInput(f"{path}: line {k}: {len(values)} numbers, the first row has "
-                           f"{len(rows[0])}")
-        if not all(math.isfinite(v) for v in values):
-            raise BadInput(f"{path}: line {k}: a value is not finite")
-        rows.append(values)
-    if not rows:
-        raise BadInput(f"{path}: no rows of numbers")
-    ncol = len(rows[0])
-    if ncol < 2:
-        raise BadInput(f"{path}: one column only; a table is 'abscissa value ...'")
-    if names is None:
-        names = [str(j + 1) for j in range(ncol)]
-    if len(names) != ncol:
-        raise BadInput(f"{path}: {len(names)} column names for {ncol} columns")
-    if len(set(names)) != len(names):
-        raise BadInput(f"{path}: a column name is repeated")
-    columns = [[r[j] for r in rows] for j in range(ncol)]
-    x = columns[0]
-    if any(b < a for a, b in zip(x, x[1:])):
-        raise BadInput(f"{path}: the abscissa ({names[0]}) decreases; the first column must "
-                       "be non-decreasing")
-    return names, columns
+        return float(word)
+    except ValueError:
+        return float(word.replace("D", "E").replace("d", "e"))
 
 
 def _is_number(word):
@@ -104,6 +69,102 @@ def _is_number(word):
         return True
     except ValueError:
         return False
+
+
+def open_rewindable(path):
+    """The text of path, open for reading from its start again (a pipe is spooled to a
+    temporary file); a UTF-8 byte-order mark is read as nothing."""
+    try:
+        f = open(path, encoding="utf-8-sig", errors="replace")
+    except OSError as e:
+        raise BadInput(f"{path}: cannot read: {e.strerror}") from None
+    if f.seekable():
+        return f
+    spool = tempfile.TemporaryFile("w+", encoding="utf-8")
+    with f:
+        shutil.copyfileobj(f, spool)
+    spool.seek(0)
+    return spool
+
+
+class Table:
+    """A spallbar column output or a plain table, read row by row from the start of f: the
+    column names on construction, then rows() yields each row's numbers, checked as read."""
+
+    def __init__(self, path, f):
+        f.seek(0)
+        self.path, self.line_no = path, 0
+        self._lines = self._text(f)
+        self.names, self._first = self._head()
+
+    def _text(self, f):
+        for line in f:
+            self.line_no += 1
+            text = line.strip()
+            if text:
+                yield text
+
+    def _values(self, text):
+        try:
+            values = list(map(_number, text.replace(",", " ").split()))
+        except ValueError:
+            raise BadInput(f"{self.path}: line {self.line_no}: not a row of numbers: "
+                           f"{text[:60]!r}") from None
+        if not all(map(math.isfinite, values)):
+            raise BadInput(f"{self.path}: line {self.line_no}: a value is not finite")
+        return values
+
+    def _head(self):
+        names, last_comment = None, None
+        for text in self._lines:
+            if text[0] in "#!":
+                last_comment = text[1:].strip()
+                continue
+            words = text.replace(",", " ").split()
+            if names is None and not all(_is_number(w) for w in words):
+                names = words        # a plain table's header line
+                continue
+            values = self._values(text)
+            if names is None and last_comment:
+                cand = last_comment.split()
+                if len(cand) == len(values) and all(not _is_number(w) for w in cand):
+                    names = cand     # a spallbar output: the last '#' line names the columns
+            if len(values) < 2:
+                raise BadInput(f"{self.path}: one column only; a table is 'abscissa value ...'")
+            names = names or [str(j + 1) for j in range(len(values))]
+            if len(names) != len(values):
+                raise BadInput(f"{self.path}: {len(names)} column names for {len(values)} "
+                               "columns")
+            if len(set(names)) != len(names):
+                raise BadInput(f"{self.path}: a column name is repeated")
+            return names, values
+        raise BadInput(f"{self.path}: no rows of numbers")
+
+    def rows(self):
+        """Every row's numbers, the first included; the abscissa must not decrease, but
+        after a `#` line (a .prf's next profile time) where self.block counts up."""
+        prev, comment, self.block = self._first, False, 1
+        yield prev
+        for text in self._lines:
+            if text[0] in "#!":
+                comment = True
+                continue
+            values = self._values(text)
+            if len(values) != len(prev):
+                raise BadInput(f"{self.path}: line {self.line_no}: {len(values)} numbers, the "
+                               f"first row has {len(prev)}")
+            if values[0] < prev[0]:
+                if not comment:
+                    raise BadInput(f"{self.path}: the abscissa ({self.names[0]}) decreases at "
+                                   f"line {self.line_no}; the first column must be "
+                                   "non-decreasing (but after a '#' line: the next block)")
+                self.block += 1
+            prev, comment = values, False
+            yield values
+
+    def blocks(self):
+        """(block number, its rows) in order."""
+        return itertools.groupby(self.rows(), key=lambda _: self.block)
 
 
 def pairs_to_compare(ref_names, cand_names, asked):
@@ -128,107 +189,244 @@ def pairs_to_compare(ref_names, cand_names, asked):
         raise BadInput("the two tables share no column name; give --column REF_NAME:CAND_NAME "
                        f"(reference: {' '.join(ref_names[1:])}; candidate: "
                        f"{' '.join(cand_names[1:])})")
+    missing = [n for n in ref_names[1:] if n not in cand_names[1:]]
+    if missing:
+        raise BadInput(f"the candidate lacks the reference's column{'s' * (len(missing) > 1)} "
+                       f"{' '.join(missing)}; --column NAME compares the columns named only")
     return [(n, n) for n in common]
 
 
-def interpolate(x, y, t):
-    """y at t, linear between the rows around t; at a repeated abscissa the later row; None
-    outside [x[0], x[-1]]."""
-    if t < x[0] or t > x[-1]:
-        return None
-    k = bisect.bisect_right(x, t)
-    if k >= len(x):
-        return y[-1]
-    if k == 0:
-        return y[0]
-    x0, x1 = x[k - 1], x[k]
-    if x1 == x0:
-        return y[k]
-    w = (t - x0) / (x1 - x0)
-    return y[k - 1] + w * (y[k] - y[k - 1])
-
-
-def tube_shift(x, y, t, r, band, time_tol):
-    """The smallest |tau - t| with tau in [t - T, t + T] and |c(tau) - r| <= band, c the
-    candidate's piecewise-linear curve; None where there is none."""
-    lo, hi = max(t - time_tol, x[0]), min(t + time_tol, x[-1])
-    if lo > hi:
-        return None
-    best = None
-    k0 = max(bisect.bisect_right(x, lo) - 1, 0)
-    k1 = min(bisect.bisect_left(x, hi) + 1, len(x) - 1)
-    for k in range(k0, k1):
-        xa, xb = x[k], x[k + 1]
-        if xb <= xa:
+def reference_groups(rows, t_max):
+    """(t, [rows at t]) in order, a repeated abscissa (a jump) one group; rows beyond t_max
+    are read (checked) but not returned."""
+    group = []
+    for row in rows:
+        if t_max is not None and row[0] > t_max:
             continue
-        a, b = max(xa, lo), min(xb, hi)
-        if a > b:
-            continue
-        ya = y[k] + (a - xa) / (xb - xa) * (y[k + 1] - y[k])
-        yb = y[k] + (b - xa) / (xb - xa) * (y[k + 1] - y[k])
-        # the part of [a, b] where |ya + s (yb - ya) - r| <= band, s in [0, 1]
-        if ya == yb:
-            if abs(ya - r) > band:
-                continue
-            s_lo, s_hi = 0.0, 1.0
-        else:
-            s1 = (r - band - ya) / (yb - ya)
-            s2 = (r + band - ya) / (yb - ya)
-            s_lo, s_hi = max(min(s1, s2), 0.0), min(max(s1, s2), 1.0)
-            if s_lo > s_hi:
-                continue
-        t_lo, t_hi = a + s_lo * (b - a), a + s_hi * (b - a)
-        d = 0.0 if t_lo <= t <= t_hi else min(abs(t_lo - t), abs(t_hi - t))
-        best = d if best is None else min(best, d)
-    return best
+        if group and row[0] != group[0][0]:
+            yield group[0][0], group
+            group = []
+        group.append(row)
+    if group:
+        yield group[0][0], group
 
 
-def compare_column(xr, yr, xc, yc, rtol, atol, time_tol):
-    """The measures of one column (a dict)."""
-    scale = max(abs(v) for v in yr)
-    if atol is None:
-        atol = 1e-9 * scale
-    n = len(xr)
-    max_abs = max_rel = 0.0
-    s_abs = s_ref = s_sq = s_refsq = 0.0
-    failures, first_fail, max_shift, outside = 0, None, 0.0, 0
-    for t, r in zip(xr, yr):
-        c = interpolate(xc, yc, t)
-        band = atol + rtol * abs(r)
-        ok = c is not None and abs(c - r) <= band
+class Window:
+    """The candidate's rows around the abscissa being compared, read as needed: those within
+    the tube [t - T, t + T] and one on either side; earlier rows are dropped."""
+
+    def __init__(self, rows, cols):
+        self.rows, self.cols = rows, cols
+        self.x, self.y = [], [[] for _ in cols]
+        self.start, self.first, self.done = 0, None, False
+
+    def _drop_before(self, lo):
+        x = self.x
+        while len(x) - self.start >= 2 and x[self.start + 1] < lo:
+            self.start += 1
+        if self.start > 1024 and 2 * self.start > len(x):
+            del x[:self.start]
+            for y in self.y:
+                del y[:self.start]
+            self.start = 0
+
+    def advance(self, t, time_tol):
+        """Read the candidate up to the first row beyond t + T, keeping one row before
+        t - T; False when t is outside the candidate's abscissae."""
+        lo, hi = t - time_tol, t + time_tol
+        while not self.done and (len(self.x) == self.start or self.x[-1] <= hi):
+            row = next(self.rows, None)
+            if row is None:
+                self.done = True
+                break
+            self.x.append(row[0])
+            for y, j in zip(self.y, self.cols):
+                y.append(row[j])
+            if self.first is None:
+                self.first = row[0]
+            self._drop_before(lo)
+        self._drop_before(lo)
+        return self.first is not None and self.first <= t <= self.x[-1]
+
+    def locate(self, t):
+        """(i, j, w) for t inside the candidate's abscissae: its rows at t are i to j - 1;
+        none (i == j), t lies between rows i - 1 and i, at the fraction w."""
+        x = self.x
+        i = bisect.bisect_left(x, t, self.start)
+        j = bisect.bisect_right(x, t, self.start)
+        return i, j, (0.0 if i < j else (t - x[i - 1]) / (x[i] - x[i - 1]))
+
+    def sides(self, k, where):
+        """The candidate's column k at the abscissa located: (left limit, right limit)."""
+        i, j, w = where
+        y = self.y[k]
+        if i < j:
+            return y[i], y[j - 1]
+        c = y[i - 1] + w * (y[i] - y[i - 1])
+        return c, c
+
+    def middle(self, k, where, n):
+        """The candidate's column k at its n-th row at the abscissa located (its last row
+        there when it has fewer; the interpolation when it has none)."""
+        i, j, w = where
+        return self.y[k][min(i + n, j - 1)] if i < j else self.sides(k, where)[0]
+
+    def tube_shift(self, k, t, r, band, time_tol):
+        """The smallest |tau - t| with tau in [t - T, t + T] and |c(tau) - r| <= band, c the
+        candidate's piecewise-linear curve; None where there is none."""
+        x, y = self.x, self.y[k]
+        lo, hi = max(t - time_tol, x[self.start]), min(t + time_tol, x[-1])
+        if lo > hi:
+            return None
+        best = None
+        k0 = max(bisect.bisect_right(x, lo, self.start) - 1, self.start)
+        k1 = min(bisect.bisect_left(x, hi, self.start) + 1, len(x) - 1)
+        for m in range(k0, k1):
+            xa, xb = x[m], x[m + 1]
+            if xb <= xa:
+                continue
+            a, b = max(xa, lo), min(xb, hi)
+            if a > b:
+                continue
+            ya = y[m] + (a - xa) / (xb - xa) * (y[m + 1] - y[m])
+            yb = y[m] + (b - xa) / (xb - xa) * (y[m + 1] - y[m])
+            # the part of [a, b] where |ya + s (yb - ya) - r| <= band, s in [0, 1]
+            if ya == yb:
+                if abs(ya - r) > band:
+                    continue
+                s_lo, s_hi = 0.0, 1.0
+            else:
+                s1 = (r - band - ya) / (yb - ya)
+                s2 = (r + band - ya) / (yb - ya)
+                s_lo, s_hi = max(min(s1, s2), 0.0), min(max(s1, s2), 1.0)
+                if s_lo > s_hi:
+                    continue
+            t_lo, t_hi = a + s_lo * (b - a), a + s_hi * (b - a)
+            d = 0.0 if t_lo <= t <= t_hi else min(abs(t_lo - t), abs(t_hi - t))
+            best = d if best is None else min(best, d)
+        return best
+
+
+class Measures:
+    """The running measures of one compared column."""
+
+    def __init__(self, atol):
+        self.atol = atol
+        self.points = self.failures = self.outside = 0
+        self.max_abs = self.max_rel = self.max_shift = 0.0
+        self.s_abs = self.s_ref = self.s_sq = self.s_refsq = 0.0
+        self.first_fail = None
+
+    def point(self, r, c, band):
+        """One reference point r, c the candidate's value there (None outside its range):
+        the sums; True when |c - r| <= band."""
+        self.points += 1
+        self.s_ref += abs(r)
+        self.s_refsq += r * r
         if c is None:
-            outside += 1
+            self.outside += 1
+            return False
+        err = abs(c - r)
+        if err > self.max_abs:
+            self.max_abs = err
+        if r != 0.0 and err > self.max_rel * abs(r):
+            self.max_rel = err / abs(r)
+        self.s_abs += err
+        self.s_sq += err * err
+        return err <= band
+
+    def miss(self, b, t, shift):
+        """A point at t of block b outside the band: passed by the tube (shift: the shift
+        it needed) or failed (shift None)."""
+        if shift is not None:
+            self.max_shift = max(self.max_shift, shift)
         else:
-            err = abs(c - r)
-            max_abs = max(max_abs, err)
-            if r != 0.0:
-                max_rel = max(max_rel, err / abs(r))
-            s_abs += err
-            s_sq += err * err
-        s_ref += abs(r)
-        s_refsq += r * r
-        if not ok and time_tol > 0.0:
-            shift = tube_shift(xc, yc, t, r, band, time_tol)
-            if shift is not None:
-                ok = True
-                max_shift = max(max_shift, shift)
-        if not ok:
-            failures += 1
-            if first_fail is None:
-                first_fail = t
-    return {
-        "points": n, "max_abs": max_abs, "max_rel": max_rel,
-        "l1": s_abs / s_ref if s_ref > 0 else (0.0 if s_abs == 0 else math.inf),
-        "l2": math.sqrt(s_sq / s_refsq) if s_refsq > 0 else (0.0 if s_sq == 0 else math.inf),
-        "failures": failures, "first_fail": first_fail, "max_shift": max_shift,
-        "outside": outside, "atol": atol,
-    }
+            self.failures += 1
+            if self.first_fail is None:
+                self.first_fail = f"{t:.6g}" + (f" (block {b})" if b > 1 else "")
+
+    def result(self):
+        s_abs, s_sq = self.s_abs, self.s_sq
+        return {
+            "points": self.points, "max_abs": self.max_abs, "max_rel": self.max_rel,
+            "l1": s_abs / self.s_ref if self.s_ref > 0 else (0.0 if s_abs == 0 else math.inf),
+            "l2": (math.sqrt(s_sq / self.s_refsq) if self.s_refsq > 0
+                   else (0.0 if s_sq == 0 else math.inf)),
+            "failures": self.failures, "first_fail": self.first_fail,
+            "max_shift": self.max_shift, "outside": self.outside, "atol": self.atol,
+        }
+
+
+def default_atols(ref, cols, t_max):
+    """ATOL_OF_SCALE of each column's largest |r| up to t_max (a first pass over ref)."""
+    scale = [0.0] * len(cols)
+    for _, group in reference_groups(ref.rows(), t_max):
+        for row in group:
+            scale = list(map(max, scale, map(abs, map(row.__getitem__, cols))))
+    return [ATOL_OF_SCALE * s for s in scale]
+
+
+def compare(ref, cand, pairs, rtol, atols, time_tol, t_max):
+    """The measures (dicts) of each pair, the reference and the candidate merged row by row
+    in abscissa order. A group of reference rows at one abscissa (a jump) meets the
+    candidate from both sides: the first row its left limit, the last its right limit, those
+    between its rows there in order; a single row the nearer side."""
+    jr = [ref.names.index(r) for r, _ in pairs]
+    jc = [cand.names.index(c) for _, c in pairs]
+    measures = [Measures(a) for a in atols]
+    for ref_block, cand_block in itertools.zip_longest(ref.blocks(), cand.blocks()):
+        if ref_block and cand_block:      # else: read on, to count the blocks
+            compare_block(ref_block[0], ref_block[1], Window(cand_block[1], jc), jr, measures,
+                          rtol, time_tol, t_max)
+    if ref.block != cand.block:
+        raise BadInput(f"{ref.path} has {ref.block} blocks (profile times), {cand.path} "
+                       f"{cand.block}; a block begins where the abscissa decreases after a '#' "
+                       "line")
+    if measures[0].points == 0:
+        raise BadInput(f"--t-max {t_max:g}: no reference point up to it")
+    return [m.result() for m in measures]
+
+
+def compare_block(b, ref_rows, window, jr, measures, rtol, time_tol, t_max):
+    """Add block b of the reference (its rows) to measures, the candidate's block in
+    window."""
+    for t, group in reference_groups(ref_rows, t_max):
+        where = window.locate(t) if window.advance(t, time_tol) else None
+        last = len(group) - 1
+        for k, (j, m) in enumerate(zip(jr, measures)):
+            left, right = window.sides(k, where) if where else (None, None)
+            for n, row in enumerate(group):
+                r = row[j]
+                if where is None or n == 0 and (last > 0 or abs(left - r) <= abs(right - r)):
+                    c = left
+                elif n == last:
+                    c = right
+                else:
+                    c = window.middle(k, where, n)
+                band = m.atol + rtol * abs(r)
+                if not m.point(r, c, band):
+                    m.miss(b, t, window.tube_shift(k, t, r, band, time_tol)
+                           if time_tol > 0.0 else None)
+    for _ in window.rows:    # the rest of the candidate's block, checked
+        pass
+
+
+def writable(option, path):
+    """Refuse, before anything is read or written, an output path that cannot be written."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise BadInput(f"{option} {path}: cannot write: no folder {folder}")
+    if os.path.isdir(path):
+        raise BadInput(f"{option} {path}: cannot write: it is a folder")
+    if not os.access(path if os.path.exists(path) else folder, os.W_OK):
+        raise BadInput(f"{option} {path}: cannot write: permission denied")
 
 
 def report_lines(ref, cand, results, args):
     out = [f"# {PROG}: reference {ref}, candidate {cand}",
            f"# pass: |c - r| <= atol + rtol |r|, rtol = {args.rtol:g}, atol = "
-           + (f"{args.atol:g}" if args.atol is not None else "1e-9 of each column's largest |r|")
+           + (f"{args.atol:g}" if args.atol is not None
+              else f"{ATOL_OF_SCALE:g} of each column's largest |r|")
            + (f"; tube +-{args.time_tol:g} in the abscissa" if args.time_tol > 0 else "")
            + (f"; up to {args.t_max:g}" if args.t_max is not None else ""),
            "| column | points | max abs error | max rel error | rel L1 | rel L2 | failures "
@@ -236,7 +434,7 @@ def report_lines(ref, cand, results, args):
            "|---|---|---|---|---|---|---|---|---|"]
     for (r, c), m in results:
         name = r if r == c else f"{r}:{c}"
-        first = "" if m["first_fail"] is None else f"{m['first_fail']:.6g}"
+        first = m["first_fail"] or ""
         if m["outside"]:
             first += f" ({m['outside']} points outside the candidate's range)"
         out.append(f"| {name} | {m['points']} | {m['max_abs']:.3e} | {m['max_rel']:.3e} | "
@@ -251,7 +449,8 @@ def report_lines(ref, cand, results, args):
     return out
 
 
-def plot(path, ref, cand, results, pairs):
+def plot_module():
+    """matplotlib.pyplot (Agg), or BadInput when matplotlib is missing."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -259,19 +458,46 @@ def plot(path, ref, cand, results, pairs):
     except ImportError:
         raise BadInput("--plot needs matplotlib (the project venv: .venv/bin/python "
                        "app/spallbar_compare.py ...)") from None
-    (rn, rcols), (cn, ccols) = ref, cand
-    fig, axes = plt.subplots(len(pairs), 1, figsize=(8, 2.6 * len(pairs)), squeeze=False,
+    return plt
+
+
+def columns(table, names, t_max=None):
+    """The abscissa and the named columns of table up to t_max, as lists (a pass over it);
+    a NaN row between blocks, so that a plotted line breaks there."""
+    js = [0] + [table.names.index(n) for n in names]
+    out = [[] for _ in js]
+    prev = None
+    for row in table.rows():
+        if t_max is not None and row[0] > t_max:
+            continue
+        if prev is not None and row[0] < prev:
+            for col in out:
+                col.append(math.nan)
+        prev = row[0]
+        for col, j in zip(out, js):
+            col.append(row[j])
+    return out
+
+
+def plot(plt, path, ref, cand, results, t_max):
+    """One panel a column: the candidate's curve, the reference's points (up to t_max)."""
+    rx, *rcols = columns(ref, [r for (r, _), _ in results], t_max)
+    cx, *ccols = columns(cand, [c for (_, c), _ in results])
+    fig, axes = plt.subplots(len(results), 1, figsize=(8, 2.6 * len(results)), squeeze=False,
                              sharex=True)
-    for ax, ((r, c), m) in zip(axes[:, 0], results):
-        ax.plot(ccols[0], ccols[cn.index(c)], "-", lw=1.0, color="tab:blue", label="candidate")
-        ax.plot(rcols[0], rcols[rn.index(r)], "o", ms=2.5, color="black", label="reference")
+    for ax, ((r, c), m), ry, cy in zip(axes[:, 0], results, rcols, ccols):
+        ax.plot(cx, cy, "-", lw=1.0, color="tab:blue", label="candidate")
+        ax.plot(rx, ry, "o", ms=2.5, color="black", label="reference")
         ax.set_ylabel(c)
         ax.set_title(f"{r if r == c else r + ' vs ' + c}: {m['failures']} of {m['points']} "
                      f"points outside, rel L1 {m['l1']:.2e}", fontsize=9)
         ax.legend(loc="best", fontsize=8, frameon=False)
-    axes[-1, 0].set_xlabel(rn[0])
+    axes[-1, 0].set_xlabel(ref.names[0])
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    try:
+        fig.savefig(path, dpi=110)
+    except OSError as e:
+        raise BadInput(f"--plot {path}: cannot write: {e.strerror}") from None
 
 
 def main(argv=None):
@@ -299,22 +525,23 @@ def main(argv=None):
                         ("--time-tol", args.time_tol)):
             if v is not None and (not math.isfinite(v) or v < 0):
                 raise BadInput(f"{name} must be a finite number >= 0, got {v}")
-        ref = read_table(args.reference)
-        cand = read_table(args.candidate)
-        if args.t_max is not None:
-            keep = [k for k, x in enumerate(ref[1][0]) if x <= args.t_max]
-            if not keep:
-                raise BadInput(f"--t-max {args.t_max:g}: no reference point up to it")
-            ref = (ref[0], [[col[k] for k in keep] for col in ref[1]])
-        pairs = pairs_to_compare(ref[0], cand[0], args.column)
-        results = []
-        for r, c in pairs:
-            m = compare_column(ref[1][0], ref[1][ref[0].index(r)], cand[1][0],
-                               cand[1][cand[0].index(c)], args.rtol, args.atol, args.time_tol)
-            results.append(((r, c), m))
+        for option, path in (("--report", args.report), ("--plot", args.plot)):
+            if path:
+                writable(option, path)
+        plt = plot_module() if args.plot else None
+        files = [open_rewindable(args.reference), open_rewindable(args.candidate)]
+        ref, cand = (Table(path, f) for path, f in zip((args.reference, args.candidate), files))
+        pairs = pairs_to_compare(ref.names, cand.names, args.column)
+        atols = ([args.atol] * len(pairs) if args.atol is not None else
+                 default_atols(ref, [ref.names.index(r) for r, _ in pairs], args.t_max))
+        ref = Table(args.reference, files[0])
+        results = list(zip(pairs, compare(ref, cand, pairs, args.rtol, atols, args.time_tol,
+                                          args.t_max)))
         lines = report_lines(args.reference, args.candidate, results, args)
-        if args.plot:
-            plot(args.plot, ref, cand, results, pairs)
+        if plt:
+            plot(plt, args.plot, *(Table(path, f) for path, f in
+                                   zip((args.reference, args.candidate), files)),
+                 results, args.t_max)
     except BadInput as e:
         sys.stderr.write(f"{PROG}: {e}\n")
         return 2

@@ -38,8 +38,8 @@ ARCHIVE = os.path.join(ROOT, "archive")
 ROWS = 300
 COMPARE = os.path.join(ROOT, "app", "spallbar_compare.py")
 
-# Tolerances (spallbar-compare's pass test |c - r| <= atol + rtol |r|, atol 1e-9 of the
-# column's largest |r|), and why:
+# Tolerances (spallbar-compare's pass test |c - r| <= atol + rtol |r|, its default atol 1e-12
+# of the column's largest |r|), and why:
 # * rtol 1e-9 everywhere: the method is exact to round-off where it is exact, and the Release
 #   and Debug builds give the same bits on every deck here (-ffp-contract=off); another
 #   compiler or machine changes the last bits, 1e-13 relative after the longest runs, four

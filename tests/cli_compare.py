@@ -11,7 +11,14 @@
     and reports the shift it needed (2e-3), fails with --time-tol 1e-3;
   * a candidate shorter than the reference fails (points outside its range);
   * bad input (missing file, a row of words, a decreasing abscissa, no common column, a
-    negative tolerance, an unknown --column): exit 2, one line, no report written.
+    negative tolerance, an unknown --column): exit 2, one line, no report written;
+  * issue 32: a file with a jump (a repeated abscissa) and a .prf of two profile times pass
+    against themselves, a jump is compared from both sides (either side wrong fails), the
+    blocks of a .prf block by block; --plot or --report into a missing folder is exit 2
+    before anything is read; a reference column the candidate lacks is exit 2 naming it
+    unless --column leaves it out; a UTF-8 byte-order mark is read as nothing; a 400 % error
+    next to a spike of 1e6 or 1e10 fails at the default tolerances; a reference read from a
+    FIFO; the peak memory of a ~20 MB comparison stays bounded (streaming).
 
 usage: cli_compare.py SPALLBAR SPALLBAR_COMPARE WORKDIR
 """
@@ -20,6 +27,7 @@ import os
 import shutil
 import subprocess
 import sys
+import threading
 
 from clitools import Checks, run
 
@@ -156,6 +164,169 @@ def bad_input(tool, work, check):
         print(f"ok   bad input {args[0]}: {lines[0] if lines else ''}")
 
 
+def write(work, name, text):
+    with open(os.path.join(work, name), "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+def verdict(r):
+    """The exit status and the last line of stdout (the PASS or FAIL line)."""
+    lines = r.stdout.splitlines()
+    return r.returncode, lines[-1] if lines else ""
+
+
+def jumps(exe, tool, work, check):
+    write(work, "j.txt", "0 0\n1 0\n1 1\n2 1\n")
+    r = compare(tool, ["j.txt", "j.txt"], work)
+    check(verdict(r) == (0, "PASS: 1 columns within the tolerance"),
+          f"a jump against itself: {verdict(r)} {r.stderr!r}")
+    cases = (("0 0\n1 0\n1 2\n2 1\n", 1, "the right limit wrong"),
+             ("0 0\n1 0.5\n1 1\n2 1\n", 1, "the left limit wrong"),
+             ("0 0\n2 1\n", 1, "no jump (0.5 at t = 1)"),
+             ("0 0\n1 0\n1 1\n1 1\n2 1\n", 0, "the same jump in three rows"))
+    for text, status, what in cases:
+        write(work, "jc.txt", text)
+        r = compare(tool, ["j.txt", "jc.txt"], work)
+        row = [l for l in r.stdout.splitlines() if l.startswith("| 2 |")]
+        first = row[0].split("|")[9].strip() if row else None
+        check(r.returncode == status and first == ("1" if status else ""),
+              f"a jump, {what}: exit {r.returncode}, first failure {first!r}\n{r.stdout}")
+    # a single reference row at the candidate's jump meets the nearer side (here the left)
+    write(work, "single.txt", "0 0\n1 0\n2 1\n")
+    r = compare(tool, ["single.txt", "j.txt"], work)
+    check(r.returncode == 0, f"a single row at a jump: exit {r.returncode}\n{r.stdout}")
+    print("ok   a jump passes against itself; either side wrong fails at the jump")
+    with open(os.path.join(work, "prf.nml"), "w") as f:
+        f.write(FIXED.replace("t_end = 1.0e-2,", "t_end = 1.0e-2, profile_times = 2.5e-3, 5e-3,"))
+    r = run(exe, ["prf.nml", "--quiet"], work)
+    check(r.returncode == 0, f"prf run: exit {r.returncode} {r.stderr!r}")
+    lines = open(os.path.join(work, "prf.prf")).read().splitlines(keepends=True)
+    xs = [l.split()[0] for l in lines if l.startswith(" ")]
+    check(len(xs) != len(set(xs)), "the .prf has no repeated abscissa: the check proves nothing")
+    r = compare(tool, ["prf.prf", "prf.prf"], work)
+    check(verdict(r) == (0, "PASS: 4 columns within the tolerance"),
+          f".prf against itself: {verdict(r)} {r.stderr!r}")
+    blocks = [k for k, l in enumerate(lines) if l.startswith("# t =")]
+    check(len(blocks) == 2, f"the .prf has {len(blocks)} blocks, expected 2")
+    row = blocks[1] + 2 + 20      # block 2, a row at an interface
+    w = lines[row].split()
+    w[3] = repr(float(w[3]) * 1.01 + 1.0)
+    write(work, "prf2.prf", "".join(lines[:row]) + " ".join(w) + "\n" + "".join(lines[row + 1:]))
+    r = compare(tool, ["prf.prf", "prf2.prf"], work)
+    srow = [l for l in r.stdout.splitlines() if l.startswith("| stress |")]
+    check(verdict(r)[0] == 1 and srow and srow[0].rstrip("| ").endswith(f"{float(w[0]):.6g} "
+                                                                        "(block 2)"),
+          f".prf, one stress changed in block 2: {verdict(r)} {srow}")
+    write(work, "prf1.prf", "".join(lines[:blocks[1]]))
+    r = compare(tool, ["prf.prf", "prf1.prf"], work)
+    check(r.returncode == 2 and "prf.prf has 2 blocks (profile times), prf1.prf 1" in r.stderr,
+          f".prf, a block fewer: exit {r.returncode} {r.stderr!r}")
+    print("ok   a .prf of two profile times passes against itself, is compared block by block")
+
+
+def refusals(tool, work, check):
+    write(work, "ab.txt", "t a b\n0 1 2\n1 1 2\n")
+    write(work, "a.txt", "t a\n0 1\n1 1\n")
+    cases = ((["j.txt", "j.txt", "--plot", "/nonexistent/x.png"],
+              "--plot /nonexistent/x.png: cannot write: no folder /nonexistent"),
+             (["j.txt", "j.txt", "--plot", "."], "--plot .: cannot write: it is a folder"),
+             (["j.txt", "j.txt", "--plot", "x.png", "--report", "no/r.md"],
+              "--report no/r.md: cannot write: no folder"),
+             (["nope.txt", "j.txt", "--plot", "/nonexistent/x.png"], "--plot /nonexistent"),
+             (["ab.txt", "a.txt"], "the candidate lacks the reference's column b;"))
+    for args, expect in cases:
+        if os.path.exists(os.path.join(work, "bad.md")):
+            os.remove(os.path.join(work, "bad.md"))
+        r = compare(tool, args + ["--report", "bad.md"] * ("--report" not in args), work)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 2 and len(lines) == 1 and expect in lines[0] and r.stdout == "",
+              f"{args}: exit {r.returncode} {r.stderr!r}")
+        check(not os.path.exists(os.path.join(work, "bad.md")) and
+              not os.path.exists(os.path.join(work, "x.png")), f"{args}: wrote a file")
+        print(f"ok   {' '.join(args[2:]) or args[0]}: {lines[0] if lines else ''}")
+    for args, status in ((["ab.txt", "a.txt", "--column", "a"], 0), (["a.txt", "ab.txt"], 0)):
+        r = compare(tool, args, work)
+        check(verdict(r) == (status, "PASS: 1 columns within the tolerance"),
+              f"{args}: {verdict(r)} {r.stderr!r}")
+    print("ok   --column a leaves the missing column out; a candidate's extra column is fine")
+
+
+def bom(tool, work, check):
+    write(work, "bom.txt", "\ufeff0 1\n1 2\n2 3\n")
+    write(work, "nobom.txt", "0 1\n1 2\n2 3\n")
+    write(work, "bomh.txt", "\ufefft y\n0 1\n1 2\n")
+    write(work, "ty.txt", "t y\n0 1\n1 2\n")
+    for ref, cand, row in (("bom.txt", "nobom.txt", "| 2 | 3 |"),
+                           ("bomh.txt", "ty.txt", "| y | 2 |")):
+        r = compare(tool, [ref, cand], work)
+        check(r.returncode == 0 and any(l.startswith(row) for l in r.stdout.splitlines()),
+              f"a BOM, {ref}: exit {r.returncode}\n{r.stdout}{r.stderr}")
+    print("ok   a UTF-8 byte-order mark is read as nothing (before a row, before a header)")
+
+
+def spike(tool, work, check):
+    for height in (1e6, 1e10):
+        ref = [1.0 + 0.01 * k for k in range(21)]
+        ref[10] = height
+        cand = list(ref)
+        cand[11] *= 5.0                                   # a 400 % error beside the spike
+        write(work, "spike.txt", "".join(f"{k} {v!r}\n" for k, v in enumerate(ref)))
+        write(work, "spike_bad.txt", "".join(f"{k} {v!r}\n" for k, v in enumerate(cand)))
+        r = compare(tool, ["spike.txt", "spike_bad.txt"], work)
+        row = [l for l in r.stdout.splitlines() if l.startswith("| 2 |")]
+        check(r.returncode == 1 and row and row[0].split("|")[7].strip() == "1"
+              and row[0].split("|")[9].strip() == "11"
+              and "atol = 1e-12 of each column's largest |r|" in r.stdout,
+              f"a 400 % error beside a spike of {height:g}: exit {r.returncode}\n{r.stdout}")
+        r = compare(tool, ["spike.txt", "spike.txt"], work)
+        check(r.returncode == 0, f"the spike deck against itself: exit {r.returncode}")
+        print(f"ok   a 400 % error beside a spike of {height:g} fails at the defaults")
+
+
+def fifo(tool, work, check):
+    path = os.path.join(work, "ref.fifo")
+    os.mkfifo(path)
+
+    def feed():
+        with open(path, "w") as f:
+            f.write("0 0\n1 0\n1 1\n2 1\n")
+    threading.Thread(target=feed, daemon=True).start()
+    r = compare(tool, ["ref.fifo", "j.txt"], work)
+    check(verdict(r) == (0, "PASS: 1 columns within the tolerance"),
+          f"a reference from a FIFO: {verdict(r)} {r.stderr!r}")
+    print("ok   a reference from a FIFO (read twice: spooled)")
+
+
+MEMORY_MB = 60     # the peak RSS allowed comparing ~20 MB (the whole-file reader: ~140 MB)
+
+
+def memory(tool, work, check):
+    names = ["t"] + [f"c{j}" for j in range(15)]
+    with open(os.path.join(work, "big.his"), "w") as f, \
+            open(os.path.join(work, "big2.his"), "w") as g:
+        f.write(" ".join(names) + "\n# a generated history\n# " + " ".join(names) + "\n")
+        g.write(" ".join(names) + "\n")
+        k = 0
+        while f.tell() < 20e6:
+            t = (k - k % 3 // 2) * 1e-6       # every third row repeats an abscissa: a jump
+            row = " ".join(f"{math.sin(k * 1e-3 * (j + 1)) * 10 ** j:.12E}" for j in range(15))
+            f.write(f"{t:.12E} {row}\n")
+            g.write(f"{t:.12E} {row}\n")
+            k += 1
+    size = os.path.getsize(os.path.join(work, "big.his")) / 1e6
+    probe = ("import resource, subprocess, sys\n"
+             "r = subprocess.run(sys.argv[1:], capture_output=True, text=True)\n"
+             "print(r.returncode, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n")
+    r = subprocess.run([sys.executable, "-c", probe, sys.executable, tool, "big.his",
+                        "big2.his", "--quiet"], cwd=work, capture_output=True, text=True,
+                       timeout=600)
+    status, kb = (int(w) for w in r.stdout.split())
+    check(status == 0 and kb < MEMORY_MB * 1024,
+          f"{size:.0f} MB against itself: exit {status}, peak RSS {kb / 1024:.0f} MB "
+          f"(bound {MEMORY_MB} MB)")
+    print(f"ok   {size:.0f} MB ({k} rows) compared in a peak RSS of {kb / 1024:.0f} MB")
+
+
 def main():
     exe, tool, work = sys.argv[1], sys.argv[2], sys.argv[3]
     shutil.rmtree(work, ignore_errors=True)
@@ -165,6 +336,12 @@ def main():
     changed_column(tool, work, check)
     tube(tool, work, check)
     bad_input(tool, work, check)
+    jumps(exe, tool, work, check)
+    refusals(tool, work, check)
+    bom(tool, work, check)
+    spike(tool, work, check)
+    fifo(tool, work, check)
+    memory(tool, work, check)
     return check.finish()
 
 
