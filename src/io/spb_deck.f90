@@ -33,6 +33,10 @@ module spb_deck
    public :: read_deck, validate_deck, write_echo, set_deck_value, problem_from_deck, &
       deck_record, mesh_fault_message, write_deck_help, deck_file, deck_warnings
 
+   !> The largest ratio of two segments' axial impedances rho a A a deck may hold: beyond it
+   !> the wave measure (ledger_w, the energy guard) reads the side of the smaller one from
+   !> differences of the other's round-off (doc/areas.md, "How far apart").
+   real(wp), parameter :: max_impedance_ratio = 1.0e6_wp
 
 contains
 
@@ -639,6 +643,7 @@ contains
          end if
          if (allocated(err)) return
       end do
+      call need_impedance_ratio(seg, err)
    contains
       !> A value given for a segment beyond n is an error.
       subroutine beyond_n(name, x)
@@ -649,6 +654,54 @@ contains
                                         // itoa(seg%n) // ' (set n to the number of segments)')
       end subroutine beyond_n
    end subroutine validate_segments
+
+   !> The axial impedances rho a A = sqrt(young density) area of the segments may differ by
+   !> at most max_impedance_ratio (compared in logarithms: no product can overflow). The
+   !> error names area(j) of the segment with the smallest one, or its young and density
+   !> where the two segments' areas are the same.
+   subroutine need_impedance_ratio(seg, err)
+      type(segments_cfg), intent(in) :: seg   !! &segments values, validated
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      real(wp) :: lz(seg%n)
+      integer :: lo, hi
+      character(len=:), allocatable :: what, slo
+      if (allocated(err)) return
+      lz = 0.5_wp * (log(seg%young(1:seg%n)) + log(seg%density(1:seg%n))) + &
+           log(seg%area(1:seg%n))
+      lo = minloc(lz, dim=1)
+      hi = maxloc(lz, dim=1)
+      if (lz(hi) - lz(lo) <= log(max_impedance_ratio)) return
+      slo = '(' // itoa(lo) // ')'
+      what = 'area' // slo
+      if (seg%area(lo) == seg%area(hi)) what = 'young' // slo // ', density' // slo
+      call make_error(err, '&segments: ' // what // ': the axial impedance rho a A of segment ' &
+         // itoa(hi) // ' is ' // ratio_text(lz(hi) - lz(lo)) // ' times that of segment ' // &
+         itoa(lo) // '; at most ' // power_text(log(max_impedance_ratio)) // ' is supported ' &
+         // '(beyond, segment ' // itoa(lo) // '''s wave energy is lost in the round-off of ' &
+         // 'segment ' // itoa(hi) // '''s; doc/areas.md)')
+   end subroutine need_impedance_ratio
+
+   !> exp(ln_x) to three digits as a power of ten ('1.01e6', '1e30'), for any ln_x >= 0
+   !> below 1e9: exp(ln_x) itself may overflow.
+   function ratio_text(ln_x) result(text)
+      real(wp), intent(in) :: ln_x         !! natural logarithm of the number
+      character(len=:), allocatable :: text
+      real(wp) :: e10
+      integer :: m, e
+      e10 = ln_x / log(10.0_wp)
+      e = floor(e10)
+      m = nint(100.0_wp * 10.0_wp**(e10 - real(e, wp)))
+      if (m >= 1000) then
+         m = 100
+         e = e + 1
+      end if
+      text = itoa(m / 100)
+      if (mod(m, 100) /= 0) then
+         text = text // '.' // itoa(mod(m, 100) / 10)
+         if (mod(m, 10) /= 0) text = text // itoa(mod(m, 10))
+      end if
+      text = text // 'e' // itoa(e)
+   end function ratio_text
 
    !> Check &ends' values.
    subroutine validate_ends(ends, err)
