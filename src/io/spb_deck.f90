@@ -675,33 +675,11 @@ contains
       what = 'area' // slo
       if (seg%area(lo) == seg%area(hi)) what = 'young' // slo // ', density' // slo
       call make_error(err, '&segments: ' // what // ': the axial impedance rho a A of segment ' &
-         // itoa(hi) // ' is ' // ratio_text(lz(hi) - lz(lo)) // ' times that of segment ' // &
+         // itoa(hi) // ' is ' // power_text(lz(hi) - lz(lo), 3) // ' times that of segment ' // &
          itoa(lo) // '; at most ' // power_text(log(max_impedance_ratio)) // ' is supported ' &
          // '(beyond, segment ' // itoa(lo) // '''s wave energy is lost in the round-off of ' &
          // 'segment ' // itoa(hi) // '''s; doc/areas.md)')
    end subroutine need_impedance_ratio
-
-   !> exp(ln_x) to three digits as a power of ten ('1.01e6', '1e30'), for any ln_x >= 0
-   !> below 1e9: exp(ln_x) itself may overflow.
-   function ratio_text(ln_x) result(text)
-      real(wp), intent(in) :: ln_x         !! natural logarithm of the number
-      character(len=:), allocatable :: text
-      real(wp) :: e10
-      integer :: m, e
-      e10 = ln_x / log(10.0_wp)
-      e = floor(e10)
-      m = nint(100.0_wp * 10.0_wp**(e10 - real(e, wp)))
-      if (m >= 1000) then
-         m = 100
-         e = e + 1
-      end if
-      text = itoa(m / 100)
-      if (mod(m, 100) /= 0) then
-         text = text // '.' // itoa(mod(m, 100) / 10)
-         if (mod(m, 10) /= 0) text = text // itoa(mod(m, 10))
-      end if
-      text = text // 'e' // itoa(e)
-   end function ratio_text
 
    !> Check &ends' values.
    subroutine validate_ends(ends, err)
@@ -816,24 +794,40 @@ contains
       end if
    end subroutine need_weibull_range
 
-   !> exp(ln_x) written as a power of ten ('3e1352'), for a logarithm beyond the reals.
-   function power_text(ln_x) result(text)
+   !> exp(ln_x) written as a power of ten ('3e1352'), for a logarithm beyond the reals; with
+   !> digits, to that many significant digits, trailing zeros dropped ('1.01e6', '1e30').
+   function power_text(ln_x, digits) result(text)
       real(wp), intent(in) :: ln_x         !! natural logarithm of the number
+      integer, intent(in), optional :: digits   !! significant digits (default 1)
       character(len=:), allocatable :: text
+      character(len=:), allocatable :: frac
       real(wp) :: e10
-      integer :: m, e
+      integer :: m, e, d, unit
       e10 = ln_x / log(10.0_wp)
       if (abs(e10) > 1.0e9_wp) then
          text = '10^' // rtoa(e10)
          return
       end if
+      d = 1
+      if (present(digits)) d = digits
+      unit = 10**(d - 1)
       e = floor(e10)
-      m = nint(10.0_wp**(e10 - real(e, wp)))
-      if (m >= 10) then
-         m = 1
+      m = nint(real(unit, wp) * 10.0_wp**(e10 - real(e, wp)))
+      if (m >= 10 * unit) then
+         m = unit
          e = e + 1
       end if
-      text = itoa(m) // 'e' // itoa(e)
+      text = itoa(m / unit)
+      if (mod(m, unit) /= 0) then
+         ! the digits after the point, leading zeros kept, trailing ones dropped
+         frac = itoa(unit + mod(m, unit))
+         frac = frac(2:)
+         do while (frac(len(frac):) == '0')
+            frac = frac(:len(frac) - 1)
+         end do
+         text = text // '.' // frac
+      end if
+      text = text // 'e' // itoa(e)
    end function power_text
 
    !> Check &initial's values.
