@@ -17,6 +17,13 @@ GOOD = """&run t_end = 1.0e-5, title = 'cli' /
 &load kind = 'power', p0 = 1e6 /
 """
 
+# two bonded segments of the areas AREA, a pressure on the wide top (issue 32, item 7)
+AREAS = """&run t_end = 4e-4, history_every = 1 /
+&mesh cells = 40 /
+&segments n = 2, length = 0.5, 0.5, young = 2e11, 2e11, density = 7800, 7800, area = AREA /
+&load kind = 'power', p0 = 1e8, exponent = 0 /
+"""
+
 # (name, deck text, text the single stderr line must contain)
 BAD = [
     ("no_run", "&mesh cells = 10 /\n", "spallbar: &run: required group is missing"),
@@ -72,6 +79,18 @@ BAD = [
     ("gauge_101", GOOD + "&gauges x(101) = 0.05 /\n", "spallbar: &gauges: x(101): at most 100 gauges"),
     ("gauge_gap", GOOD + "&gauges x(3) = 0.01 /\n",
      "spallbar: &gauges: x(3) is given but x(1) is not"),
+    # issue 32, item 7: axial impedances rho a A more than 1e6 apart (the issue's deck ran
+    # into the energy guard, exit 3, at 1e30; at 1e20 its wave ledger drifted)
+    ("area_ratio", AREAS.replace("AREA", "1e30, 1"),
+     "spallbar: &segments: area(2): the axial impedance rho a A of segment 1 is 1e30 times "
+     "that of segment 2; at most 1e6 is supported"),
+    ("area_ratio_small_areas", AREAS.replace("AREA", "2e-4, 2e-11"),
+     "spallbar: &segments: area(2): the axial impedance rho a A of segment 1 is 1e7 times"),
+    ("impedance_ratio", AREAS.replace("AREA", "1, 1").replace("density = 7800, 7800",
+                                                              "density = 7800, 7.8e-27")
+     .replace("young = 2e11, 2e11", "young = 2e11, 2e-19"),
+     "spallbar: &segments: young(2), density(2): the axial impedance rho a A of segment 1 "
+     "is 1e30 times that of segment 2"),
 ]
 
 
@@ -164,6 +183,17 @@ def main():
         for ext in (".prf", ".evt", ".frg", ".h5"):
             check(not os.path.exists(os.path.join(work, name + ext)), f"{name}: left {name}{ext}")
         print(f"ok   {name}: {lines[0] if lines else ''}")
+
+    # a sweep that varies an area beyond the ratio is refused before any case runs
+    with open(os.path.join(work, "sweep_area.nml"), "w") as f:
+        f.write(AREAS.replace("AREA", "1, 1") + "&sweep vary = 'area(1)', values = 1e3, 1e30 /\n")
+    r = run(exe, ["--sweep", "sweep_area.nml", "--quiet"], work)
+    expect = ("spallbar: &sweep: values(2) = 1e30 for area(1): &segments: area(2): the axial "
+              "impedance rho a A of segment 1 is 1e30 times that of segment 2")
+    check(r.returncode == 2 and len(r.stderr.splitlines()) == 1 and expect in r.stderr,
+          f"sweep over area: exit {r.returncode}, stderr {r.stderr!r}")
+    left = [x for x in os.listdir(work) if x.startswith("sweep_area") and x != "sweep_area.nml"]
+    check(not left, f"sweep over area: wrote {left}")
 
     # command line itself
     for args, expect in ((["missing.nml"], "spallbar: deck: cannot open"),

@@ -24,3 +24,16 @@ def run(exe, args, cwd, timeout=600):
     """Run spallbar; text output, nothing on stdin."""
     return subprocess.run([exe] + args, cwd=cwd, capture_output=True, text=True,
                           errors="replace", timeout=timeout, stdin=subprocess.DEVNULL)
+
+
+def history(path):
+    """The columns of a text output (PREFIX.his, ...) by name, as lists of floats: the names
+    are those of the last '#' header line, the rows the lines that start with a blank."""
+    names, rows = None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                names = line[1:].split()
+            elif line.startswith(" ") and line.strip():
+                rows.append([float(x) for x in line.split()])
+    return {name: [r[k] for r in rows] for k, name in enumerate(names)}

@@ -33,6 +33,10 @@ module spb_deck
    public :: read_deck, validate_deck, write_echo, set_deck_value, problem_from_deck, &
       deck_record, mesh_fault_message, write_deck_help, deck_file, deck_warnings
 
+   !> The largest ratio of two segments' axial impedances rho a A a deck may hold: beyond it
+   !> the wave measure (ledger_w, the energy guard) reads the side of the smaller one from
+   !> differences of the other's round-off (doc/areas.md, "How far apart").
+   real(wp), parameter :: max_impedance_ratio = 1.0e6_wp
 
 contains
 
@@ -649,6 +653,7 @@ contains
          end if
          if (allocated(err)) return
       end do
+      call need_impedance_ratio(seg, err)
    contains
       !> A value given for a segment beyond n is an error.
       subroutine beyond_n(name, x)
@@ -659,6 +664,32 @@ contains
                                         // itoa(seg%n) // ' (set n to the number of segments)')
       end subroutine beyond_n
    end subroutine validate_segments
+
+   !> The axial impedances rho a A = sqrt(young density) area of the segments may differ by
+   !> at most max_impedance_ratio (compared in logarithms: no product can overflow). The
+   !> error names area(j) of the segment with the smallest one, or its young and density
+   !> where the two segments' areas are the same.
+   subroutine need_impedance_ratio(seg, err)
+      type(segments_cfg), intent(in) :: seg   !! &segments values, validated
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      real(wp) :: lz(seg%n)
+      integer :: lo, hi
+      character(len=:), allocatable :: what, slo
+      if (allocated(err)) return
+      lz = 0.5_wp * (log(seg%young(1:seg%n)) + log(seg%density(1:seg%n))) + &
+           log(seg%area(1:seg%n))
+      lo = minloc(lz, dim=1)
+      hi = maxloc(lz, dim=1)
+      if (lz(hi) - lz(lo) <= log(max_impedance_ratio)) return
+      slo = '(' // itoa(lo) // ')'
+      what = 'area' // slo
+      if (seg%area(lo) == seg%area(hi)) what = 'young' // slo // ', density' // slo
+      call make_error(err, '&segments: ' // what // ': the axial impedance rho a A of segment ' &
+         // itoa(hi) // ' is ' // power_text(lz(hi) - lz(lo), 3) // ' times that of segment ' // &
+         itoa(lo) // '; at most ' // power_text(log(max_impedance_ratio)) // ' is supported ' &
+         // '(beyond, segment ' // itoa(lo) // '''s wave energy is lost in the round-off of ' &
+         // 'segment ' // itoa(hi) // '''s; doc/areas.md)')
+   end subroutine need_impedance_ratio
 
    !> Check &ends' values.
    subroutine validate_ends(ends, err)
@@ -773,24 +804,40 @@ contains
       end if
    end subroutine need_weibull_range
 
-   !> exp(ln_x) written as a power of ten ('3e1352'), for a logarithm beyond the reals.
-   function power_text(ln_x) result(text)
+   !> exp(ln_x) written as a power of ten ('3e1352'), for a logarithm beyond the reals; with
+   !> digits, to that many significant digits, trailing zeros dropped ('1.01e6', '1e30').
+   function power_text(ln_x, digits) result(text)
       real(wp), intent(in) :: ln_x         !! natural logarithm of the number
+      integer, intent(in), optional :: digits   !! significant digits (default 1)
       character(len=:), allocatable :: text
+      character(len=:), allocatable :: frac
       real(wp) :: e10
-      integer :: m, e
+      integer :: m, e, d, unit
       e10 = ln_x / log(10.0_wp)
       if (abs(e10) > 1.0e9_wp) then
          text = '10^' // rtoa(e10)
          return
       end if
+      d = 1
+      if (present(digits)) d = digits
+      unit = 10**(d - 1)
       e = floor(e10)
-      m = nint(10.0_wp**(e10 - real(e, wp)))
-      if (m >= 10) then
-         m = 1
+      m = nint(real(unit, wp) * 10.0_wp**(e10 - real(e, wp)))
+      if (m >= 10 * unit) then
+         m = unit
          e = e + 1
       end if
-      text = itoa(m) // 'e' // itoa(e)
+      text = itoa(m / unit)
+      if (mod(m, unit) /= 0) then
+         ! the digits after the point, leading zeros kept, trailing ones dropped
+         frac = itoa(unit + mod(m, unit))
+         frac = frac(2:)
+         do while (frac(len(frac):) == '0')
+            frac = frac(:len(frac) - 1)
+         end do
+         text = text // '.' // frac
+      end if
+      text = text // 'e' // itoa(e)
    end function power_text
 
    !> Check &initial's values.
