@@ -44,6 +44,7 @@ import time
 import h5py
 import numpy as np
 
+from checkpoint_tools import resign
 from clitools import Checks, run
 
 EXTS = [".his", ".prf", ".evt", ".frg"]
@@ -263,8 +264,8 @@ def main():
         same_outputs(check, f"{name} extended", work, name + "_U", name + "_R")
         # the checkpoint at t_end is the same whichever way the run got there
         with h5py.File(os.path.join(work, name + "_end.ck.h5"), "r") as ck:
-            check(ck.attrs["format"].decode() == "spallbar checkpoint 2" if isinstance(
-                ck.attrs["format"], bytes) else ck.attrs["format"] == "spallbar checkpoint 2",
+            check(ck.attrs["format"].decode() == "spallbar checkpoint 3" if isinstance(
+                ck.attrs["format"], bytes) else ck.attrs["format"] == "spallbar checkpoint 3",
                 f"{name}: checkpoint format attribute")
             check("ua" in ck["state"] and "ledger0" in ck["run"].attrs,
                   f"{name}: checkpoint holds /state/ua and /run ledger0")
@@ -401,6 +402,8 @@ def other_program(check, exe, work, name, full, refused):
               f"identity: the checkpoint names this program ({mine})")
         # fixed-length, as spallbar writes it (h5py's str would be variable-length)
         h["identity"].attrs["program"] = np.bytes_(b"spallbar 0.1.0")
+    # the checksum covers the identity (format 3): signed as the other program would have
+    resign(os.path.join(work, "other.ck.h5"))
     refused("a checkpoint of another program", [name + "_full.nml", "--output", name + "_R",
             "--restart", "other.ck.h5"],
             f"was written by spallbar 0.1.0, this is {mine}")

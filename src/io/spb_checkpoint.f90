@@ -9,9 +9,11 @@
 !> value except title, t_end, checkpoint, checkpoint_every and profile times after the
 !> checkpoint), the mesh's dt and cells, a load table's values. Layout in doc/outputs.md.
 !> The file is written as FILE.part and renamed: a run killed while writing it keeps the
-!> previous checkpoint.
+!> previous checkpoint. Read back, every value a restart uses is under the checksum (format
+!> 3) and every count, index and list is range-checked before use (doc/outputs.md).
 module spb_checkpoint
    use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use spb_kinds, only: wp
    use spb_identity, only: program_identity, build_revision
    use spb_error, only: spb_error_t, make_error, exit_input, exit_runtime
@@ -29,8 +31,11 @@ module spb_checkpoint
    private
    public :: checkpoint_t, write_checkpoint, read_checkpoint, check_checkpoint_path
 
-   character(len=*), parameter :: format_name = 'spallbar checkpoint 2'   !! with /checksum
-   character(len=*), parameter :: format_1 = 'spallbar checkpoint 1'       !! without
+   !> Formats (doc/outputs.md): 3 sums every value a restart reads; 2 (0.2.0 before it)
+   !> summed the state, summary and output counts only; 1 had no checksum (refused).
+   character(len=*), parameter :: format_name = 'spallbar checkpoint 3'
+   character(len=*), parameter :: format_2 = 'spallbar checkpoint 2'
+   character(len=*), parameter :: format_1 = 'spallbar checkpoint 1'
    character(len=1), parameter :: nl = achar(10)
 
    !> One entry of a field list (state_fields, summary_fields): written or read back.
@@ -41,14 +46,22 @@ module spb_checkpoint
       module procedure array_reals, array_ints, array_logicals
    end interface array_field
 
-   !> A checkpoint file being written or read, and the checksum of every value its field
-   !> lists carry (state, run summary, output counts), in the order they carry them: two
-   !> Fletcher sums modulo the prime 4294967291 over the 16-bit pieces of each value (an
-   !> integer as int64, a real's bits). Any one changed bit changes both.
-   type :: ck_file_t
-      type(h5file_t) :: h5                     !! the HDF5 file
+   !> A checksum: two Fletcher sums modulo the prime 4294967291 over the 16-bit pieces of
+   !> each value counted (an integer as int64, a real's bits, a string's length then each
+   !> character), in the order they are counted. Any one changed bit changes both.
+   type :: fletcher_t
       integer(int64) :: sum1 = 1_int64         !! first Fletcher sum
       integer(int64) :: sum2 = 0_int64         !! second Fletcher sum
+   end type fletcher_t
+
+   !> A checkpoint file being written or read, and its checksum in two parts: fields, every
+   !> value the field lists carry (state, run summary, output counts: all format 2 summed);
+   !> rest, everything else a restart reads (the identity, profile times, a load table, the
+   !> text files' marks), in the order write_checkpoint writes them.
+   type :: ck_file_t
+      type(h5file_t) :: h5                     !! the HDF5 file
+      type(fletcher_t) :: fields               !! the field lists' values
+      type(fletcher_t) :: rest                 !! the other values a restart reads
    end type ck_file_t
 
    integer(int64), parameter :: fletcher_prime = 4294967291_int64
@@ -105,18 +118,30 @@ contains
       call h5_attr(cf%h5, '/', 'step', st%step)
       call h5_attr(cf%h5, '/', 't', real(st%step, wp) * mesh%dt)
       ! what identifies the run
+      ! what identifies the run, each value counted in the rest of the checksum in the
+      ! order read_checkpoint reads it
       call h5_group(cf%h5, '/identity')
       call h5_attr(cf%h5, '/identity', 'program', program_identity())
+      call mix_text(cf%rest, trim(program_identity()))
       call h5_attr(cf%h5, '/identity', 'revision', build_revision())
+      call mix_text(cf%rest, trim(build_revision()))
       call h5_attr(cf%h5, '/identity', 'deck', deck_identity(rec))
+      call mix_text(cf%rest, trim(deck_identity(rec)))
       call h5_attr(cf%h5, '/identity', 'dt', mesh%dt)
+      call mix(cf%rest, transfer(mesh%dt, 0_int64))
       call h5_attr(cf%h5, '/identity', 'cells', mesh%n)
-      call h5_attr(cf%h5, '/identity', 'n_profiles', size(rec%profile_times))
-      if (size(rec%profile_times) > 0) call h5_write(cf%h5, '/identity/profile_times', &
-         rec%profile_times, 's')
+      call mix(cf%rest, int(mesh%n, int64))
       if (load%kind == load_table) then
          call h5_write(cf%h5, '/identity/load_t', load%t, 's')
+         call mix_reals(cf%rest, load%t)
          call h5_write(cf%h5, '/identity/load_p', load%p, 'Pa')
+         call mix_reals(cf%rest, load%p)
+      end if
+      call h5_attr(cf%h5, '/identity', 'n_profiles', size(rec%profile_times))
+      call mix(cf%rest, int(size(rec%profile_times), int64))
+      if (size(rec%profile_times) > 0) then
+         call h5_write(cf%h5, '/identity/profile_times', rec%profile_times, 's')
+         call mix_reals(cf%rest, rec%profile_times)
       end if
       call h5_group(cf%h5, '/state')
       call state_fields(cf, st, .true.)
@@ -128,13 +153,17 @@ contains
       call h5_group(cf%h5, '/outputs')
       do k = 1, text_count(rec)
          call h5_attr(cf%h5, '/outputs', 'body' // text_extensions(k), real(marks%body(k), wp))
+         call mix(cf%rest, transfer(real(marks%body(k), wp), 0_int64))
          call h5_attr(cf%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
+         call mix(cf%rest, int(marks%tail_n(k), int64))
          call h5_attr(cf%h5, '/outputs', 'tail' // text_extensions(k), &
                       marks%tail(k)(1:max(0, marks%tail_n(k))))
+         ! read back without its trailing blanks: counted so
+         call mix_text(cf%rest, trim(marks%tail(k)(1:max(0, marks%tail_n(k)))))
       end do
       marks_copy = marks
       call count_fields(cf, marks_copy, .true., size(rec%gauge_x) > 0)
-      call h5_attr(cf%h5, '/', 'checksum', checksum_text(cf))
+      call h5_attr(cf%h5, '/', 'checksum', checksum_text(cf, 3))
       call h5_close(cf%h5)
       if (allocated(cf%h5%error)) then
          call make_error(err, '&run: checkpoint: ' // cf%h5%error, code=exit_runtime)
@@ -297,7 +326,7 @@ contains
       else
          call h5_get_attr(ck%h5, group, name, v)
       end if
-      call mix(ck, int(v, int64))
+      call mix(ck%fields, int(v, int64))
    end subroutine field_int
 
    !> A real scalar field: an attribute of group, written or read back.
@@ -312,7 +341,7 @@ contains
       else
          call h5_get_attr(ck%h5, group, name, v)
       end if
-      call mix(ck, transfer(v, 0_int64))
+      call mix(ck%fields, transfer(v, 0_int64))
    end subroutine field_real
 
    !> A logical as the integer 0 or 1.
@@ -370,10 +399,10 @@ contains
          allocate(a(lb:lb + n - 1), source=v)
       end if
       if (.not. count_it) return
-      call mix(ck, int(lbound(a, 1), int64))
-      call mix(ck, int(size(a), int64))
+      call mix(ck%fields, int(lbound(a, 1), int64))
+      call mix(ck%fields, int(size(a), int64))
       do k = lbound(a, 1), ubound(a, 1)
-         call mix(ck, transfer(a(k), 0_int64))
+         call mix(ck%fields, transfer(a(k), 0_int64))
       end do
    end subroutine array_reals
 
@@ -396,35 +425,67 @@ contains
          if (allocated(a)) deallocate(a)
          call array_reals(ck, .false., name, v, raw=.true.)
          if (.not. allocated(v)) return
-         if (any(abs(v) > real(huge(1), wp))) then
+         if (any(ieee_is_nan(v))) then
+            ck%h5%error = '/state/' // name // ' holds a value that is not a number'
+            return
+         else if (any(abs(v) > real(huge(1), wp))) then
             ck%h5%error = '/state/' // name // ' holds a value beyond the integers'
+            return
+         else if (any(abs(v - anint(v)) > 0.0_wp)) then
+            ck%h5%error = '/state/' // name // ' holds a value that is not a whole number'
             return
          end if
          allocate(a(lbound(v, 1):ubound(v, 1)), source=nint(v))
       end if
-      call mix(ck, int(lbound(a, 1), int64))
-      call mix(ck, int(size(a), int64))
+      call mix(ck%fields, int(lbound(a, 1), int64))
+      call mix(ck%fields, int(size(a), int64))
       do k = lbound(a, 1), ubound(a, 1)
-         call mix(ck, int(a(k), int64))
+         call mix(ck%fields, int(a(k), int64))
       end do
    end subroutine array_ints
 
-   !> Count a value (its 64 bits) in the checksum: its four 16-bit pieces, low first.
-   pure subroutine mix(ck, bits)
-      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
+   !> Count a value (its 64 bits) in a checksum: its four 16-bit pieces, low first.
+   pure subroutine mix(f, bits)
+      type(fletcher_t), intent(inout) :: f   !! the checksum
       integer(int64), intent(in) :: bits     !! the value's bits
       integer :: k
       do k = 0, 3
-         ck%sum1 = mod(ck%sum1 + ibits(bits, 16 * k, 16), fletcher_prime)
-         ck%sum2 = mod(ck%sum2 + ck%sum1, fletcher_prime)
+         f%sum1 = mod(f%sum1 + ibits(bits, 16 * k, 16), fletcher_prime)
+         f%sum2 = mod(f%sum2 + f%sum1, fletcher_prime)
       end do
    end subroutine mix
 
-   !> The checksum as 16 hexadecimal digits (sum2, then sum1).
-   pure function checksum_text(ck) result(text)
+   !> Count a string in a checksum: its length, then each character.
+   pure subroutine mix_text(f, text)
+      type(fletcher_t), intent(inout) :: f   !! the checksum
+      character(len=*), intent(in) :: text   !! the string (as read back: no trailing blanks)
+      integer :: k
+      call mix(f, int(len(text), int64))
+      do k = 1, len(text)
+         call mix(f, int(ichar(text(k:k)), int64))
+      end do
+   end subroutine mix_text
+
+   !> Count a real array in a checksum: its size, then each value's bits.
+   pure subroutine mix_reals(f, a)
+      type(fletcher_t), intent(inout) :: f   !! the checksum
+      real(wp), intent(in) :: a(:)           !! the values
+      integer :: k
+      call mix(f, int(size(a), int64))
+      do k = 1, size(a)
+         call mix(f, transfer(a(k), 0_int64))
+      end do
+   end subroutine mix_reals
+
+   !> The checksum of a checkpoint of format version as hexadecimal digits (sum2, then sum1):
+   !> 3, the field lists' 16 then the rest's 16; 2, the field lists' only.
+   pure function checksum_text(ck, version) result(text)
       type(ck_file_t), intent(in) :: ck   !! the checkpoint file and its checksum
-      character(len=16) :: text
-      write(text, '(z8.8,z8.8)') ck%sum2, ck%sum1
+      integer, intent(in) :: version      !! its format: 2 or 3
+      character(len=:), allocatable :: text
+      character(len=32) :: hex
+      write(hex, '(4z8.8)') ck%fields%sum2, ck%fields%sum1, ck%rest%sum2, ck%rest%sum1
+      text = hex(1:merge(32, 16, version >= 3))
    end function checksum_text
 
    !> A logical array of /state as 0/1 (see array_reals).
@@ -447,6 +508,9 @@ contains
 
    !> Read a checkpoint for the run set up from deck (mesh, load) and check that the
    !> restart can be identical to an uninterrupted run; every refusal is exit status 2.
+   !> Everything is read first and the checksum compared before any value is used; then
+   !> every count, index and list is range-checked (format 2, read under
+   !> --restart-any-version, sums fewer values: the range checks still hold).
    subroutine read_checkpoint(path, rec, mesh, load, ck, err, any_version)
       character(len=*), intent(in) :: path   !! checkpoint file
       type(deck_record_t), intent(in) :: rec   !! the deck's record
@@ -458,8 +522,10 @@ contains
       type(ck_file_t) :: cf
       character(len=:), allocatable :: text, why
       real(wp), allocatable :: times(:)
-      integer :: i
-      logical :: exists, summed
+      integer :: version
+      logical :: exists, accept_any
+      accept_any = .false.
+      if (present(any_version)) accept_any = any_version
       inquire(file=path, exist=exists)
       if (.not. exists) then
          call make_error(err, '--restart: ''' // path // ''' does not exist')
@@ -472,8 +538,12 @@ contains
          return
       end if
       call h5_get_attr(cf%h5, '/', 'format', text)
-      summed = text == format_name
-      if ((.not. summed .and. text /= format_1) .or. allocated(cf%h5%error)) then
+      version = format_version(text)
+      if (version == 1) then
+         call refuse('is in the format ''' // format_1 // ''', which has no checksum and ' // &
+                     'is no longer read: run the deck from its start (doc/migration.md)')
+         return
+      else if (version == 0 .or. allocated(cf%h5%error)) then
          call refuse('is not a spallbar checkpoint (no root attribute format = ''' // &
                      format_name // ''')')
          return
@@ -483,27 +553,51 @@ contains
          call refuse('is damaged: it does not name the program that wrote it (/identity program)')
          return
       end if
+      call mix_text(cf%rest, text)
       ck%program = text
-      if (text /= program_identity()) then
-         if (.not. present(any_version)) then
-            call refuse_program()
-            return
-         else if (.not. any_version) then
-            call refuse_program()
-            return
-         end if
+      if (text /= program_identity() .and. .not. accept_any) then
+         call refuse('was written by ' // text // ', this is ' // program_identity() // &
+                     ': a restart continues the run of the program that wrote it ' // &
+                     '(--restart-any-version accepts it, and every output then says so)')
+         return
+      else if (text == program_identity() .and. version /= 3) then
+         call refuse('is damaged: it names this program, which writes ''' // format_name // &
+                     ''', and says format ' // itoa(version))
+         return
       end if
-      why = identity_problem(cf%h5, rec, mesh, load)
+      call h5_get_attr(cf%h5, '/identity', 'revision', text)
+      call mix_text(cf%rest, text)
+      why = identity_problem(cf, rec, mesh, load)
       if (len(why) > 0) then
          call refuse(why)
          return
       end if
+      ! everything else, unused until the checksum is compared
       call state_fields(cf, ck%st, .false.)
+      call read_profile_times(cf, times)
+      call summary_fields(cf, ck%summary, .false.)
+      call read_marks(cf, ck%marks, rec)
       if (allocated(cf%h5%error)) then
          call refuse('cannot be read: ' // cf%h5%error)
          return
       end if
+      call h5_get_attr(cf%h5, '/', 'checksum', text)
+      if (text /= checksum_text(cf, version)) then
+         why = 'its state, summary and output counts'
+         if (version >= 3) why = 'what a restart reads'
+         call refuse('is damaged: the checksum of ' // why // ' is ' // &
+                     checksum_text(cf, version) // ', it was written as ' // text)
+         return
+      end if
       why = state_problem(ck%st, mesh%n)
+      if (len(why) == 0) why = list_problem(ck%st, mesh%n)
+      if (len(why) == 0) why = marks_problem(ck%marks, text_count(rec))
+      if (len(why) == 0) why = summary_problem(ck%summary)
+      if (len(why) == 0 .and. .not. all(ieee_is_finite(times))) then
+         why = 'is damaged: /identity/profile_times holds a value that is not finite'
+      else if (len(why) == 0 .and. any(abs(times) > 1.0e60_wp)) then
+         why = 'is damaged: /identity/profile_times holds ' // rtoa(maxval(abs(times)))
+      end if
       if (len(why) > 0) then
          call refuse(why)
          return
@@ -515,51 +609,14 @@ contains
          return
       end if
       ! profile times up to the checkpoint are in the outputs already: they must not change
-      call h5_get_attr(cf%h5, '/identity', 'n_profiles', i)
-      if (i > 0) then
-         call h5_get(cf%h5, '/identity/profile_times', times)
-      end if
-      if (.not. allocated(times)) then
-         allocate(times(0))
-      end if
-      if (any(.not. (abs(times) <= 1.0e60_wp))) then
-         call refuse('is damaged: /identity/profile_times holds ' // rtoa(maxval(abs(times))))
-         return
-      end if
-      if (.not. same(pack(times, nint(times / mesh%dt) <= ck%st%step), &
-                     pack(rec%profile_times, nint(rec%profile_times / mesh%dt) <= &
-                          ck%st%step))) then
+      if (.not. same(pack(times, up_to(times, mesh%dt, ck%st%step)), &
+                     pack(rec%profile_times, up_to(rec%profile_times, mesh%dt, ck%st%step)))) then
          call refuse('has other profile_times up to its t = ' // &
                      rtoa(real(ck%st%step, wp) * mesh%dt) // ' s than &run profile_times here')
          return
       end if
-      ! the run's summary
-      call summary_fields(cf, ck%summary, .false.)
-      why = read_marks(cf, ck%marks, rec)
-      if (len(why) > 0) then
-         call refuse(why)
-         return
-      end if
-      if (allocated(cf%h5%error)) then
-         call refuse('cannot be read: ' // cf%h5%error)
-         return
-      end if
-      if (summed) then
-         call h5_get_attr(cf%h5, '/', 'checksum', text)
-         if (text /= checksum_text(cf)) then
-            call refuse('is damaged: the checksum of its state, summary and output counts ' // &
-                        'is ' // checksum_text(cf) // ', it was written as ' // text)
-            return
-         end if
-      end if
       call h5_close(cf%h5)
    contains
-      !> Refuse a checkpoint of another program (exit 2), naming both.
-      subroutine refuse_program()
-         call refuse('was written by ' // text // ', this is ' // program_identity() // &
-                     ': a restart continues the run of the program that wrote it ' // &
-                     '(--restart-any-version accepts it, and every output then says so)')
-      end subroutine refuse_program
       !> Refuse the checkpoint (exit 2) with the reason, and close it.
       subroutine refuse(why)
          character(len=*), intent(in) :: why   !! the reason, after the checkpoint's path
@@ -567,6 +624,52 @@ contains
          call h5_close(cf%h5)
       end subroutine refuse
    end subroutine read_checkpoint
+
+   !> The version of a checkpoint's root attribute format (3, 2 or 1; 0: not a checkpoint).
+   pure integer function format_version(text)
+      character(len=*), intent(in) :: text   !! the attribute's value
+      select case (text)
+      case (format_name)
+         format_version = 3
+      case (format_2)
+         format_version = 2
+      case (format_1)
+         format_version = 1
+      case default
+         format_version = 0
+      end select
+   end function format_version
+
+   !> The profile times of the checkpoint's run (/identity n_profiles and profile_times),
+   !> counted in the rest of the checksum; a count that does not match them is an error in
+   !> ck%h5%error.
+   subroutine read_profile_times(ck, times)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
+      real(wp), allocatable, intent(out) :: times(:)   !! the times [s]
+      integer :: n
+      call h5_get_attr(ck%h5, '/identity', 'n_profiles', n)
+      call mix(ck%rest, int(n, int64))
+      if (n > 0) then
+         call h5_get(ck%h5, '/identity/profile_times', times)
+      end if
+      if (.not. allocated(times)) allocate(times(0))
+      if (size(times) /= max(n, 0) .or. n < 0) then
+         if (.not. allocated(ck%h5%error)) ck%h5%error = '/identity n_profiles = ' // &
+            itoa(n) // ' with ' // itoa(size(times)) // ' profile_times'
+         return
+      end if
+      if (n > 0) call mix_reals(ck%rest, times)
+   end subroutine read_profile_times
+
+   !> Which of times (s) fall on a step up to step (the nearest step to each, as the run
+   !> takes them); computed in reals, so a damaged time cannot overflow an integer.
+   pure function up_to(times, dt, step) result(mask)
+      real(wp), intent(in) :: times(:)   !! the times [s], finite
+      real(wp), intent(in) :: dt         !! the step [s]
+      integer, intent(in) :: step        !! the last step
+      logical :: mask(size(times))
+      mask = anint(times / dt) <= real(step, wp)
+   end function up_to
 
    !> Why a state read back cannot be the state of a mesh of n cells ('' when it can): every
    !> array allocated with the bounds init_state gives it, every count within its list.
@@ -584,23 +687,87 @@ contains
                bounds_are(st%s_old, 0, n + 1) .and. bounds_are(st%section, 0, n) .and. &
                bounds_are(st%strength, 0, n) .and. bounds_are(st%cell_strength, 1, n))) then
          why = 'is damaged: a state array has other bounds than the mesh gives'
+      else if (.not. (allocated(st%joined) .and. allocated(st%cracked) .and. &
+               allocated(st%fm%is_cut) .and. allocated(st%gen%frag_id) .and. &
+               allocated(st%gen%frag_parent) .and. allocated(st%gen%frag_birth))) then
+         why = 'is damaged: a list of its state is missing'
+      else if (any([lbound(st%joined, 1), ubound(st%joined, 1), lbound(st%cracked, 1), &
+               ubound(st%cracked, 1), lbound(st%fm%is_cut, 1), ubound(st%fm%is_cut, 1), &
+               lbound(st%gen%frag_id, 1), ubound(st%gen%frag_id, 1), &
+               lbound(st%gen%frag_parent, 1), ubound(st%gen%frag_parent, 1), &
+               lbound(st%gen%frag_birth, 1), ubound(st%gen%frag_birth, 1)] /= &
+               [0, n, 0, n, 1, n, 0, n, 0, n, 0, n])) then
+         why = 'is damaged: a state list has other bounds than the mesh gives'
+      else if (.not. (all(ieee_is_finite(st%ua)) .and. all(ieee_is_finite(st%ub)) .and. &
+               all(ieee_is_finite(st%dua)) .and. all(ieee_is_finite(st%dub)) .and. &
+               all(ieee_is_finite(st%s)) .and. all(ieee_is_finite(st%s_old)) .and. &
+               all(ieee_is_finite(st%section)))) then
+         why = 'is damaged: a displacement or stress of its state is not finite'
       else if (st%step < 0 .or. st%n_split < 0 .or. st%n_skip < 0 .or. st%fm%n_cut < 0 .or. &
                st%gen%n_frag_ids < 1 .or. st%n_breakable < 0 .or. st%n_breakable > n) then
          why = 'is damaged: a count of its state is out of range'
       else if (st%coh%on .and. .not. (bounds_are(st%coh%gc, 0, n) .and. &
                bounds_are(st%coh%r, 0, n) .and. bounds_are(st%coh%dc, 0, n) .and. &
                bounds_are(st%coh%dmax, 0, n) .and. bounds_are(st%coh%q, 0, n) .and. &
-               bounds_are(st%coh%offset, 0, n) .and. &
-               allocated(st%coh%active))) then
+               bounds_are(st%coh%offset, 0, n) .and. allocated(st%coh%active))) then
          why = 'is damaged: a cohesive crack array has other bounds than the mesh gives'
       else if (.not. (allocated(st%split) .and. allocated(st%skip_test) .and. &
                       allocated(st%fm%cut))) then
          why = 'is damaged: a list of its state is missing'
       else if (st%n_split > min(size(st%split), max(n - 1, 0)) .or. &
+               size(st%split) < max(1, n - 1) .or. &
                st%n_skip > size(st%skip_test) .or. st%fm%n_cut > min(size(st%fm%cut), n)) then
          why = 'is damaged: a count of its state exceeds its list'
       end if
    end function state_problem
+
+   !> Why the lists of a state whose bounds and counts fit (state_problem) cannot be used
+   !> ('' when they can): the split nodes ascending within 1..n-1, exactly the interior
+   !> nodes not joined; the cut cells within 1..n, exactly those is_cut marks; the nodes
+   !> joined this step within 0..n; fragment ids within those issued, births not after the
+   !> step; the active cohesive cracks as many as counted.
+   function list_problem(st, n) result(why)
+      type(state_t), intent(in) :: st   !! the state read back (state_problem: '')
+      integer, intent(in) :: n          !! cells of the mesh
+      character(len=:), allocatable :: why
+      integer :: c
+      why = ''
+      associate (split => st%split(1:st%n_split), cut => st%fm%cut(1:st%fm%n_cut))
+      if (any(split < 1 .or. split > n - 1)) then
+         why = 'is damaged: /state/split names a node outside 1..' // itoa(n - 1)
+         return
+      end if
+      do c = 2, size(split)
+         if (split(c) <= split(c - 1)) then
+            why = 'is damaged: /state/split is not in ascending order'
+            return
+         end if
+      end do
+      if (st%n_split /= count(.not. st%joined(1:n - 1)) .or. any(st%joined(split))) then
+         why = 'is damaged: /state/split is not the list of the split nodes of /state/joined'
+      else if (any(cut < 1 .or. cut > n)) then
+         why = 'is damaged: /state/cut names a cell outside 1..' // itoa(n)
+      else if (st%fm%n_cut /= count(st%fm%is_cut)) then
+         why = 'is damaged: /state/cut is not the list of the cells /state/is_cut marks'
+      else if (.not. all(st%fm%is_cut(cut))) then
+         why = 'is damaged: /state/cut is not the list of the cells /state/is_cut marks'
+      else if (any(st%skip_test(1:st%n_skip) < 0 .or. st%skip_test(1:st%n_skip) > n)) then
+         why = 'is damaged: /state/skip_test names a node outside 0..' // itoa(n)
+      else if (any(st%gen%frag_id < 0 .or. st%gen%frag_id > st%gen%n_frag_ids .or. &
+                   st%gen%frag_parent < 0 .or. st%gen%frag_parent > st%gen%n_frag_ids)) then
+         why = 'is damaged: a fragment id of its state is beyond the ' // &
+               itoa(st%gen%n_frag_ids) // ' issued'
+      else if (any(st%gen%frag_birth < 0 .or. st%gen%frag_birth > st%step)) then
+         why = 'is damaged: a fragment of its state is born after its step'
+      else if (st%coh%on) then
+         if (lbound(st%coh%active, 1) /= 0 .or. ubound(st%coh%active, 1) /= n) then
+            why = 'is damaged: /state/coh_active has other bounds than the mesh gives'
+         else if (st%coh%n_active /= count(st%coh%active)) then
+            why = 'is damaged: coh_n_active is not the number of active cohesive cracks'
+         end if
+      end if
+      end associate
+   end function list_problem
 
    !> Whether a is allocated with bounds lo:hi.
    pure logical function bounds_are(a, lo, hi)
@@ -612,9 +779,9 @@ contains
    end function bounds_are
 
    !> Why the checkpoint's identity does not fit this run ('' when it does): the deck, the
-   !> mesh, a load table.
-   function identity_problem(h5, rec, mesh, load) result(why)
-      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+   !> mesh, a load table; each value read is counted in the rest of the checksum.
+   function identity_problem(ck, rec, mesh, load) result(why)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(deck_record_t), intent(in) :: rec   !! the deck's record
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
@@ -625,7 +792,8 @@ contains
       integer :: i
       why = ''
       ! the deck
-      call h5_get_attr(h5, '/identity', 'deck', text)
+      call h5_get_attr(ck%h5, '/identity', 'deck', text)
+      call mix_text(ck%rest, text)
       here = deck_identity(rec)
       if (text /= here) then
          why = ('was written for another deck: ' // first_difference(text, here) // &
@@ -633,23 +801,27 @@ contains
                      'profile_times may change)')
          return
       end if
-      call h5_get_attr(h5, '/identity', 'dt', x)
-      call h5_get_attr(h5, '/identity', 'cells', i)
+      call h5_get_attr(ck%h5, '/identity', 'dt', x)
+      call mix(ck%rest, transfer(x, 0_int64))
+      call h5_get_attr(ck%h5, '/identity', 'cells', i)
+      call mix(ck%rest, int(i, int64))
       if (.not. same([x], [mesh%dt]) .or. i /= mesh%n) then
          why = ('has dt = ' // rtoa(x) // ' s and ' // itoa(i) // ' cells, this ' // &
                      'deck''s mesh dt = ' // rtoa(mesh%dt) // ' s and ' // itoa(mesh%n) // ' cells')
          return
       end if
       if (load%kind == load_table) then
-         call h5_get(h5, '/identity/load_t', tab)
+         call h5_get(ck%h5, '/identity/load_t', tab)
          if (.not. allocated(tab)) allocate(tab(0))
+         call mix_reals(ck%rest, tab)
          if (.not. same(tab, load%t)) then
             why = ('was written with another &load table (its times differ from ''' // &
                         rec%table // ''')')
             return
          end if
-         call h5_get(h5, '/identity/load_p', tab)
+         call h5_get(ck%h5, '/identity/load_p', tab)
          if (.not. allocated(tab)) allocate(tab(0))
+         call mix_reals(ck%rest, tab)
          if (.not. same(tab, load%p)) then
             why = ('was written with another &load table (its pressures differ from ''' &
                         // rec%table // ''')')
@@ -658,34 +830,76 @@ contains
       end if
    end function identity_problem
 
-   !> The marks of the outputs; why they cannot be used ('' when they can).
-   function read_marks(ck, marks, rec) result(why)
+   !> The marks of the outputs, counted in the checksum (the text files' in the rest, the
+   !> counts in the fields); a byte count that is not a whole number in 0..2^53 comes back
+   !> as -1 (marks_problem refuses it).
+   subroutine read_marks(ck, marks, rec)
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(output_marks_t), intent(inout) :: marks   !! how far the outputs reach
       type(deck_record_t), intent(in) :: rec   !! the deck's record (its gauges)
-      character(len=:), allocatable :: why
       character(len=:), allocatable :: text
       real(wp) :: x
       integer :: k
-      why = ''
       do k = 1, text_count(rec)
          call h5_get_attr(ck%h5, '/outputs', 'body' // text_extensions(k), x)
-         marks%body(k) = int(x, kind(marks%body))
-         call h5_get_attr(ck%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
-         call h5_get_attr(ck%h5, '/outputs', 'tail' // text_extensions(k), text)
-         ! a string attribute comes back without trailing blanks: pad to its length
-         marks%tail(k) = text
-         if (marks%tail_n(k) > tail_len) then
-            why = ('holds a tail of ' // itoa(marks%tail_n(k)) // ' bytes for ' // &
-                        text_extensions(k) // ' (at most ' // itoa(tail_len) // ')')
-            return
+         call mix(ck%rest, transfer(x, 0_int64))
+         marks%body(k) = -1
+         if (ieee_is_finite(x)) then
+            if (x >= 0.0_wp .and. x <= 2.0_wp**53 .and. .not. abs(x - anint(x)) > 0.0_wp) then
+               marks%body(k) = int(x, kind(marks%body))
+            end if
          end if
+         call h5_get_attr(ck%h5, '/outputs', 'tail_bytes' // text_extensions(k), marks%tail_n(k))
+         call mix(ck%rest, int(marks%tail_n(k), int64))
+         call h5_get_attr(ck%h5, '/outputs', 'tail' // text_extensions(k), text)
+         call mix_text(ck%rest, text)
+         ! a string attribute comes back without trailing blanks: padded to its length
+         marks%tail(k) = text
+         if (len(text) > tail_len) marks%tail_n(k) = -2   ! longer than any tail: refused
       end do
       call count_fields(ck, marks, .false., size(rec%gauge_x) > 0)
+   end subroutine read_marks
+
+   !> Why the marks of nt text files and the PREFIX.h5 counts cannot be used ('' when they
+   !> can): byte counts whole and not negative, each tail within its body and tail_len
+   !> (-1: the writer could not read it, refused by the restart naming the file).
+   function marks_problem(marks, nt) result(why)
+      type(output_marks_t), intent(in) :: marks   !! how far the outputs reach
+      integer, intent(in) :: nt                   !! text files of the run (text_count)
+      character(len=:), allocatable :: why
+      integer :: k
+      why = ''
       if (min(marks%rows_his, marks%rows_evt, marks%rows_xt, marks%n_prof, marks%n_frg, &
-              marks%rows_gau) < 0 &
-          .or. any(marks%body < 0)) why = 'is damaged: a count of its outputs is negative'
-   end function read_marks
+              marks%rows_gau) < 0) then
+         why = 'is damaged: a count of its outputs is negative'
+         return
+      end if
+      do k = 1, nt
+         if (marks%body(k) < 0) then
+            why = 'is damaged: /outputs body' // text_extensions(k) // ' is not a byte count'
+         else if (marks%tail_n(k) < -1 .or. marks%tail_n(k) > min(int(tail_len, int64), &
+                  marks%body(k))) then
+            why = 'is damaged: /outputs tail_bytes' // text_extensions(k) // ' = ' // &
+                  itoa(marks%tail_n(k)) // ' (at most ' // itoa(tail_len) // &
+                  ' and the body''s bytes)'
+         else if (len_trim(marks%tail(k)) > max(marks%tail_n(k), 0)) then
+            why = 'is damaged: /outputs tail' // text_extensions(k) // ' is longer than ' // &
+                  'its tail_bytes'
+         end if
+         if (len(why) > 0) return
+      end do
+   end function marks_problem
+
+   !> Why the run summary read back cannot be continued ('' when it can): its counts not
+   !> negative.
+   function summary_problem(summary) result(why)
+      type(run_summary_t), intent(in) :: summary   !! the run's summary read back
+      character(len=:), allocatable :: why
+      why = ''
+      if (min(summary%steps, summary%events, summary%checkpoints, minval(summary%n_kind)) < 0) then
+         why = 'is damaged: a count of its run summary is negative'
+      end if
+   end function summary_problem
 
    !> The one list of the outputs' row and block counts a checkpoint keeps (attributes of
    !> /outputs), written or read back; rows_gauges only by a run with gauges.

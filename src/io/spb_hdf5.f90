@@ -14,7 +14,8 @@ module spb_hdf5
       h5dset_extent_f, h5sget_simple_extent_dims_f, h5acreate_f, h5awrite_f, h5aclose_f, &
       h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
       h5aopen_f, h5aread_f, h5aget_type_f, h5tget_size_f, h5aexists_f, h5ocopy_f, &
-      h5tget_class_f, h5tis_variable_str_f, H5T_STRING_F, &
+      h5tget_class_f, h5tis_variable_str_f, H5T_STRING_F, h5aget_space_f, &
+      h5sget_simple_extent_npoints_f, &
       h5get_libversion_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_SCALAR_F, H5S_UNLIMITED_F, &
       H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, &
       H5T_NATIVE_CHARACTER, H5P_FILE_CREATE_F
@@ -732,13 +733,16 @@ contains
       call close_obj(obj)
    end function h5_has_attr
 
-   !> Open the attribute name of the object path (attr < 0 and an error if absent).
+   !> Open the attribute name of the object path (attr < 0 and an error if absent or not
+   !> a single value).
    subroutine open_attr(h5, path, name, obj, attr)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: name   !! attribute name
       integer(hid_t), intent(out) :: obj   !! an open group or dataset
-      integer(hid_t), intent(out) :: attr  !! the open attribute (< 0: absent)
+      integer(hid_t), intent(out) :: attr  !! the open attribute (< 0: absent, not one value)
+      integer(hid_t) :: space
+      integer(hsize_t) :: npoints
       integer :: hdferr
       logical :: is_dset, exists
       attr = -1
@@ -759,6 +763,17 @@ contains
       end if
       call h5aopen_f(obj, name, attr, hdferr)
       call check(h5, hdferr, 'h5aopen_f ' // path // ':' // name)
+      if (hdferr < 0) return
+      ! every attribute read here is one value: another shape would be read past its end
+      call h5aget_space_f(attr, space, hdferr)
+      npoints = -1
+      if (hdferr >= 0) call h5sget_simple_extent_npoints_f(space, npoints, hdferr)
+      if (hdferr >= 0) call h5sclose_f(space, hdferr)
+      if (npoints /= 1) then
+         call check(h5, -1, 'reading ' // path // ':' // name // ' (not a single value)')
+         call h5aclose_f(attr, hdferr)
+         attr = -1
+      end if
    end subroutine open_attr
 
    !> Close an attribute and its object.

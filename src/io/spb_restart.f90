@@ -219,11 +219,13 @@ contains
       if (marks%rows_gau > 0) call replay_gauges(prefix, old, out%n_gauges, marks%rows_gau, &
                                                  out, err)
       do k = 1, marks%n_prof
+         if (allocated(out%h5%error)) exit   ! a group missing: no use trying the others
          call h5_copy(old, '/fields/profiles/' // block_name(k), out%h5, &
                       '/fields/profiles/' // block_name(k))
       end do
       out%n_prof = marks%n_prof
       do k = 1, marks%n_frg
+         if (allocated(out%h5%error)) exit
          call h5_copy(old, '/fragments/' // block_name(k), out%h5, &
                       '/fragments/' // block_name(k))
       end do
@@ -251,7 +253,6 @@ contains
       integer :: c, r
       if (rows == 0) return
       call split(columns, names)
-      allocate(table(size(names), rows))
       do c = 1, size(names)
          call h5_get(old, path // '/' // trim(names(c)), col)
          if (.not. allocated(col)) then
@@ -265,6 +266,8 @@ contains
                'checkpoint counts ' // itoa(rows), code=exit_runtime)
             return
          end if
+         ! allocated once the first column shows the file holds the rows counted
+         if (.not. allocated(table)) allocate(table(size(names), rows))
          table(c, :) = col(1:rows)
       end do
       do r = 1, rows
