@@ -36,14 +36,17 @@ module spb_sys
          implicit none
          integer(c_int), value :: status   !! exit status of the process
       end subroutine c_exit_now
-      !> spb_file_kind (spb_sys_c.c): what a path names, through stat(2).
-      function c_file_kind(path) bind(c, name='spb_file_kind') result(r)
+      !> spb_path_query (spb_sys_c.c): a question about a path through the system (what:
+      !> 0 its kind by stat(2), 1 whether another open file holds a flock on it, 2 whether its
+      !> file system is read-only or full by statvfs(3)).
+      function c_path_query(path, what) bind(c, name='spb_path_query') result(r)
          import :: c_char, c_int
          implicit none
          ! allow(assumed-size)
          character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
+         integer(c_int), value :: what   !! the question: 0 kind, 1 lock held, 2 file system
          integer(c_int) :: r
-      end function c_file_kind
+      end function c_path_query
 
       !> spb_same_file (spb_sys_c.c): whether two paths name one file, through stat(2).
       function c_same_file(a, b) bind(c, name='spb_same_file') result(r)
@@ -55,24 +58,6 @@ module spb_sys
          character(kind=c_char), intent(in) :: b(*)   !! NUL-terminated path
          integer(c_int) :: r
       end function c_same_file
-
-      !> spb_lock_held (spb_sys_c.c): whether another open file holds a flock on path.
-      function c_lock_held(path) bind(c, name='spb_lock_held') result(r)
-         import :: c_char, c_int
-         implicit none
-         ! allow(assumed-size)
-         character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
-         integer(c_int) :: r
-      end function c_lock_held
-
-      !> spb_fs_state (spb_sys_c.c): whether path's file system is read-only or full.
-      function c_fs_state(path) bind(c, name='spb_fs_state') result(r)
-         import :: c_char, c_int
-         implicit none
-         ! allow(assumed-size)
-         character(kind=c_char), intent(in) :: path(*)   !! NUL-terminated path
-         integer(c_int) :: r
-      end function c_fs_state
 
       !> C isatty(3).
       function c_isatty(fd) bind(c, name='isatty') result(r)
@@ -244,7 +229,7 @@ contains
    !> .false. when path is missing.
    logical function sys_lock_held(path)
       character(len=*), intent(in) :: path   !! the file
-      sys_lock_held = c_lock_held(path // c_null_char) /= 0_c_int
+      sys_lock_held = c_path_query(path // c_null_char, 1_c_int) /= 0_c_int
    end function sys_lock_held
 
    !> Why the file system of path refuses writes, as words for a message: 'the file system
@@ -253,7 +238,7 @@ contains
    function sys_write_trouble(path) result(text)
       character(len=*), intent(in) :: path   !! a file on that file system
       character(len=:), allocatable :: text
-      select case (c_fs_state(path // c_null_char))
+      select case (c_path_query(path // c_null_char, 2_c_int))
       case (1)
          text = 'the file system is read-only'
       case (2)
@@ -291,7 +276,7 @@ contains
    !> file_other (a FIFO, a device, a socket: never a deck, an input or an output).
    integer function sys_file_kind(path)
       character(len=*), intent(in) :: path   !! a path
-      sys_file_kind = int(c_file_kind(trim(path) // c_null_char))
+      sys_file_kind = int(c_path_query(trim(path) // c_null_char, 0_c_int))
    end function sys_file_kind
 
    !> Whether two paths name the same existing file (a hard link, a symbolic link or another
