@@ -19,12 +19,14 @@ program spallbar
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
+   use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings
    use spb_par, only: par_init, par_finalize, par_barrier, par_rank, par_kind
    implicit none
 
    type(deck_t) :: deck
    type(sim_t) :: sim
    type(run_summary_t) :: summary
+   type(estimate_t) :: est   ! the work and the outputs of the run, before it starts
    type(spb_error_t), allocatable :: err
    character(len=:), allocatable :: deck_path, prefix, restart_path
    logical :: quiet, sweep
@@ -52,26 +54,30 @@ program spallbar
                ''' was written by ' // ck%program // ', this is ' // program_identity() // &
                '; the outputs are not one uninterrupted run of one program (every header says so)'
          end if
+         est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, ck%st%step, .true.)
          if (.not. quiet) then
             write(output_unit, '(a)') program_identity() // ': ' // trim(deck%run%title)
             call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
             write(output_unit, '(a,i0,a,es12.5,a)') '  restart from ' // restart_path // &
                ' at step ', ck%st%step, ' (t = ', real(ck%st%step, wp) * sim%mesh%dt, ' s)'
+            write(output_unit, '(a)') '  ' // estimate_line(est)
          end if
          flush(output_unit)   ! a log of stdout and stderr together: the header first
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                      resume=ck, batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps))
+                      resume=ck, batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps, est))
       end block
    else
+      est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, 0, .true.)
       if (.not. quiet) then
          write(output_unit, '(a)') program_identity() // ': ' // trim(deck%run%title)
          call write_mesh_summary(output_unit, sim%mesh, sim%report, '  ')
+         write(output_unit, '(a)') '  ' // estimate_line(est)
       end if
       flush(output_unit)   ! a log of stdout and stderr together: the header first
       call catch_stop_signals()
       call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                   batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps))
+                   batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps, est))
    end if
    if (allocated(err)) call fail(err)
    if (.not. quiet) then
@@ -156,7 +162,8 @@ contains
          if (rank == 0) call warn(warnings(deck, 0))
          call catch_stop_signals()
          call run_sweep(deck, prefix, rank == 0 .and. (.not. quiet) .and. stderr_is_terminal(), &
-                        ssum, err, batch_seconds=merge(batch, 0.0_wp, rank == 0))
+                        ssum, err, batch_seconds=merge(batch, 0.0_wp, rank == 0), &
+                        echo=rank == 0 .and. .not. quiet)
       end if
       if (rank == 0 .and. .not. quiet .and. ssum%cases > 0) then
          write(output_unit, '(a,i0,a,i0,a,a,a,a,a,f0.3,a)') '  done: ', ssum%cases, ' cases on ', &
@@ -193,7 +200,8 @@ contains
       write(output_unit, '(a)') 'usage: spallbar DECK.nml [--output PREFIX] [--quiet] ' // &
          '[--progress SECONDS] [--restart CHECKPOINT.h5 [--restart-any-version]]'
       write(output_unit, '(a)') '       (--progress: when stderr is not a terminal, a ' // &
-         'progress line every SECONDS, default 30, 0 none; on a terminal it updates in place)'
+         'progress line every SECONDS, default 30, 0 none, the first after 5 s at most; ' // &
+         'on a terminal it updates in place)'
       write(output_unit, '(a)') '       [mpirun -np K] spallbar --sweep SWEEP.nml [--output ' // &
          'PREFIX] [--quiet] [--progress SECONDS]   (PREFIX.sweep, PREFIX_sweep.h5; ' // &
          par_kind // ')'
@@ -215,16 +223,23 @@ contains
    end subroutine warn
 
    !> The deck's plausibility warnings as stderr lines ('spallbar: warning: ...'); steps: the
-   !> run's step count.
-   function warnings(d, steps) result(lines)
+   !> run's step count; with the run's estimate, its warnings too (an hour, 10 GB).
+   function warnings(d, steps, e) result(lines)
       type(deck_t), intent(in) :: d        !! the deck
       integer, intent(in) :: steps         !! steps of the run
-      character(len=320), allocatable :: lines(:)
+      type(estimate_t), intent(in), optional :: e   !! the run's estimate
+      character(len=420), allocatable :: lines(:)
       integer :: k
       associate (w => deck_warnings(d, steps))
          allocate(lines(size(w)))
          do k = 1, size(w)
             lines(k) = 'spallbar: warning: ' // trim(w(k))
+         end do
+      end associate
+      if (.not. present(e)) return
+      associate (w => estimate_warnings(d, e))
+         do k = 1, size(w)
+            lines = [character(len=420) :: lines, 'spallbar: warning: ' // trim(w(k))]
          end do
       end associate
    end function warnings

@@ -5,13 +5,21 @@ step and the time; --quiet silences it; a bad value is exit 2 with one line. A s
 'N of M cases' every SECONDS and at the end. In a log of stdout and stderr together the
 run's header comes first.
 
+The first line within 10 s whatever a step costs (issue 32): on a mesh of 1e6 cells, where
+1024 steps take seconds to minutes, the first line of the default --progress 30 comes at
+5 s of stepping (it came at 30 s), and with --progress 1 after a second, before step 1024
+(the clock was looked at only every 1024 steps before); both within 10 s of the start.
+
 usage: cli_progress.py SPALLBAR WORKDIR
 """
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import threading
+import time
 
 from clitools import Checks, run
 
@@ -27,8 +35,36 @@ SWEEP = """&run t_end = 2e-3 /
 &strength_field kind = 'weibull', modulus = 6, scale = 3e8 /
 &sweep realizations = 120 /
 """
+SHORT = DECK.replace("t_end = 2.0e-2", "t_end = 5.0e-4")
+# 1e6 cells: a step takes tens of ms in Release, more in Debug, so that 1024 steps are far
+# beyond 5 s; t_end is a day of steps (the run is stopped by SIGTERM after its first line)
+BIG = """&run t_end = 1.0e-3, title = 'big', history_every = 100000 /
+&mesh cells = 1000000 /
+&segments n = 1, length = 5.0, young = 200e9, density = 7850 /
+&load kind = 'power', p0 = 1e8, t_k = 1e-6 /
+"""
 LINE = re.compile(r"^spallbar: +(\d+\.\d)%  +\S+ steps/s  ETA +\S+ s  \(step (\d+) of (\d+), "
                   r"t = +\S+ s, \S+ s wall\)$")
+
+
+def first_line(exe, args, work):
+    """Start the run, wait for its first stderr line that is no warning (120 s at most), stop
+    it (SIGTERM): that line, the seconds since the start, the warnings before it."""
+    t0 = time.monotonic()
+    p = subprocess.Popen([exe] + args, cwd=work, stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
+    watchdog = threading.Timer(120.0, p.kill)
+    watchdog.start()
+    warnings = []
+    line = p.stderr.readline().rstrip("\n")
+    while line.startswith("spallbar: warning: "):
+        warnings.append(line)
+        line = p.stderr.readline().rstrip("\n")
+    wall = time.monotonic() - t0
+    p.send_signal(signal.SIGTERM)
+    p.communicate()
+    watchdog.cancel()
+    return line, wall, warnings
 
 
 def main():
@@ -50,9 +86,29 @@ def main():
     print(f"ok   --progress 0.05: {len(lines)} lines, e.g. {lines[0] if lines else ''}")
     r = run(exe, ["p.nml", "--progress", "0.05", "--quiet"], work)
     check(r.returncode == 0 and r.stderr == "", f"--quiet: {r.stderr[:200]!r}")
-    r = run(exe, ["p.nml"], work)
+    with open(os.path.join(work, "short.nml"), "w") as f:
+        f.write(SHORT)
+    r = run(exe, ["short.nml"], work)
     check(r.returncode == 0 and r.stderr == "", f"default 30 s on a short run: {r.stderr[:200]!r}")
-    print("ok   --quiet and a run shorter than 30 s: nothing on stderr")
+    print("ok   --quiet and a run shorter than 5 s: nothing on stderr")
+    with open(os.path.join(work, "big.nml"), "w") as f:
+        f.write(BIG)
+    for args, lo, hi in (([], 5.0, 9.0), (["--progress", "1"], 1.0, 6.0)):
+        line, wall, warnings = first_line(exe, ["big.nml"] + args, work)
+        # the estimate's warning first (1e12 cell-steps: hours)
+        check(len(warnings) == 1 and "&mesh cells = 1000000 and &run t_end" in warnings[0],
+              f"big mesh {args}: warnings {warnings}")
+        m = LINE.match(line)
+        check(m is not None, f"big mesh {args}: first stderr line {line!r}")
+        if m:
+            step = int(m.group(2))
+            said = float(re.search(r"([0-9.]+) s wall\)$", line).group(1))
+            # with --progress 1 the line comes at the first look at the clock after 1 s:
+            # before step 1024 (where the clock was looked at first before)
+            check(lo <= said <= hi and (step < 1024 or not args),
+                  f"big mesh {args}: first line at {said} s wall, step {step}: {line!r}")
+            print(f"ok   1e6 cells {args or 'default'}: the first line {wall:.1f} s after the "
+                  f"start, at {said} s of the run, step {step}")
     for bad in ("-1", "x", "1e9"):
         r = run(exe, ["p.nml", "--progress", bad], work)
         e = r.stderr.strip().splitlines()

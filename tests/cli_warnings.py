@@ -2,14 +2,18 @@
 """Plausibility warnings (issue 21): a value outside the ranges of engineering materials and
 loads gets a warning on stderr naming the variable, its value and the likely unit slip; the
 run still runs (exit 0); --quiet keeps the warnings; &run warnings = .false. silences them;
-the decks of input/ get none.
+the decks of input/ get none, nor the estimate's (issue 32: more than an hour, more than
+10 GB), whose warnings name &mesh cells and &run t_end, or the variable of each large output.
 
 usage: cli_warnings.py SPALLBAR INPUT_DIR WORKDIR
 """
 import glob
 import os
 import shutil
+import signal
+import subprocess
 import sys
+import threading
 
 from clitools import Checks, run
 
@@ -28,6 +32,34 @@ CASES = [  # (what changes, the words every warning line must hold)
     (dict(t_k="50"), ["&load: t_k = 50 s", "us meant?", "50 us = 5e-5 s"]),
     (dict(strength="20"), ["&segments: strength(1) = 20 Pa", "20 MPa = 2e7 Pa meant?"]),
 ]
+
+
+GAUGES = """&run t_end = 0.198 /
+&mesh cells = 10000 /
+&segments n = 1, length = 1.0, young = 200e9, density = 7850 /
+&load kind = 'power', p0 = 1e8, t_k = 1e-6 /
+&gauges x = 100*0.50005, every = 1 /
+"""
+
+
+def warnings_then_stop(exe, args, work):
+    """The run's warnings (the stderr lines before its first other line or the first 30 s),
+    then SIGTERM."""
+    p = subprocess.Popen([exe] + args, cwd=work, stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
+    lines = []
+    stop = threading.Timer(30.0, p.send_signal, [signal.SIGTERM])
+    stop.start()
+    line = p.stderr.readline()
+    while line.startswith("spallbar: warning: "):
+        lines.append(line.rstrip("\n"))
+        if "more than 10 GB" in line:
+            break
+        line = p.stderr.readline()
+    stop.cancel()
+    p.send_signal(signal.SIGTERM)
+    p.communicate()
+    return lines
 
 
 def main():
@@ -89,8 +121,19 @@ def main():
     r = run(exe, ["w.nml", "--quiet"], work)
     check(r.returncode == 0 and r.stderr == "", f"a plausible deck: {r.stderr!r}")
     print("ok   warnings = .false. silences them; a plausible deck has none")
+    # the issue's deck (issue 32, item 8): 100 gauges every step on 1e4 cells to 0.198 s
+    # would write about 63 GB of .gau and 7 GB of .his; the run is stopped once it warned
+    with open(os.path.join(work, "g.nml"), "w") as f:
+        f.write(GAUGES)
+    lines = warnings_then_stop(exe, ["g.nml", "--quiet"], work)
+    volume = [l for l in lines if "more than 10 GB" in l]
+    check(len(volume) == 1 and all(w in volume[0] for w in (
+        "the outputs would be about 70", ".gau 63.2 GB from &gauges every = 1 with 100 gauges",
+        ".his 7.15 GB from &run history_every = 1")), f"gauges every step: {lines}")
+    print(f"ok   {volume[0] if volume else lines}")
     decks = sorted(glob.glob(os.path.join(indir, "*.nml")) +
-                   glob.glob(os.path.join(indir, "example3_case2", "*.nml")))
+                   glob.glob(os.path.join(indir, "example3_case2", "*.nml")) +
+                   glob.glob(os.path.join(indir, "long", "*.nml")))
     for d in decks:
         r = run(exe, [os.path.abspath(d), "--output", os.path.join(work, "in"), "--quiet"], work)
         check(r.returncode == 0 and r.stderr == "", f"{d}: {r.stderr!r}")

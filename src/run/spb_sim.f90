@@ -32,6 +32,7 @@ module spb_sim
       claim_outputs, check_written, write_gauge_row, publish_outputs, where_outputs
    use spb_restart, only: resume_outputs, drop_set_aside
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
+   use spb_estimate, only: progress_period
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress, act_gauge
    implicit none
@@ -40,8 +41,13 @@ module spb_sim
       run_options_t, memory_text, run_base_bytes, run_cell_bytes
 
    !> The between-step actions run every check_every steps (finiteness, energy guard) and
-   !> every progress_every steps (progress line, flush), besides the deck's own periods.
-   integer, parameter :: check_every = 64, progress_every = 1024
+   !> every progress_period(cells) steps (a look at the clock: the progress line, the flush;
+   !> 1024 steps, fewer on a large mesh, spb_estimate), besides the deck's own periods.
+   integer, parameter :: check_every = 64
+   !> In a batch log the first progress line comes after this at the latest, whatever
+   !> --progress asks for the lines after it: with the set-up (4 s for 5e6 cells) and a look
+   !> at the clock every 2^24 cell-steps, within 10 s of the start (issue 32) [s].
+   real(wp), parameter :: first_batch_seconds = 5.0_wp
 
    !> Memory of a run, resident bytes (Release, /usr/bin/time -f %M): 204 MB with 1e6 cells,
    !> 395 MB with 2e6, 778 MB with 4e6: 196 bytes per cell over about 13 MB. Counted: mesh
@@ -75,6 +81,7 @@ module spb_sim
       real(wp) :: batch_seconds = 0.0_wp             !! a progress line every so many seconds
                                                      !! (stderr not a terminal; 0: none)
       integer(int64) :: c_batch = 0                  !! system_clock at the last batch line
+      logical :: batch_shown = .false.               !! a batch line was written
       logical :: ck_on = .false.                     !! write checkpoints
       integer :: next_profile = 1                    !! index of the next profile in sched%at
       integer(int64) :: c0 = 0, c_last = 0, rate = 1 !! system_clock at the start, at the
@@ -432,7 +439,7 @@ contains
          if (run%ck_on) call schedule_every(run%sched, act_checkpoint, opt%checkpoint_every)
          if (size(sim%gauges) > 0 .and. run%to_files) call schedule_every(run%sched, act_gauge, &
                                                                           opt%gauge_every)
-         call schedule_every(run%sched, act_progress, progress_every)
+         call schedule_every(run%sched, act_progress, progress_period(sim%mesh%n))
          call schedule_at(run%sched, nint(opt%profile_times / sim%mesh%dt))
       end associate
       ! the first profile still to write
@@ -579,14 +586,23 @@ contains
                                                  real(run%rate, wp))
          end if
          if (run%batch_seconds > 0.0_wp .and. real(c_now - run%c_batch, wp) >= &
-             run%batch_seconds * real(run%rate, wp)) then
+             batch_interval(run) * real(run%rate, wp)) then
             run%c_batch = c_now
+            run%batch_shown = .true.
             call show_progress(sim, n, real(c_now - run%c0, wp) / real(run%rate, wp), &
                                batch=.true.)
          end if
       end if
       stop_now = .false.
    end subroutine after_step
+
+   !> Seconds between batch progress lines: --progress SECONDS, but the first comes after
+   !> first_batch_seconds at the latest [s].
+   pure real(wp) function batch_interval(run) result(seconds)
+      type(run_t), intent(in) :: run       !! the run's context (its clock)
+      seconds = run%batch_seconds
+      if (.not. run%batch_shown) seconds = min(seconds, first_batch_seconds)
+   end function batch_interval
 
    !> Between rows: the state's finiteness and the energy guard (a failing one writes its row).
    subroutine check_between_rows(sim, run, summary, err)

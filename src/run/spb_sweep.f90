@@ -18,6 +18,8 @@ module spb_sweep
    use spb_load, only: load_t
    use spb_problem, only: problem_t
    use spb_random, only: realization_seed
+   use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings, &
+      sweep_estimate
    use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model, memory_text, &
       run_base_bytes
    use spb_diag, only: frag_info_t, fragment_list
@@ -192,7 +194,7 @@ contains
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
    !> over the ranks; rank 0 writes PREFIX.sweep and PREFIX_sweep.h5.
-   subroutine run_sweep(deck, prefix, progress, summary, err, batch_seconds)
+   subroutine run_sweep(deck, prefix, progress, summary, err, batch_seconds, echo)
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
@@ -200,6 +202,9 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       real(wp), intent(in), optional :: batch_seconds   !! rank 0: a progress line every so
                                                         !! many seconds (stderr not a terminal)
+      logical, intent(in), optional :: echo    !! rank 0: the estimate on stdout (its
+                                               !! warnings go to stderr all the same)
+      type(estimate_t), allocatable :: est_values(:)
       real(wp), allocatable :: rows(:, :)
       integer, allocatable :: hists(:, :)
       real(wp) :: l_hist, t0, tables
@@ -216,9 +221,11 @@ contains
       rank = par_rank()
       nranks = par_size()
       call check_tables(deck, tables, err)
-      if (.not. allocated(err)) call check_cases(deck, tables, l_hist, err)
+      if (.not. allocated(err)) call check_cases(deck, tables, l_hist, est_values, err)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
+      if (rank == 0) call tell_estimate(deck, sweep_estimate(est_values, &
+                                        deck%sweep%realizations, nranks), echo)
       ! the outputs once every rank can run the cases (PREFIX.lock is made last)
       if (rank == 0) call claim_sweep_outputs(prefix, deck_record(deck), err)
       if (nranks > 1) call agree(rank, nranks, err)
@@ -376,10 +383,12 @@ contains
 
    !> Every value's deck and mesh must build (bad input: exit 2 before anything runs); the
    !> histogram range is the longest bar of the cases.
-   subroutine check_cases(deck, tables, l_hist, err)
+   subroutine check_cases(deck, tables, l_hist, est_values, err)
       type(deck_t), intent(in) :: deck     !! the deck
       real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
       real(wp), intent(out) :: l_hist      !! histogram range: the longest bar of the cases [m]
+      type(estimate_t), allocatable, intent(out) :: est_values(:)   !! the work of a case of
+                                                                    !! each value
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(deck_t) :: cdeck
       type(mesh_t) :: mesh
@@ -390,6 +399,7 @@ contains
       integer :: iv, realization, nrep
       nrep = max(1, deck%sweep%realizations)
       l_hist = 0.0_wp
+      allocate(est_values(max(1, deck%sweep%n_values)))
       do iv = 1, max(1, deck%sweep%n_values)
          call case_deck(deck, (iv - 1) * nrep + 1, cdeck, value, realization, err)
          if (.not. allocated(err)) call setup_model(cdeck, prob, mesh, load, report, err, &
@@ -400,8 +410,26 @@ contains
             return
          end if
          l_hist = max(l_hist, mesh%x(mesh%n) - mesh%x(0))
+         est_values(iv) = estimate_run(cdeck, mesh%n, mesh%nsteps, mesh%dt, 0, .false.)
       end do
    end subroutine check_cases
+
+   !> The sweep's estimate: its line on stdout (echo), its warnings on stderr.
+   subroutine tell_estimate(deck, est, echo)
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(estimate_t), intent(in) :: est  !! the whole sweep's estimate
+      logical, intent(in), optional :: echo   !! the line on stdout
+      integer :: k
+      if (present(echo)) then
+         if (echo) write(output_unit, '(a)') '  ' // estimate_line(est)
+         flush(output_unit)
+      end if
+      associate (w => estimate_warnings(deck, est))
+         do k = 1, size(w)
+            write(error_unit, '(a)') 'spallbar: warning: ' // trim(w(k))
+         end do
+      end associate
+   end subroutine tell_estimate
 
    !> The memory of the sweep's tables (a row and a histogram per case) against the limit
    !> of this process, before they are allocated; the cases' runs are checked beside them
