@@ -31,6 +31,7 @@ program spallbar
    character(len=:), allocatable :: deck_path, prefix, restart_path
    logical :: quiet, sweep
    logical :: any_version   ! --restart-any-version: a checkpoint of another program restarts
+   character(len=:), allocatable :: note   ! what a restart of another program's checkpoint says
    real(wp) :: batch   ! seconds between progress lines when stderr is not a terminal (0: none)
 
    call heap_for_large_arrays()
@@ -48,11 +49,13 @@ program spallbar
          call read_checkpoint(restart_path, sim%record, sim%mesh, sim%load, ck, err, &
                               any_version=any_version)
          if (allocated(err)) call fail(err)
+         ! another program's checkpoint (--restart-any-version): said once the run starts
+         note = ''
          if (ck%program /= program_identity()) then
             sim%record%restarted_from = ck%program
-            write(error_unit, '(a)') 'spallbar: --restart-any-version: ''' // restart_path // &
-               ''' was written by ' // ck%program // ', this is ' // program_identity() // &
-               '; the outputs are not one uninterrupted run of one program (every header says so)'
+            note = 'spallbar: --restart-any-version: ''' // restart_path // ''' was written by ' &
+               // ck%program // ', this is ' // program_identity() // '; the outputs are ' // &
+               'not one uninterrupted run of one program (every header says so)'
          end if
          est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, ck%st%step, .true.)
          if (.not. quiet) then
@@ -65,7 +68,8 @@ program spallbar
          flush(output_unit)   ! a log of stdout and stderr together: the header first
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                      resume=ck, batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps, est))
+                      resume=ck, batch_seconds=batch, notes=[character(len=1024) :: &
+                      trim(note), warnings(deck, sim%mesh%nsteps, est)])
       end block
    else
       est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, 0, .true.)

@@ -565,8 +565,11 @@ contains
                      ''', and says format ' // itoa(version))
          return
       end if
-      call h5_get_attr(cf%h5, '/identity', 'revision', text)
-      call mix_text(cf%rest, text)
+      ! the git revision came with format 3 (a format 2 checkpoint has none)
+      if (version >= 3) then
+         call h5_get_attr(cf%h5, '/identity', 'revision', text)
+         call mix_text(cf%rest, text)
+      end if
       why = identity_problem(cf, rec, mesh, load)
       if (len(why) > 0) then
          call refuse(why)

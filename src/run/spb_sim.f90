@@ -365,7 +365,7 @@ contains
          block
             integer :: k
             do k = 1, size(notes)
-               write(error_unit, '(a)') trim(notes(k))
+               if (len_trim(notes(k)) > 0) write(error_unit, '(a)') trim(notes(k))
             end do
          end block
       end if
