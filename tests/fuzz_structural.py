@@ -449,8 +449,9 @@ def deck_cases(rng):
             "the group's name is broken")
         add("CRLF line ends", text.replace("\n", "\r\n"))
         add("CR line ends", text.replace("\n", "\r"))
-        add("UTF-8 BOM", "\ufeff" + text)
-        add("UTF-8 BOM + CRLF", "\ufeff" + text.replace("\n", "\r\n"))
+        add("UTF-8 BOM", "\ufeff" + text, None, 0, "doc: a UTF-8 BOM is read as nothing")
+        add("UTF-8 BOM + CRLF", "\ufeff" + text.replace("\n", "\r\n"), None, 0,
+            "doc: a UTF-8 BOM is read as nothing")
         for junk in ("junk", "/", "&", "x = 1", "'str'", "&run", "1e308", "!\x07", "\x00",
                      "&" + gnames[-1] + " /junk"):
             add(f"trailing garbage {junk!r}", text + junk + "\n", None, 2,
@@ -501,8 +502,9 @@ def table_cases():
               "inf_time": "0 0\nInf 5\n", "slash": "0 0\n0.1 5 /\n", "repeat": "0 0\n2*0.1\n",
               "amp": "&load\n0 0\n", "quote": "'0' 0\n", "tab": "0\t0\n0.1\t5\n",
               "bel": "0 0\n0.1 5\x07\n", "long_row": "0 " + "0" * 2000 + "\n",
-              "empty": "", "comma": "0,0\n0.1,5\n", "three": "0 0 0\n", "minus_zero": "-0 -0\n"}
-    valid = {"ok", "crlf", "tab", "comma", "minus_zero"}
+              "empty": "", "comma": "0,0\n0.1,5\n", "three": "0 0 0\n", "minus_zero": "-0 -0\n",
+              "tab_line": "0 0\n\t\n0.1 5\n"}
+    valid = {"ok", "crlf", "tab", "comma", "minus_zero", "bom", "tab_line"}
     cases = []
     for label, t in tables.items():
         cases.append(Case(f"load table {label}", "table_base_hdf5",
