@@ -68,8 +68,8 @@ program spallbar
          flush(output_unit)   ! a log of stdout and stderr together: the header first
          call catch_stop_signals()
          call sim_run(sim, prefix, (.not. quiet) .and. stderr_is_terminal(), summary, err, &
-                      resume=ck, batch_seconds=batch, notes=[character(len=1024) :: &
-                      trim(note), warnings(deck, sim%mesh%nsteps, est)])
+                      resume=ck, batch_seconds=batch, &
+                      notes=noted(note, warnings(deck, sim%mesh%nsteps, est)))
       end block
    else
       est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, 0, .true.)
@@ -225,6 +225,20 @@ contains
          write(error_unit, '(a)') trim(lines(k))
       end do
    end subroutine warn
+
+   !> The lines a run says on stderr once it starts: note (when not empty), then lines. (An
+   !> array constructor with a type-spec over trim(note) and a function result corrupts the
+   !> heap under gfortran 12: built element by element here.)
+   function noted(note, lines) result(all)
+      character(len=*), intent(in) :: note       !! a line first ('': none)
+      character(len=*), intent(in) :: lines(:)   !! the other lines
+      character(len=max(len(note), len(lines))), allocatable :: all(:)
+      integer :: k0
+      k0 = merge(1, 0, len_trim(note) > 0)
+      allocate(all(size(lines) + k0))
+      if (k0 == 1) all(1) = note
+      all(k0 + 1:) = lines
+   end function noted
 
    !> The deck's plausibility warnings as stderr lines ('spallbar: warning: ...'); steps: the
    !> run's step count; with the run's estimate, its warnings too (an hour, 10 GB).
