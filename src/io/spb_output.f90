@@ -464,7 +464,7 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
       character(len=len(prefix) + 10) :: files(15)
       integer :: k, n, nt
-      logical :: made(2)
+      logical :: made(2), lockless(2)
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
                          'such as ''' // prefix // '/run''')
@@ -493,17 +493,29 @@ contains
          call not_an_input('--output: ''' // trim(files(k)) // '''', trim(files(k)), rec, err)
          if (allocated(err)) return
       end do
-      do k = 1, n
-         call check_writable('--output', trim(files(k)), err)
-         if (allocated(err)) return
-      end do
       call claim_checkpoint(checkpoint, rec, files(1:n + 1), err)
       if (allocated(err)) return
+      ! the locks before any file is probed: a run refused below never touches a file that
+      ! a running one writes (its probe of a temporary would delete that run's)
       made = .false.
-      call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made(1), err)
+      lockless = .false.
+      call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made(1), lockless(1), &
+                     err)
       if (len(checkpoint) > 0 .and. .not. allocated(err)) call hold_lock(checkpoint // &
-         '.lock', '&run: checkpoint = ''' // checkpoint // '''', made(2), err)
-      if (.not. allocated(err)) call others_writing(prefix, files(1:n), checkpoint, err)
+         '.lock', '&run: checkpoint = ''' // checkpoint // '''', made(2), lockless(2), err)
+      if (.not. allocated(err)) call others_writing(prefix, files(1:n + 1), checkpoint, err)
+      do k = 1, n
+         if (allocated(err)) exit
+         call check_writable('--output', trim(files(k)), err)
+      end do
+      if (len(checkpoint) > 0 .and. .not. allocated(err)) call check_writable('&run: ' // &
+         'checkpoint = ''' // checkpoint // '''', checkpoint // '.part', err)
+      ! a lock file that cannot be made where every output can: said after the probes, which
+      ! name the cause (a missing folder) when there is one
+      if (lockless(1) .and. .not. allocated(err)) call make_error(err, '--output: cannot ' // &
+         'make the lock file ''' // prefix // '.lock''')
+      if (lockless(2) .and. .not. allocated(err)) call make_error(err, '&run: checkpoint = ''' // &
+         checkpoint // ''': cannot make the lock file ''' // checkpoint // '.lock''')
       if (allocated(err)) then
          ! leave no file: the lock files this run made go again
          if (made(1)) call remove_file(prefix // '.lock')
@@ -512,16 +524,17 @@ contains
    end subroutine claim_outputs
 
    !> Refuse (err) when another run holds the lock of a file this one writes: another run's
-   !> checkpoint (CHECKPOINT.lock) that is one of files, or this run's checkpoint that is an
-   !> output or temporary of another run's prefix (PREFIX.lock of the prefix it belongs to).
+   !> checkpoint (CHECKPOINT.lock) that is one of files (the lock among them), or this run's
+   !> checkpoint that is an output, temporary or the lock of another run's prefix (PREFIX.lock
+   !> of the prefix it belongs to).
    subroutine others_writing(prefix, files, checkpoint, err)
       character(len=*), intent(in) :: prefix       !! output path prefix
       character(len=*), intent(in) :: files(:)     !! the run's outputs and temporaries
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
-      character(len=*), parameter :: tails(14) = [character(len=10) :: '.his', '.prf', &
+      character(len=*), parameter :: tails(15) = [character(len=10) :: '.his', '.prf', &
          '.evt', '.frg', '.gau', '.h5', '.xmf', '.his.part', '.prf.part', '.evt.part', &
-         '.frg.part', '.gau.part', '.h5.part', '.xmf.part']
+         '.frg.part', '.gau.part', '.h5.part', '.xmf.part', '.lock']
       integer :: k, m
       do k = 1, size(files)
          if (sys_lock_held(trim(files(k)) // '.lock')) then
@@ -548,8 +561,8 @@ contains
    end subroutine others_writing
 
    !> The checkpoint's part of claim_outputs: not a file of the run (files: its outputs and
-   !> lock), the deck, its load table, a folder or a FIFO/device, and its .part writable
-   !> (checked without truncating one a running program may be writing).
+   !> lock), the deck, its load table, a folder or a FIFO/device (its .part is probed by
+   !> claim_outputs once the locks are held).
    subroutine claim_checkpoint(checkpoint, rec, files, err)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
@@ -573,6 +586,10 @@ contains
       call not_an_input('&run: checkpoint = ''' // checkpoint // ''' (written as ''' // &
                         checkpoint // '.part'')', checkpoint // '.part', rec, err)
       if (allocated(err)) return
+      ! nor its lock file
+      call not_an_input('&run: checkpoint = ''' // checkpoint // ''' (its lock ''' // &
+                        checkpoint // '.lock'')', checkpoint // '.lock', rec, err)
+      if (allocated(err)) return
       if (sys_is_directory(checkpoint)) then
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is a folder; ' // &
                          'give a file such as ''' // checkpoint // '/run.h5''')
@@ -580,8 +597,6 @@ contains
          call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is not a ' // &
                          'regular file (a FIFO, a device or a socket); give a file of its own')
       end if
-      if (.not. allocated(err)) call check_writable('&run: checkpoint = ''' // checkpoint // &
-                                                    '''', checkpoint // '.part', err)
    end subroutine claim_checkpoint
 
    !> Refuse (err) a file the run writes that is one of its inputs, the deck or its load
@@ -605,18 +620,20 @@ contains
 
    !> Hold the lock file path for the life of the process: a second run that would write
    !> the same files is refused (what: how the message names them). made: the file did not
-   !> exist before.
-   subroutine hold_lock(path, what, made, err)
+   !> exist before; lockless: it cannot be made (the caller says why).
+   subroutine hold_lock(path, what, made, lockless, err)
       character(len=*), intent(in) :: path         !! the lock file
       character(len=*), intent(in) :: what         !! --output PREFIX or the checkpoint
       logical, intent(out) :: made                 !! the lock file is new
+      logical, intent(out) :: lockless             !! the lock file cannot be made
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
       integer :: state
       inquire(file=path, exist=made)
       made = .not. made
       call sys_lock(path, state)
+      lockless = state == 1
       if (state == 1) then
-         call make_error(err, what // ': cannot make the lock file ''' // path // '''')
+         made = .false.
       else if (state /= 0) then
          call make_error(err, what // ' is in use by another spallbar run (' // path // &
             ' is locked); wait for it or give other names')
@@ -652,13 +669,17 @@ contains
                            prefix // trim(tails(k)), rec, err)
          if (allocated(err)) return
       end do
-      do k = 1, size(tails) - 1
-         call check_writable('--output', prefix // trim(tails(k)), err)
-         if (allocated(err)) return
-      end do
+      ! the lock first, then the probes (see claim_outputs)
       block
-         logical :: made
-         call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made, err)
+         logical :: made, lockless
+         call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made, lockless, err)
+         do k = 1, size(tails) - 1
+            if (allocated(err)) exit
+            call check_writable('--output', prefix // trim(tails(k)), err)
+         end do
+         if (lockless .and. .not. allocated(err)) call make_error(err, '--output: cannot ' // &
+            'make the lock file ''' // prefix // '.lock''')
+         if (allocated(err) .and. made) call remove_file(prefix // '.lock')
       end block
    end subroutine claim_sweep_outputs
 
@@ -682,7 +703,7 @@ contains
          if (ios == 0) close(u)
       else
          open(newunit=u, file=path, status='new', action='write', iostat=ios, iomsg=msg)
-         if (ios == 0) close(u, status='delete')
+         if (ios == 0) close(u, status='delete', iostat=ios, iomsg=msg)
       end if
       if (ios /= 0) call make_error(err, what // ': cannot write ''' // path // ''': ' // &
                                     trim(msg))
