@@ -372,9 +372,15 @@ def case_kept(rng, exe, d, refs, case):
     ck_there = ck and os.path.exists(os.path.join(d, ck))
     if not ck_there:
         now = digests(d, names)
-        if now != kept:
-            return case.fail("lost", f"exit {rc}: previous outputs changed "
-                                     f"{[n for n in names if now.get(n) != kept.get(n)]}")
+        changed = [n for n in names if now.get(n) != kept.get(n)]
+        # killed while it renamed its finished outputs (doc/outputs.md: each PREFIX.ext is
+        # whole, the previous run's or this one's): a changed file must be the new run's
+        alone = digests(refs.get(second, prefix, "second.nml"), names) if changed else {}
+        wrong = [n for n in changed if n.endswith((".his", ".prf", ".evt", ".frg", ".gau")) and
+                 now.get(n) != alone.get(n)]
+        if changed and (rc == 3 or wrong):
+            return case.fail("lost", f"exit {rc}: previous outputs changed {changed}, "
+                                     f"not to the new run's: {wrong}")
         his = os.path.join(d, prefix + ".his.part")
         if os.path.exists(his):
             try:
@@ -448,9 +454,10 @@ def case_together(rng, exe, d, refs, case):
         if crashed(rc, err):
             return case.fail("crash", f"run {k}: exit {rc}: {err.strip()[-300:]}")
     both = res[0][0] == 0 and res[1][0] == 0 and common
-    if both and any(n.endswith(".lock") for n in common):
-        # a lock renamed over (doc/outputs.md: removing it would let two runs both lock)
-        return case.fail("silent-wrong", f"both exit 0 though both write {sorted(common)}")
+    if both and any(c and c.endswith(".lock") for c in cks):
+        # a checkpoint renamed over a lock file (doc/outputs.md: refused, whatever runs)
+        return case.fail("silent-wrong", f"both exit 0 though a checkpoint is a lock file: "
+                                         f"{sorted(common)}")
     if both:   # one may have ended before the other began: judged by the outputs
         case.label += " [both exit 0: one after the other?]"
     for k, (rc, err) in enumerate(res):

@@ -586,6 +586,15 @@ contains
       call not_an_input('&run: checkpoint = ''' // checkpoint // ''' (written as ''' // &
                         checkpoint // '.part'')', checkpoint // '.part', rec, err)
       if (allocated(err)) return
+      ! a lock file's name: a later run on that prefix would truncate it as its lock
+      if (len(checkpoint) >= 5) then
+         if (checkpoint(len(checkpoint) - 4:) == '.lock') then
+            call make_error(err, '&run: checkpoint = ''' // checkpoint // ''' is named like ' // &
+               'a lock file (spallbar truncates PREFIX.lock and CHECKPOINT.lock to lock them); ' // &
+               'give the checkpoint another name')
+            return
+         end if
+      end if
       ! nor its lock file
       call not_an_input('&run: checkpoint = ''' // checkpoint // ''' (its lock ''' // &
                         checkpoint // '.lock'')', checkpoint // '.lock', rec, err)
