@@ -85,6 +85,16 @@ def resign(path):
         h.attrs["checksum"] = np.bytes_((fields + rest_sum(h)).encode())
 
 
+def set_program(path, program, sign=True):
+    """Write /identity program of the checkpoint at path (a fixed-length string, as spallbar
+    writes it) and, with sign, the checksum that fits it, through one handle."""
+    with h5py.File(path, "r+") as h:
+        h["identity"].attrs["program"] = np.bytes_(program.encode())
+        if sign:
+            fields = _bytes(h.attrs["checksum"]).decode()[:16]
+            h.attrs["checksum"] = np.bytes_((fields + rest_sum(h)).encode())
+
+
 def checksum_matches(path):
     """Whether the rest part of the stored checksum is what the file holds."""
     with h5py.File(path, "r") as h:
