@@ -231,7 +231,8 @@ contains
          end if
       end do
       st%n_breakable = count(st%strength(1:n-1) >= 0.0_wp .and. st%joined(1:n-1))
-      allocate(st%split(max(1, n - 1)))
+      ! defined beyond n_split too: a checkpoint writes (and counts in its checksum) the whole list
+      allocate(st%split(max(1, n - 1)), source=0)
       st%n_split = 0
       do i = 1, n - 1
          if (st%joined(i)) cycle
