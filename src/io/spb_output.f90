@@ -532,10 +532,15 @@ contains
       character(len=*), intent(in) :: files(:)     !! the run's outputs and temporaries
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
-      character(len=*), parameter :: tails(15) = [character(len=10) :: '.his', '.prf', &
-         '.evt', '.frg', '.gau', '.h5', '.xmf', '.his.part', '.prf.part', '.evt.part', &
-         '.frg.part', '.gau.part', '.h5.part', '.xmf.part', '.lock']
+      character(len=10) :: tails(15)
       integer :: k, m
+      ! every file a prefix may have: the text files, PREFIX.h5 and .xmf, each as itself and
+      ! as its temporary, and the lock (from the lists that name them, never a copy)
+      tails(1:7) = [character(len=10) :: text_extensions, '.h5', '.xmf']
+      do k = 1, 7
+         tails(7 + k) = trim(tails(k)) // part_suffix
+      end do
+      tails(15) = '.lock'
       do k = 1, size(files)
          if (sys_lock_held(trim(files(k)) // '.lock')) then
             call make_error(err, '--output: ''' // trim(files(k)) // ''' is the checkpoint ' // &
