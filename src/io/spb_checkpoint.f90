@@ -22,6 +22,7 @@ module spb_checkpoint
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
+   use spb_ends, only: face_top, face_bottom
    use spb_diag, only: run_summary_t, first_fractures
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
@@ -190,12 +191,12 @@ contains
       call field(ck, writing, '/state', 's_scale', st%s_scale)
       call field(ck, writing, '/state', 'strain_cut', st%fm%strain_cut)
       call field(ck, writing, '/state', 'e_contact', st%ledger%e_contact)
-      call field(ck, writing, '/state', 's_static_top', st%ends%s_static_top)
-      call field(ck, writing, '/state', 's_static_bot', st%ends%s_static_bot)
-      call field(ck, writing, '/state', 'v_far_top', st%ends%v_far_top)
-      call field(ck, writing, '/state', 'v_far_bot', st%ends%v_far_bot)
-      call field(ck, writing, '/state', 'w_in_top', st%ends%w_in_top)
-      call field(ck, writing, '/state', 'w_in_bot', st%ends%w_in_bot)
+      call field(ck, writing, '/state', 's_static_top', st%ends(face_top)%s_static)
+      call field(ck, writing, '/state', 's_static_bot', st%ends(face_bottom)%s_static)
+      call field(ck, writing, '/state', 'v_far_top', st%ends(face_top)%v_far)
+      call field(ck, writing, '/state', 'v_far_bot', st%ends(face_bottom)%v_far)
+      call field(ck, writing, '/state', 'w_in_top', st%ends(face_top)%w_in)
+      call field(ck, writing, '/state', 'w_in_bot', st%ends(face_bottom)%w_in)
       call field(ck, writing, '/state', 'w_load', st%ledger%w_load)
       call field(ck, writing, '/state', 'w_transmit', st%ledger%w_transmit)
       call field(ck, writing, '/state', 'e_fracture', st%ledger%e_fracture)
@@ -206,17 +207,17 @@ contains
       call field(ck, writing, '/state', 'e_lost_wave', st%ledger%e_lost_wave)
       call field(ck, writing, '/state', 'i_ends', st%ledger%i_ends)
       call field(ck, writing, '/state', 'i_support', st%ledger%i_support)
-      call field(ck, writing, '/state', 'u_base', st%ends%u_base)
-      call field(ck, writing, '/state', 'v_land_top', st%ends%v_land_top)
-      call field(ck, writing, '/state', 'v_land_bot', st%ends%v_land_bot)
-      call field(ck, writing, '/state', 'base_contact', st%ends%base_contact)
-      call field(ck, writing, '/state', 'landing_top', st%ends%landing_top)
-      call field(ck, writing, '/state', 'landing_bot', st%ends%landing_bot)
+      call field(ck, writing, '/state', 'u_base', st%ends(face_bottom)%u_contact)
+      call field(ck, writing, '/state', 'v_land_top', st%ends(face_top)%v_land)
+      call field(ck, writing, '/state', 'v_land_bot', st%ends(face_bottom)%v_land)
+      call field(ck, writing, '/state', 'base_contact', st%ends(face_bottom)%contact)
+      call field(ck, writing, '/state', 'landing_top', st%ends(face_top)%landing)
+      call field(ck, writing, '/state', 'landing_bot', st%ends(face_bottom)%landing)
       ! added later (a checkpoint without it was written by a version without the credit)
-      call later_field(ck, writing, '/state', 'u_credit', st%ends%u_credit)
+      call later_field(ck, writing, '/state', 'u_credit', st%u_credit)
       ! added with the constant-velocity ends (0 in a checkpoint of a version without them)
-      call later_field(ck, writing, '/state', 'v_end_top', st%ends%v_end_top)
-      call later_field(ck, writing, '/state', 'v_end_bot', st%ends%v_end_bot)
+      call later_field(ck, writing, '/state', 'v_end_top', st%ends(face_top)%v_end)
+      call later_field(ck, writing, '/state', 'v_end_bot', st%ends(face_bottom)%v_end)
       call later_field(ck, writing, '/state', 'w_support', st%ledger%w_support)
       call cohesive_fields(ck, st, writing)
       call array_field(ck, writing, 'ua', st%ua)
@@ -577,6 +578,8 @@ contains
       end if
       ! everything else, unused until the checksum is compared
       call state_fields(cf, ck%st, .false.)
+      ! what the ends are is the mesh's (the deck's); the checkpoint holds what they keep
+      ck%st%ends%kind = mesh%end_kind
       call read_profile_times(cf, times)
       call summary_fields(cf, ck%summary, .false.)
       call read_marks(cf, ck%marks, rec)

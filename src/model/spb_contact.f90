@@ -13,7 +13,8 @@
 !> the step for the whole bar.
 module spb_contact
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_fixed, end_base, end_free
+   use spb_mesh, only: mesh_t
+   use spb_ends, only: face_top, face_bottom, is_free_face, has_base
    use spb_state, only: state_t, close_node
    use spb_section, only: section_stress_a
    use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
@@ -146,10 +147,10 @@ contains
          end if
       end do
       end do
-      if (mesh%bottom == end_base .and. .not. st%ends%base_contact) then
+      if (has_base(st%ends(face_bottom)) .and. .not. st%ends(face_bottom)%contact) then
          tol = 0.0_wp
          if (rules == events_admissible) tol = eps_rel * mesh%dx(mesh%n)
-         if (st%ua(mesh%n) - st%ends%u_base > tol) then
+         if (st%ua(mesh%n) - st%ends(face_bottom)%u_contact > tol) then
             if (rules == events_admissible) then
                call fragment_span(mesh, st, mesh%n, r_top, r_bot)
                r_bot = mesh%n
@@ -186,7 +187,7 @@ contains
       if (.not. held_odd(mesh, st, 0, mesh%n)) return
       gain = region_wave(mesh, st, g, i_top, i_bot, 0, mesh%n) - e_wave0
       if (.not. gain > 0.0_wp) return
-      st%ends%u_credit = st%ends%u_credit + &
+      st%u_credit = st%u_credit + &
                          credit_position(mesh, g, min(gain, credit_bound(mesh, g, 0, mesh%n)))
    end subroutine keep_credit
 
@@ -199,7 +200,7 @@ contains
       integer, intent(in) :: i             !! split node
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       if (i == mesh%n) then
-         d_acc = (st%ua(i) - st%dua(i)) - st%ends%u_base
+         d_acc = (st%ua(i) - st%dua(i)) - st%ends(face_bottom)%u_contact
       else
          d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
       end if
@@ -260,8 +261,8 @@ contains
       end if
       call fragment_span(mesh, st, i, j, k)
       if (i == mesh%n) then
-         d_acc = (st%ua(i) - st%dua(i)) - st%ends%u_base
-         d_del = st%ua(i) - st%ends%u_base
+         d_acc = (st%ua(i) - st%dua(i)) - st%ends(face_bottom)%u_contact
+         d_del = st%ua(i) - st%ends(face_bottom)%u_contact
          call land_side(mesh, st, policy, d_acc, top, amount)
          call land_side(mesh, st, policy, d_del, bot, amount)
          r_top = min(j, top, bot)
@@ -429,8 +430,8 @@ contains
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       f = 0.0_wp
-      if (top == 0 .and. mesh%top == end_free) f = f + st%s(0)
-      if (bot == mesh%n .and. mesh%bottom == end_free) f = f - st%s(mesh%n + 1)
+      if (top == 0 .and. is_free_face(st%ends(face_top))) f = f + st%s(0)
+      if (bot == mesh%n .and. is_free_face(st%ends(face_bottom))) f = f - st%s(mesh%n + 1)
    end function end_force
 
    !> Velocity change w of a region shifted on its path (see shift_late): the real root
@@ -634,9 +635,9 @@ contains
             y = corr - x
          end if
          ! a lower side that reaches the base and would be pushed into it stays, as if held
-         if (.not. anch_l .and. bot == mesh%n .and. mesh%bottom == end_base .and. &
+         if (.not. anch_l .and. bot == mesh%n .and. has_base(st%ends(face_bottom)) .and. &
              y > 0.0_wp) then
-            if (st%ua(mesh%n) + y - st%ends%u_base > 0.0_wp) then
+            if (st%ua(mesh%n) + y - st%ends(face_bottom)%u_contact > 0.0_wp) then
                blocked = .true.
                cycle
             end if
@@ -736,7 +737,7 @@ contains
       n = mesh%n
       dua0 = du_before_a(mesh, st, g, n)
       d_acc = gap_at_n(mesh, st, n, tol)
-      d_del = st%ua(n) - st%ends%u_base
+      d_del = st%ua(n) - st%ends(face_bottom)%u_contact
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call land_side(mesh, st, policy, corr, j, shift_amount)
       if (rules == events_admissible) then
@@ -794,7 +795,7 @@ contains
       ev%stress_bound = abs(2.0_wp * st%s(n))                      ! (6.3), alpha -> infinity
       e0 = node_energy(mesh, st, g, n)
       du_trial = st%dua(n)
-      st%ends%base_contact = .true.
+      st%ends(face_bottom)%contact = .true.
       st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * du_trial / mesh%dt
       st%dua(n) = 0.0_wp
       st%dub(n) = 0.0_wp
@@ -811,8 +812,8 @@ contains
          ! collision stress (5.6), alpha -> infinity
          st%s_old(n) = st%s_old(n) - mesh%stiff(n) * du_trial
          st%section(n) = 0.0_wp
-         st%ends%landing_bot = .true.
-         st%ends%v_land_bot = du_trial / mesh%dt
+         st%ends(face_bottom)%landing = .true.
+         st%ends(face_bottom)%v_land = du_trial / mesh%dt
          call skip_next(st, n)
       end if
       st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, n))

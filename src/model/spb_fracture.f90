@@ -8,7 +8,8 @@
 !> energy change is booked in e_fracture, so the ledger stays closed.
 module spb_fracture
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_fixed, end_base, end_velocity
+   use spb_mesh, only: mesh_t
+   use spb_ends, only: face_top, face_bottom, holds, on_base
    use spb_state, only: state_t, open_node, separates
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation, ev_crack
    use spb_arrays, only: append
@@ -46,10 +47,8 @@ contains
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      anchored = (top == 0 .and. (mesh%top == end_fixed .or. mesh%top == end_velocity)) .or. &
-                 (bot == mesh%n .and. (mesh%bottom == end_fixed .or. &
-                  mesh%bottom == end_velocity .or. &
-                  (mesh%bottom == end_base .and. st%ends%base_contact)))
+      anchored = (top == 0 .and. holds(st%ends(face_top))) .or. &
+                 (bot == mesh%n .and. holds(st%ends(face_bottom)))
    end function anchored
 
    !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
@@ -138,10 +137,10 @@ contains
 
       if (st%coh%n_pending > 0) call crack_events(mesh, st, events)
       if (st%coh%n_active > 0) call complete_cracks(mesh, st, events)
-      if (st%n_breakable == 0 .and. .not. (mesh%bottom == end_base .and. st%ends%base_contact)) return
+      if (st%n_breakable == 0 .and. .not. on_base(st%ends(face_bottom))) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
       eps = eps_rel * st%s_scale
-      if (mesh%bottom == end_base .and. st%ends%base_contact) call lift_off(mesh, st, g, eps, events, &
+      if (on_base(st%ends(face_bottom))) call lift_off(mesh, st, g, eps, events, &
                                                                        rules, i_top, i_bot)
       if (st%n_breakable == 0) return
       if (mesh%full_mass) then
@@ -350,7 +349,7 @@ contains
                            -mesh%stiff(i) * (du_a(m) - st%dua(i)), &
                            mesh%stiff(i + 1) * (du_b(m) - st%dub(i)))
       end do
-      if (nb > 0 .and. abs(st%ends%u_credit) > 0.0_wp) then
+      if (nb > 0 .and. abs(st%u_credit) > 0.0_wp) then
          call pay_credit(mesh, st, g, brk(1), brk(nb), i_top, i_bot)
       end if
       do m = 1, nb
@@ -380,8 +379,8 @@ contains
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp) :: gamma, gamma0
-      gamma = st%ends%u_credit / credit_position(mesh, g, 1.0_wp)
-      st%ends%u_credit = 0.0_wp
+      gamma = st%u_credit / credit_position(mesh, g, 1.0_wp)
+      st%u_credit = 0.0_wp
       if (.not. gamma > 0.0_wp) return
       gamma0 = gamma
       call pay_from_face(mesh, st, g, i_low, .false., i_low, mesh%n, i_top, i_bot, gamma)
@@ -584,8 +583,8 @@ contains
       else if (.not. mesh%full_mass) then
          st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
       end if
-      st%ends%base_contact = .false.
-      st%ends%u_credit = 0.0_wp
+      st%ends(face_bottom)%contact = .false.
+      st%u_credit = 0.0_wp
       st%section(n) = 0.0_wp
       st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, n))
       if (rules /= events_admissible .and. .not. anchored(mesh, st, j, n)) then
@@ -601,7 +600,7 @@ contains
       ev%stress = s_base
       ev%dt_bound = mesh%dt
       ev%dx_bound = 0.0_wp
-      ev%opening = st%ends%u_base - st%ua(n)
+      ev%opening = st%ends(face_bottom)%u_contact - st%ua(n)
       ev%frag_above = st%gen%frag_id(j)
       call push_event(events, ev)
       st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)

@@ -13,7 +13,8 @@
 !> the nodes gauges read are listed in mesh%watch, which the step keeps as well.
 module spb_gauge
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, node_area
+   use spb_mesh, only: mesh_t, node_area
+   use spb_ends, only: face_top, face_bottom, is_free_face
    use spb_load, only: load_t
    use spb_state, only: state_t
    use spb_step, only: face_load_integrals
@@ -99,18 +100,18 @@ contains
       real(wp) :: q_top, q_bot
       integer :: k, i, c, n
       n = mesh%n
-      call face_load_integrals(mesh, load, st%step, q_top, q_bot)
+      call face_load_integrals(mesh, load, st%step, st, q_top, q_bot)
       do k = 1, size(gauges)
          i = gauges(k)%node
          c = gauges(k)%cell
          if (i == 0) then
             stress(k) = st%section(0)
-            if (mesh%top == end_free) stress(k) = q_top / mesh%dt
+            if (is_free_face(st%ends(face_top))) stress(k) = q_top / mesh%dt
             velocity(k) = st%dub(0) / mesh%dt
             u(k) = st%ub(0)
          else if (i == n) then
             stress(k) = st%section(n)
-            if (mesh%bottom == end_free) stress(k) = q_bot / mesh%dt
+            if (is_free_face(st%ends(face_bottom))) stress(k) = q_bot / mesh%dt
             velocity(k) = st%dua(n) / mesh%dt
             u(k) = st%ua(n)
          else if (i > 0) then

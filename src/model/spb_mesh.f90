@@ -35,8 +35,9 @@ module spb_mesh
       integer :: n = 0                       !! cells; nodes are 0..n
       real(wp) :: dt = 0.0_wp                !! time step [s]
       integer :: nsteps = 0                  !! steps to reach t_end
-      integer :: top = end_free              !! end condition at node 0
-      integer :: bottom = end_free           !! end condition at node n
+      integer :: end_kind(2) = end_free      !! end condition (end_*) of the top and the bottom
+                                             !! (face_top, face_bottom): the state's end
+                                             !! records take it (spb_ends)
       logical :: full_mass = .false.         !! the paper's naive comparison model (Fig. 12)
       ! per segment
       integer, allocatable :: first(:), last(:)        !! cell range of each segment
@@ -170,8 +171,7 @@ contains
       mesh%dt = dt
       ! a t_end within round-off of a grid time is that grid time
       mesh%nsteps = max(1, ceiling(steps_real - 1.0e-9_wp))
-      mesh%top = prob%top
-      mesh%bottom = prob%bottom
+      mesh%end_kind = [prob%top, prob%bottom]
       mesh%n = sum(cells)
       mesh%wave_speed = a
       mesh%impedance = zz
@@ -234,12 +234,12 @@ contains
          end do
          ! a transmitting end continues the bar: its node carries the half mass of the
          ! virtual cell beyond, so that it moves like an interior node
-         if (mesh%top == end_transmit) mesh%ma(0) = 0.5_wp * mesh%dm(1)
-         if (mesh%bottom == end_transmit) mesh%mb(n) = 0.5_wp * mesh%dm(n)
+         if (prob%top == end_transmit) mesh%ma(0) = 0.5_wp * mesh%dm(1)
+         if (prob%bottom == end_transmit) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          ! the naive model has no half masses at free faces: a free end node is a full mass
          mesh%full_mass = prob%full_mass
-         if (mesh%full_mass .and. mesh%top == end_free) mesh%ma(0) = 0.5_wp * mesh%dm(1)
-         if (mesh%full_mass .and. mesh%bottom == end_free) mesh%mb(n) = 0.5_wp * mesh%dm(n)
+         if (mesh%full_mass .and. prob%top == end_free) mesh%ma(0) = 0.5_wp * mesh%dm(1)
+         if (mesh%full_mass .and. prob%bottom == end_free) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          mesh%inv_m = 1.0_wp / (mesh%ma + mesh%mb)
          allocate(mesh%m_above(0:n))
          mesh%m_above(0) = 0.0_wp

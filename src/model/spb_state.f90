@@ -7,70 +7,16 @@
 module spb_state
    use spb_kinds, only: wp
    use spb_problem, only: problem_t
-   use spb_mesh, only: mesh_t, end_fixed, end_free, end_base, end_transmit, end_velocity
+   use spb_mesh, only: mesh_t
+   use spb_ledger, only: ledger_t
+   use spb_ends, only: end_t, face_top, face_bottom, start_end, is_free_face, is_fixed_end, &
+      has_base, moves_with_bar, place_on_base
    use spb_static, only: static_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
    implicit none
    private
    public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths, &
       separates
-
-   !> The running balances: work done on the bar, energy that events removed or changed,
-   !> and the impulses of the momentum balance (the history's ledger columns).
-   type :: ledger_t
-      real(wp) :: w_load = 0.0_wp             !! work of the end loads so far [J/m^2]
-      real(wp) :: w_transmit = 0.0_wp         !! work of transmitting ends so far [J/m^2]
-      real(wp) :: w_support = 0.0_wp          !! work of constant-velocity ends so far [J/m^2]
-      real(wp) :: e_fracture = 0.0_wp         !! energy removed by fracture corrections [J/m^2]
-      real(wp) :: e_join = 0.0_wp             !! energy removed by joins (collisions) [J/m^2]
-      real(wp) :: e_shift = 0.0_wp            !! gravity energy changed by collision shifts [J/m^2]
-      real(wp) :: e_contact = 0.0_wp          !! energy the cut springs' non-linear force
-                                              !! removed from the scheme's invariant [J/m^2]
-      real(wp) :: w_wave = 0.0_wp             !! work of the loads and transmitting ends on the
-                                              !! continuum state (spb_wave) [J/m^2]
-      real(wp) :: e_lost_wave = 0.0_wp        !! wave energy (with its gravity term) that events
-                                              !! removed [J/m^2]
-      real(wp) :: p_shift = 0.0_wp            !! momentum collision shifts gave the shifted
-                                              !! masses, moving them along their path [kg/(m s)]
-      real(wp) :: i_ends = 0.0_wp             !! impulse of the end stresses (loads and
-                                              !! transmitting ends) on the end nodes [kg/(m s)]
-      real(wp) :: i_support = 0.0_wp          !! impulse of the supports (fixed and
-                                              !! constant-velocity ends, the base): the
-                                              !! momentum they took [kg/(m s)]
-      real(wp) :: w_cohesive = 0.0_wp         !! work the cohesive tractions took from the
-                                              !! waves, sum of I (delta^{n+1} - delta^n)/dt:
-                                              !! dissipated plus held by the cracks (spb_cohesive;
-                                              !! in w_wave with the other sign) [J/m^2]
-      real(wp) :: e_closing = 0.0_wp          !! of w_cohesive, what closing faces' contact took
-                                              !! beyond the law's integral (>= 0) [J/m^2]
-      real(wp) :: e_traction = 0.0_wp         !! the same work in the scheme's own measure,
-                                              !! P^n (delta^{n+1} - delta^{n-1})/2 (in e_lost) [J/m^2]
-   end type ledger_t
-
-   !> The ends: what lies beyond a transmitting end, the rigid base, supports being hit.
-   type :: ends_t
-      real(wp) :: s_static_top = 0.0_wp       !! static stress a transmitting top carries [Pa]
-      real(wp) :: s_static_bot = 0.0_wp       !! static stress a transmitting bottom carries [Pa]
-      real(wp) :: v_far_top = 0.0_wp          !! velocity of the bar's continuation beyond a
-                                              !! transmitting top: the end's at t = 0 [m/s]
-      real(wp) :: v_far_bot = 0.0_wp          !! the same beyond a transmitting bottom [m/s]
-      real(wp) :: v_end_top = 0.0_wp          !! velocity of a constant-velocity top: node 0's
-                                              !! at t = 0, kept for the whole run [m/s]
-      real(wp) :: v_end_bot = 0.0_wp          !! the same of a constant-velocity bottom [m/s]
-      real(wp) :: w_in_top = 0.0_wp           !! interval of the wave that came in through a
-                                              !! transmitting top over the last step [m]
-      real(wp) :: w_in_bot = 0.0_wp           !! the same through a transmitting bottom [m]
-      logical :: base_contact = .false.       !! the bottom face rests on the base
-      real(wp) :: u_base = 0.0_wp             !! displacement of node n at which it touches [m]
-      real(wp) :: u_credit = 0.0_wp           !! the landing credit of a bar held at both ends
-                                              !! with an odd cell count, as a position: its
-                                              !! gravity term is lower by g dt u_credit/(2C)
-                                              !! (spb_wave, held_weights); 0 otherwise [m]
-      logical :: landing_top = .false.        !! the next support section stress starts from
-      logical :: landing_bot = .false.        !! a moving bar half (collision with a support):
-      real(wp) :: v_land_top = 0.0_wp         !! (3.1) then uses this velocity for v^n and
-      real(wp) :: v_land_bot = 0.0_wp         !! S^{n-1/2} = 0 [m/s]
-   end type ends_t
 
    !> The fragments' genealogy, kept per node (memory does not grow with the events).
    type :: genealogy_t
@@ -138,7 +84,12 @@ module spb_state
       integer, allocatable :: skip_test(:)    !! nodes joined at t^{n+1} this step (delay rule):
       integer :: n_skip = 0                   !! their section stress starts next step
       type(ledger_t) :: ledger                !! work, event energies, impulses
-      type(ends_t) :: ends                    !! transmitting ends, base, supports being hit
+      type(end_t) :: ends(2)                  !! the top and the bottom end (face_top,
+                                              !! face_bottom): spb_ends
+      real(wp) :: u_credit = 0.0_wp           !! the landing credit of a bar held at both ends
+                                              !! with an odd cell count, as a position: its
+                                              !! gravity term is lower by g dt u_credit/(2C)
+                                              !! (spb_wave, held_weights); 0 otherwise [m]
       type(genealogy_t) :: gen                !! the fragments' ids and parents
       type(full_mass_t) :: fm                 !! the full-mass model's cut springs
       type(cohesive_t) :: coh                 !! cohesive cracks
@@ -152,7 +103,7 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(out) :: st     !! the state
       integer :: n, j, i
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap, s_top, s_bot
 
       n = mesh%n
       g = prob%gravity
@@ -181,27 +132,21 @@ contains
       st%gen%frag_id = 0
       st%gen%frag_id(0) = 1
       st%gen%n_frag_ids = 1
-      v = initial_velocities(prob, mesh)
+      st%ends%kind = mesh%end_kind
+      v = initial_velocities(prob, mesh, st%ends)
+      s_top = 0.0_wp
+      s_bot = 0.0_wp
       if (prob%static_start) then
          ! the base carries weight only where the bar starts resting on it (in contact below);
          ! a bottom face moving at t = 0 is not touched by it (issue 17)
-         call static_state(mesh, g, prob%base_gap <= 0.0_wp .and. .not. (abs(v(n) * dt) > 0.0_wp), &
-                           u, s, st%ends%s_static_top, st%ends%s_static_bot)
+         call static_state(mesh, st%ends, g, prob%base_gap <= 0.0_wp .and. &
+                           .not. (abs(v(n) * dt) > 0.0_wp), u, s, s_top, s_bot)
       else
          u = 0.0_wp
          s = 0.0_wp
       end if
-      ! a transmitting end continues the bar without end: beyond it the bar keeps the motion
-      ! its end had at t = 0 (as it keeps the static stress), so a bar in uniform motion stays
-      ! in it and no end depends on the frame of reference
-      if (mesh%top == end_transmit) st%ends%v_far_top = v(0)
-      if (mesh%bottom == end_transmit) st%ends%v_far_bot = v(n)
-      ! a constant-velocity end keeps the velocity its node starts with
-      if (mesh%top == end_velocity) st%ends%v_end_top = v(0)
-      if (mesh%bottom == end_velocity) st%ends%v_end_bot = v(n)
-      ! what comes in through them before any load: the continuation's static stress and motion
-      st%ends%w_in_top = 0.5_wp * (st%ends%s_static_top / mesh%z(1) + st%ends%v_far_top) * dt
-      st%ends%w_in_bot = 0.5_wp * (-st%ends%s_static_bot / mesh%z(n) + st%ends%v_far_bot) * dt
+      call start_end(st%ends(face_top), face_top, v(0), s_top, mesh%z(1), dt)
+      call start_end(st%ends(face_bottom), face_bottom, v(n), s_bot, mesh%z(n), dt)
       st%ua = u
       st%ub = u
       st%dua = v * dt
@@ -240,13 +185,8 @@ contains
          st%split(st%n_split) = i
       end do
       if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
-      if (mesh%bottom == end_base) then
-         ! touching and at rest: in contact; moving onto it: the first step lands by the
-         ! timing rule (and logs the event); moving away from it: not in contact
-         st%ends%u_base = st%ua(n) + prob%base_gap
-         st%ends%base_contact = prob%base_gap <= 0.0_wp .and. .not. (abs(st%dua(n)) > 0.0_wp)
-         if (st%ends%base_contact) st%dua(n) = 0.0_wp
-      end if
+      if (has_base(st%ends(face_bottom))) call place_on_base(st%ends(face_bottom), st%ua(n), &
+                                                            prob%base_gap, st%dua(n))
       st%s = 0.0_wp
       st%s(1:n) = s
       ! s^{-1} = s^0 - E (du_{k-1} - du_k)/dx, for the strain-energy product at the first row
@@ -258,9 +198,10 @@ contains
 
    !> Node velocities at t = 0: the segment's, at an interface the momentum-weighted mean;
    !> with a strain rate the uniform stretching about the centre of mass; held ends at rest.
-   pure function initial_velocities(prob, mesh) result(v)
+   pure function initial_velocities(prob, mesh, ends) result(v)
       type(problem_t), intent(in) :: prob   !! the problem
       type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(end_t), intent(in) :: ends(2)   !! the ends (their kinds)
       real(wp) :: v(0:mesh%n)                  !! [m/s]
       integer :: i, j, k, n
       real(wp) :: va, vb, xc
@@ -287,14 +228,14 @@ contains
             ! a free face moves in the first step with the mean velocity of its cell: that is
             ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
             ! (spb_wave); the face's own v(x) would start one that grows linearly
-            if (mesh%top == end_free) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
-            if (mesh%bottom == end_free .or. mesh%bottom == end_base) then
+            if (is_free_face(ends(face_top))) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
+            if (is_free_face(ends(face_bottom)) .or. has_base(ends(face_bottom))) then
                v(n) = v(n) - prob%strain_rate * 0.5_wp * mesh%dx(n)
             end if
          end associate
       end if
-      if (mesh%top == end_fixed) v(0) = 0.0_wp
-      if (mesh%bottom == end_fixed) v(n) = 0.0_wp
+      if (is_fixed_end(ends(face_top))) v(0) = 0.0_wp
+      if (is_fixed_end(ends(face_bottom))) v(n) = 0.0_wp
    end function initial_velocities
 
    !> Section stresses S^{-1/2} of the initial state, from its cell stresses s.
@@ -318,26 +259,28 @@ contains
          do i = 1, n - 1
             st%section(i) = s(i) + 0.5_wp * mesh%dm(i) * g
          end do
-         if (mesh%top /= end_free) st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
-         if (mesh%bottom /= end_free) st%section(n) = s(n) + 0.5_wp * mesh%dm(n) * g
+         if (.not. is_free_face(st%ends(face_top))) st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
+         if (.not. is_free_face(st%ends(face_bottom))) st%section(n) = s(n) + 0.5_wp * mesh%dm(n) * g
       else
          do i = 1, n - 1
             st%section(i) = s(i)
          end do
          ! a bar moving against a fixed end at t = 0 collides with it at t^0
-         if (mesh%top == end_fixed) then
-            st%ends%landing_top = .true.
-            st%ends%v_land_top = prob%velocity(1)
+         if (is_fixed_end(st%ends(face_top))) then
+            st%ends(face_top)%landing = .true.
+            st%ends(face_top)%v_land = prob%velocity(1)
          end if
-         if (mesh%bottom == end_fixed) then
-            st%ends%landing_bot = .true.
-            st%ends%v_land_bot = prob%velocity(mesh%nseg)
+         if (is_fixed_end(st%ends(face_bottom))) then
+            st%ends(face_bottom)%landing = .true.
+            st%ends(face_bottom)%v_land = prob%velocity(mesh%nseg)
          end if
          ! a transmitting or a constant-velocity end moves with the bar next to it: no collision
-         if (mesh%top == end_transmit .or. mesh%top == end_velocity) st%section(0) = s(1)
-         if (mesh%bottom == end_transmit .or. mesh%bottom == end_velocity) st%section(n) = s(n)
+         if (moves_with_bar(st%ends(face_top))) st%section(0) = s(1)
+         if (moves_with_bar(st%ends(face_bottom))) st%section(n) = s(n)
       end if
-      if (mesh%bottom == end_base .and. .not. st%ends%base_contact) st%section(n) = 0.0_wp
+      if (has_base(st%ends(face_bottom)) .and. .not. st%ends(face_bottom)%contact) then
+         st%section(n) = 0.0_wp
+      end if
       do i = 1, n - 1
          if (.not. st%joined(i)) st%section(i) = 0.0_wp
       end do

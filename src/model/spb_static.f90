@@ -8,7 +8,8 @@
 !> the tridiagonal stiffness system is solved.
 module spb_static
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_base
+   use spb_mesh, only: mesh_t
+   use spb_ends, only: end_t, face_top, face_bottom, is_free_face, has_base
    implicit none
    private
    public :: static_state
@@ -17,8 +18,9 @@ contains
 
    !> Static displacements u(0:n), cell stresses s(1:n) and end stresses [Pa] that the
    !> supports exert (s_top acts on node 0 like a cell above it, s_bot like a cell below).
-   pure subroutine static_state(mesh, g, base_holds, u, s, s_top, s_bot)
+   pure subroutine static_state(mesh, ends, g, base_holds, u, s, s_top, s_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(end_t), intent(in) :: ends(2)   !! the ends (their kinds)
       real(wp), intent(in) :: g                   !! gravity [m/s^2]
       logical, intent(in) :: base_holds           !! a base bottom holds the bar at t = 0
       real(wp), intent(out) :: u(0:mesh%n)        !! [m]
@@ -31,8 +33,9 @@ contains
 
       n = mesh%n
       m = mesh%ma + mesh%mb
-      top_held = mesh%top /= end_free
-      bot_held = mesh%bottom /= end_free .and. (mesh%bottom /= end_base .or. base_holds)
+      top_held = .not. is_free_face(ends(face_top))
+      bot_held = .not. is_free_face(ends(face_bottom)) .and. &
+                 (.not. has_base(ends(face_bottom)) .or. base_holds)
       if (top_held .and. .not. bot_held) then
          ! node equilibrium s_i - s_{i+1} + m_i g = 0 from the free bottom (s_{n+1} = 0)
          s(n) = -m(n) * g

@@ -2,9 +2,11 @@
 !> section stresses (3.1)-(3.2) (METHOD.md §4) it evaluates at every breakable node.
 module spb_step
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_fixed, end_transmit, end_base, end_velocity
-   use spb_load, only: load_t, load_none, face_top, step_load, load_integral
+   use spb_mesh, only: mesh_t
+   use spb_load, only: load_t, load_none, step_load, load_integral
    use spb_state, only: state_t
+   use spb_ends, only: face_step_t, face_top, face_bottom, face_stress, face_load_share, &
+      hold_face, book_ends, transmits, has_base
    use spb_wave, only: transmit_residuals
    use spb_crack, only: start_cracks, cohesive_step
    implicit none
@@ -12,32 +14,12 @@ module spb_step
    public :: section_stress_a, section_stress_b, advance, advance_joined, joined_only, &
       end_stresses, face_load_integrals
 
-   !> What one step did at the two end nodes: what the end stresses' impulse and work, the
-   !> supports' impulse and the support section stresses of that step are booked from.
-   type :: end_step_t
-      real(wp) :: s_top = 0.0_wp, s_bot = 0.0_wp           !! end stresses of the step [Pa]
-      real(wp) :: du_top_old = 0.0_wp, du_bot_old = 0.0_wp !! increments of B_0, A_n before it [m]
-      real(wp) :: du_top = 0.0_wp, du_bot = 0.0_wp         !! the same after it [m]
-      logical :: held_top = .false., held_bot = .false.    !! a support held the end node
-      real(wp) :: p_top = 0.0_wp, p_bot = 0.0_wp           !! ma du_A + mb du_B it stopped,
-                                                           !! relative to the support's V dt
-                                                           !! (0 at a fixed end) [kg/m]
-      real(wp) :: s_1 = 0.0_wp, s_n = 0.0_wp               !! s^n of the end cells [Pa]
-      real(wp) :: q_top = 0.0_wp, q_bot = 0.0_wp           !! integral of the load over the
-                                                           !! step on that face [Pa s]
-      real(wp) :: rho_top = 0.0_wp, rho_bot = 0.0_wp       !! zig-zag content at a transmitting
-                                                           !! end after the step (spb_wave) [m]
-   end type end_step_t
-
    integer, parameter :: block_default = 2048   !! nodes per block of advance_joined
 
 contains
 
-   !> Stresses acting on the end faces at t^n: the stepwise load P^n on a loaded free face;
-   !> at a transmitting end the static stress it carries, the radiation stress of the
-   !> outgoing wave and, when the load acts on that end, 2 P^n for the incident wave of
-   !> stress p(t) arriving through it; 0 otherwise. s_top pushes node 0 like a cell above
-   !> it; s_bot pushes node n like a cell below it.
+   !> Stresses acting on the end faces at t^n (spb_ends face_stress): s_top pushes node 0
+   !> like a cell above it; s_bot pushes node n like a cell below it.
    pure subroutine end_stresses(mesh, load, st, s_top, s_bot, step)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
@@ -45,43 +27,40 @@ contains
       real(wp), intent(out) :: s_top          !! top face stress, as a cell above node 0 [Pa]
       real(wp), intent(out) :: s_bot          !! bottom face stress, as a cell below node n [Pa]
       integer, intent(in), optional :: step   !! the step index n (default st%step)
-      real(wp) :: p
       integer :: m
       m = st%step
       if (present(step)) m = step
-      p = 0.0_wp
-      if (load%kind /= load_none) p = step_load(load, m, mesh%dt)
-      s_top = 0.0_wp
-      s_bot = 0.0_wp
-      select case (mesh%top)
-      case (end_free)
-         if (load%face == face_top) s_top = p
-      case (end_transmit)
-         ! u = F(t - x/a) + G(t + x/a) at Courant 1: the virtual cell above node 0 has
-         ! s_0 = -(E/dx) du_0^n (outgoing G) + (E/dx) [F(n+1) - F(n-1)] = 2 P^n (incident F)
-         s_top = st%ends%s_static_top - mesh%stiff(1) * (st%dub(0) - st%ends%v_far_top * mesh%dt)
-         if (load%face == face_top) s_top = s_top + 2.0_wp * p
-      case default
-         ! the other ends take no part here
-      end select
-      select case (mesh%bottom)
-      case (end_free)
-         if (load%face /= face_top) s_bot = p
-      case (end_transmit)
-         s_bot = st%ends%s_static_bot + mesh%stiff(mesh%n) * (st%dua(mesh%n) - st%ends%v_far_bot * mesh%dt)
-         if (load%face /= face_top) s_bot = s_bot + 2.0_wp * p
-      case default
-         ! the other ends take no part here
-      end select
+      s_top = end_stress(mesh, load, st, face_top, m)
+      s_bot = end_stress(mesh, load, st, face_bottom, m)
    end subroutine end_stresses
+
+   !> The stress on one end face at t^step (spb_ends face_stress) [Pa].
+   pure real(wp) function end_stress(mesh, load, st, side, step) result(s)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: side          !! face_top | face_bottom
+      integer, intent(in) :: step          !! the step index n
+      real(wp) :: p
+      p = 0.0_wp
+      if (load%kind /= load_none) p = step_load(load, step, mesh%dt)
+      if (side == face_top) then
+         s = face_stress(st%ends(side), side, p, load%face == side, mesh%stiff(1), st%dub(0), &
+                         mesh%dt)
+      else
+         s = face_stress(st%ends(side), side, p, load%face == side, mesh%stiff(mesh%n), &
+                         st%dua(mesh%n), mesh%dt)
+      end if
+   end function end_stress
 
    !> Integrals of the load over the step that ends at t^step, on a free top and a free bottom
    !> face [Pa s] (0 where the load acts elsewhere or the face is not free): the exact work
    !> of the load on the continuum state is I du / dt (spb_wave).
-   pure subroutine face_load_integrals(mesh, load, step, i_top, i_bot)
+   pure subroutine face_load_integrals(mesh, load, step, st, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       integer, intent(in) :: step          !! step index: the step ends at t^step
+      type(state_t), intent(in) :: st      !! the state (its ends)
       real(wp), intent(out) :: i_top       !! load integral on the top face over the step [Pa s]
       real(wp), intent(out) :: i_bot       !! load integral on the bottom face over the step [Pa s]
       real(wp) :: q
@@ -89,11 +68,8 @@ contains
       i_bot = 0.0_wp
       if (load%kind == load_none .or. step < 1) return
       q = load_integral(load, real(step - 1, wp) * mesh%dt, real(step, wp) * mesh%dt)
-      if (load%face == face_top) then
-         if (mesh%top == end_free) i_top = q
-      else
-         if (mesh%bottom == end_free) i_bot = q
-      end if
+      i_top = face_load_share(st%ends(face_top), q, load%face == face_top)
+      i_bot = face_load_share(st%ends(face_bottom), q, load%face == face_bottom)
    end subroutine face_load_integrals
 
    !> Under gravity, the zig-zag content rho (spb_wave, transmit_residuals) at each transmitting
@@ -110,31 +86,24 @@ contains
       rho_top = 0.0_wp
       rho_bot = 0.0_wp
       if (.not. abs(g) > 0.0_wp) return
-      if (.not. (mesh%top == end_transmit .or. mesh%bottom == end_transmit)) return
-      call face_load_integrals(mesh, load, st%step, i_top, i_bot)
+      if (.not. (transmits(st%ends(face_top)) .or. transmits(st%ends(face_bottom)))) return
+      call face_load_integrals(mesh, load, st%step, st, i_top, i_bot)
       call transmit_residuals(mesh, st, g, i_top, i_bot, rho_top, rho_bot)
       rho_top = -rho_top
       rho_bot = -rho_bot
    end subroutine zigzag_after_step
 
-   !> Integral of the load over the step from t^n to t^{n+1} on the face it acts on [Pa s].
-   pure subroutine step_load_integrals(load, n, dt, q_top, q_bot)
+   !> Integral of the load over the step from t^n to t^{n+1} on the face it acts on (0 on the
+   !> other) [Pa s].
+   pure real(wp) function step_load_integral(load, n, dt, side) result(q)
       type(load_t), intent(in) :: load     !! the end load
       integer, intent(in) :: n             !! step index: the step from t^n to t^{n+1}
       real(wp), intent(in) :: dt           !! time step [s]
-      real(wp), intent(out) :: q_top       !! the integral if the top is loaded, else 0 [Pa s]
-      real(wp), intent(out) :: q_bot       !! the integral if the bottom is loaded, else 0 [Pa s]
-      real(wp) :: q
-      q_top = 0.0_wp
-      q_bot = 0.0_wp
-      if (load%kind == load_none) return
+      integer, intent(in) :: side          !! face_top | face_bottom
+      q = 0.0_wp
+      if (load%kind == load_none .or. load%face /= side) return
       q = load_integral(load, real(n, wp) * dt, real(n + 1, wp) * dt)
-      if (load%face == face_top) then
-         q_top = q
-      else
-         q_bot = q
-      end if
-   end subroutine step_load_integrals
+   end function step_load_integral
 
    !> Advance the state from t^n to t^{n+1}.
    pure subroutine advance(mesh, load, g, st)
@@ -148,18 +117,19 @@ contains
       integer :: split(st%n_split)
       integer :: i, n, c, k, n_split, n_new
       integer :: new_cracks(mesh%n)
-      type(end_step_t) :: r
+      type(face_step_t) :: r(2)
 
       n = mesh%n
       dt = mesh%dt
       dt2 = dt * dt
-      call end_stresses(mesh, load, st, r%s_top, r%s_bot)
-      call step_load_integrals(load, st%step, mesh%dt, r%q_top, r%q_bot)
-      call zigzag_after_step(mesh, load, g, st, r%rho_top, r%rho_bot)
-      st%s(0) = r%s_top
-      st%s(n + 1) = r%s_bot
-      r%du_top_old = st%dub(0)
-      r%du_bot_old = st%dua(n)
+      call end_stresses(mesh, load, st, r(face_top)%s, r(face_bottom)%s)
+      r(face_top)%q = step_load_integral(load, st%step, mesh%dt, face_top)
+      r(face_bottom)%q = step_load_integral(load, st%step, mesh%dt, face_bottom)
+      call zigzag_after_step(mesh, load, g, st, r(face_top)%rho, r(face_bottom)%rho)
+      st%s(0) = r(face_top)%s
+      st%s(n + 1) = r(face_bottom)%s
+      r(face_top)%du_old = st%dub(0)
+      r(face_bottom)%du_old = st%dua(n)
       if (st%fm%n_cut > 0) then
          allocate(du_cut_old(st%fm%n_cut))
          do c = 1, st%fm%n_cut
@@ -212,11 +182,11 @@ contains
       end do
       if (st%coh%n_active > 0) call crack_forces(mesh, g, st, split, old_a, old_b, &
                                                  new_cracks(1:n_new))
-      call hold_top(mesh, st, r)
-      call hold_bottom(mesh, st, r)
-      r%s_1 = st%s(1)
-      r%s_n = st%s(n)
-      call book_ends(mesh, g, st, r)
+      call hold_end(mesh, st, face_top, r(face_top))
+      call hold_end(mesh, st, face_bottom, r(face_bottom))
+      r(face_top)%s_cell = st%s(1)
+      r(face_bottom)%s_cell = st%s(n)
+      call book_end_nodes(mesh, g, st, r)
 
       ! (2.3)4: s^{n+1} = E (u_{k-1} - u_k)/dx, advanced by the increments of this step:
       ! algebraically the same, but it never subtracts two large displacements, so a bar
@@ -259,7 +229,7 @@ contains
       integer, intent(out) :: new(:)       !! the nodes opened (first n_new)
       integer, intent(out) :: n_new        !! how many
       real(wp) :: i_top, i_bot
-      call face_load_integrals(mesh, load, st%step, i_top, i_bot)
+      call face_load_integrals(mesh, load, st%step, st, i_top, i_bot)
       call start_cracks(mesh, g, st, i_top, i_bot, new, n_new)
    end subroutine open_cracks
 
@@ -297,8 +267,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%fm%n_cut == 0 .and. &
-                    mesh%bottom /= end_base .and. .not. (st%ends%landing_top .or. st%ends%landing_bot) &
-                    .and. mesh%n_watch == 0
+                    .not. (has_base(st%ends(face_top)) .or. has_base(st%ends(face_bottom))) .and. &
+                    .not. any(st%ends%landing) .and. mesh%n_watch == 0
    end function joined_only
 
    !> nsteps steps of a bar that is joined_only, bit-identical to as many calls of advance,
@@ -316,8 +286,8 @@ contains
       integer, intent(in) :: nsteps                 !! steps to take
       integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
       real(wp), intent(out), optional :: max_sec_bottom  !! largest sec(n) of these steps [Pa]
-      type(end_step_t) :: r(nsteps)
-      real(wp) :: unused, rho_top, rho_bot
+      type(face_step_t) :: r(2, nsteps)
+      real(wp) :: rho_top, rho_bot
       integer :: n, n0, bw, nblk, kb, lo, hi, t, a, e, i, k
       logical :: same_u
 
@@ -336,8 +306,8 @@ contains
       ! the zig-zag content at a transmitting end changes sign in every step
       call zigzag_after_step(mesh, load, g, st, rho_top, rho_bot)
       do t = 1, nsteps
-         r(t)%rho_top = rho_top
-         r(t)%rho_bot = rho_bot
+         r(face_top, t)%rho = rho_top
+         r(face_bottom, t)%rho = rho_bot
          rho_top = -rho_top
          rho_bot = -rho_bot
       end do
@@ -354,27 +324,27 @@ contains
             e = min(n + 1, hi - t + 1)
             if (a >= e) cycle
             if (a == 0) then
-               call end_stresses(mesh, load, st, r(t)%s_top, unused, step=n0 + t - 1)
-               call step_load_integrals(load, n0 + t - 1, mesh%dt, r(t)%q_top, unused)
-               st%s(0) = r(t)%s_top
-               r(t)%du_top_old = st%dub(0)
+               r(face_top, t)%s = end_stress(mesh, load, st, face_top, n0 + t - 1)
+               r(face_top, t)%q = step_load_integral(load, n0 + t - 1, mesh%dt, face_top)
+               st%s(0) = r(face_top, t)%s
+               r(face_top, t)%du_old = st%dub(0)
             end if
             if (e == n + 1) then
-               call end_stresses(mesh, load, st, unused, r(t)%s_bot, step=n0 + t - 1)
-               call step_load_integrals(load, n0 + t - 1, mesh%dt, unused, r(t)%q_bot)
-               st%s(n + 1) = r(t)%s_bot
-               r(t)%du_bot_old = st%dua(n)
+               r(face_bottom, t)%s = end_stress(mesh, load, st, face_bottom, n0 + t - 1)
+               r(face_bottom, t)%q = step_load_integral(load, n0 + t - 1, mesh%dt, face_bottom)
+               st%s(n + 1) = r(face_bottom, t)%s
+               r(face_bottom, t)%du_old = st%dua(n)
             end if
             call joined_increments(mesh, g, st%s, st%dua, a, e - 1)
             if (a == 0) then
                st%dub(0) = st%dua(0)
-               call hold_top(mesh, st, r(t))
-               r(t)%s_1 = st%s(1)
+               call hold_end(mesh, st, face_top, r(face_top, t))
+               r(face_top, t)%s_cell = st%s(1)
             end if
             if (e == n + 1) then
                st%dub(n) = st%dua(n)
-               call hold_bottom(mesh, st, r(t))
-               r(t)%s_n = st%s(n)
+               call hold_end(mesh, st, face_bottom, r(face_bottom, t))
+               r(face_bottom, t)%s_cell = st%s(n)
             end if
             ! (2.3)4 and (2.3)3 in one pass: cell k lies between nodes k - 1 and k
             if (a == 0) then
@@ -399,7 +369,7 @@ contains
       if (same_u) st%ub = st%ua
       if (present(max_sec_bottom)) max_sec_bottom = -huge(1.0_wp)
       do t = 1, nsteps
-         call book_ends(mesh, g, st, r(t))
+         call book_end_nodes(mesh, g, st, r(:, t))
          if (present(max_sec_bottom)) max_sec_bottom = max(max_sec_bottom, st%section(n))
       end do
       st%step = n0 + nsteps
@@ -430,188 +400,38 @@ contains
       end if
    end subroutine joined_increments
 
-   !> A fixed top stops node 0, a constant-velocity top moves it by V dt; the momentum the
-   !> support takes (what the node would have had beyond m V) is recorded.
-   pure subroutine hold_top(mesh, st, r)
+   !> A holding support at one end stops its node or moves it by V dt (spb_ends hold_face);
+   !> f records what it took and the face half's increment after the step.
+   pure subroutine hold_end(mesh, st, side, f)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
-      type(end_step_t), intent(inout) :: r   !! the step's end-node record (top part set)
-      real(wp) :: du
-      r%held_top = mesh%top == end_fixed .or. mesh%top == end_velocity
-      if (r%held_top) then
-         du = 0.0_wp
-         if (mesh%top == end_velocity) du = st%ends%v_end_top * mesh%dt
-         r%p_top = mesh%ma(0) * (st%dua(0) - du) + mesh%mb(0) * (st%dub(0) - du)
-         st%dua(0) = du
-         st%dub(0) = du
+      integer, intent(in) :: side          !! face_top | face_bottom
+      type(face_step_t), intent(inout) :: f   !! the step's record of that end
+      integer :: k
+      k = merge(0, mesh%n, side == face_top)
+      call hold_face(st%ends(side), mesh%ma(k), mesh%mb(k), mesh%dt, st%dua(k), st%dub(k), f)
+      if (side == face_top) then
+         f%du = st%dub(0)
+      else
+         f%du = st%dua(mesh%n)
       end if
-      r%du_top = st%dub(0)
-   end subroutine hold_top
+   end subroutine hold_end
 
-   !> A fixed bottom, or the base the bar rests on, stops node n; a constant-velocity bottom
-   !> moves it by V dt.
-   pure subroutine hold_bottom(mesh, st, r)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      type(end_step_t), intent(inout) :: r   !! the step's end-node record (bottom part set)
-      integer :: n
-      real(wp) :: du
-      n = mesh%n
-      r%held_bot = mesh%bottom == end_fixed .or. mesh%bottom == end_velocity .or. &
-                   (mesh%bottom == end_base .and. st%ends%base_contact)
-      if (r%held_bot) then
-         du = 0.0_wp
-         if (mesh%bottom == end_velocity) du = st%ends%v_end_bot * mesh%dt
-         r%p_bot = mesh%ma(n) * (st%dua(n) - du) + mesh%mb(n) * (st%dub(n) - du)
-         st%dua(n) = du
-         st%dub(n) = du
-      end if
-      r%du_bot = st%dua(n)
-   end subroutine hold_bottom
-
-   !> The end nodes' part of one step, in the order the step makes it: impulse of the end
-   !> stresses and of the supports, work of the end stresses, section stresses at the supports.
-   pure subroutine book_ends(mesh, g, st, r)
+   !> The end nodes' part of one step (spb_ends book_ends), with the end cells' numbers.
+   pure subroutine book_end_nodes(mesh, g, st, f)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       type(state_t), intent(inout) :: st   !! the state
-      type(end_step_t), intent(in) :: r    !! what the step did at the end nodes
-      real(wp) :: dt, du_top_old, du_bot_old
+      type(face_step_t), intent(in) :: f(2)   !! what the step did at the end nodes
+      real(wp) :: section(2)
       integer :: n
       n = mesh%n
-      dt = mesh%dt
-      ! momentum balance: the end stresses act on the end nodes, supports take what reaches
-      ! them
-      st%ledger%i_ends = st%ledger%i_ends + (r%s_top - r%s_bot) * dt
-      if (r%held_top) st%ledger%i_support = st%ledger%i_support - r%p_top / dt
-      if (r%held_bot) st%ledger%i_support = st%ledger%i_support - r%p_bot / dt
-      ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
-      ! the discrete energy ledger exact
-      associate (w_top => r%s_top * 0.5_wp * (r%du_top + r%du_top_old), &
-                 w_bot => -r%s_bot * 0.5_wp * (r%du_bot + r%du_bot_old))
-         if (mesh%top == end_transmit) then
-            st%ledger%w_transmit = st%ledger%w_transmit + w_top
-         else
-            st%ledger%w_load = st%ledger%w_load + w_top
-         end if
-         if (mesh%bottom == end_transmit) then
-            st%ledger%w_transmit = st%ledger%w_transmit + w_bot
-         else
-            st%ledger%w_load = st%ledger%w_load + w_bot
-         end if
-      end associate
-      ! a constant-velocity end's support force -p/dt^2 does the same product (its node moves
-      ! by V dt in both steps); in the continuum reading its work over the step is V times
-      ! the impulse the continuum's end section takes, -p/dt + Z (f^{n+1} - f^n) (f the
-      ! interval the support sends into the bar): the first part is booked here, the second
-      ! is a function of the reading at t^{n+1} (spb_wave, wave_t%w_support; doc/method.md)
-      if (mesh%top == end_velocity) then
-         st%ledger%w_support = st%ledger%w_support - r%p_top / dt**2 * 0.5_wp * &
-                               (r%du_top + r%du_top_old)
-         st%ledger%w_wave = st%ledger%w_wave - st%ends%v_end_top * r%p_top / dt
-      end if
-      if (mesh%bottom == end_velocity) then
-         st%ledger%w_support = st%ledger%w_support - r%p_bot / dt**2 * 0.5_wp * &
-                               (r%du_bot + r%du_bot_old)
-         st%ledger%w_wave = st%ledger%w_wave - st%ends%v_end_bot * r%p_bot / dt
-      end if
+      section = [st%section(0), st%section(n)]
+      call book_ends(st%ends, f, [mesh%z(1), mesh%z(n)], [mesh%dm(1), mesh%dm(n)], &
+                     [mesh%mb(0), mesh%ma(n)], g, mesh%dt, mesh%full_mass, st%ledger, section)
+      st%section(0) = section(1)
+      st%section(n) = section(2)
+   end subroutine book_end_nodes
 
-      ! the same work on the continuum state (spb_wave): I du / dt at a free loaded face; at a
-      ! transmitting end the energy the incoming wave (the static stress carried and the
-      ! incident load) brings minus what the outgoing one takes, Z du (2 w - du) / dt, w the
-      ! incoming interval: w_in, plus under gravity the fragment's zig-zag content rho
-      select case (mesh%top)
-      case (end_free)
-         st%ledger%w_wave = st%ledger%w_wave + r%q_top * r%du_top / dt
-      case (end_transmit)
-         st%ends%w_in_top = (0.5_wp * st%ends%s_static_top * dt + r%q_top) / mesh%z(1) + &
-                       0.5_wp * st%ends%v_far_top * dt
-         st%ledger%w_wave = st%ledger%w_wave + mesh%z(1) * r%du_top * &
-                            (2.0_wp * (st%ends%w_in_top + r%rho_top) - r%du_top) / dt
-      case default
-         ! the other ends take no part here
-      end select
-      select case (mesh%bottom)
-      case (end_free)
-         st%ledger%w_wave = st%ledger%w_wave - r%q_bot * r%du_bot / dt
-      case (end_transmit)
-         st%ends%w_in_bot = -(0.5_wp * st%ends%s_static_bot * dt + r%q_bot) / mesh%z(n) + &
-                       0.5_wp * st%ends%v_far_bot * dt
-         st%ledger%w_wave = st%ledger%w_wave + mesh%z(n) * r%du_bot * &
-                            (2.0_wp * (st%ends%w_in_bot + r%rho_bot) - r%du_bot) / dt
-      case default
-         ! the other ends take no part here
-      end select
-
-      ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}
-      ! a support just hit by a moving half starts from that half's velocity
-      du_top_old = r%du_top_old
-      du_bot_old = r%du_bot_old
-      if (st%ends%landing_top) du_top_old = st%ends%v_land_top * dt
-      if (st%ends%landing_bot) du_bot_old = st%ends%v_land_bot * dt
-      st%ends%landing_top = .false.
-      st%ends%landing_bot = .false.
-      select case (mesh%top)
-      case (end_fixed)
-         st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, 0.0_wp, mesh%z(1), &
-                                       mesh%dm(1), g)
-      case (end_transmit, end_velocity)
-         st%section(0) = section_stress_b(r%s_1, st%section(0), du_top_old / dt, r%du_top / dt, &
-                                       mesh%z(1), mesh%dm(1), g)
-      case default
-         ! the other ends take no part here
-      end select
-      select case (mesh%bottom)
-      case (end_fixed)
-         st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, 0.0_wp, mesh%z(n), &
-                                       mesh%dm(n), g)
-      case (end_transmit, end_velocity)
-         st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, r%du_bot / dt, &
-                                       mesh%z(n), mesh%dm(n), g)
-      case (end_base)
-         ! resting on the rigid base: the base side does not move; v^n is the bottom half's
-         ! velocity before the step (0 while it rests)
-         if (st%ends%base_contact .and. mesh%full_mass) then
-            ! full-mass model: no section stresses; the base takes the force on the node
-            st%section(n) = r%s_n + mesh%ma(n) * g
-         else if (st%ends%base_contact) then
-            st%section(n) = section_stress_a(r%s_n, st%section(n), du_bot_old / dt, 0.0_wp, &
-                                          mesh%z(n), mesh%dm(n), g)
-         else
-            st%section(n) = 0.0_wp
-         end if
-      case default
-         ! the other ends take no part here
-      end select
-   end subroutine book_ends
-
-   !> (3.1)1 and (3.2)1: from the cell above (stress s_above, impedance z_above, mass dm_above).
-   pure elemental real(wp) function section_stress_a(s_above, s_prev, v_n, v_np1, z_above, &
-                                                     dm_above, g) result(s_new)
-      real(wp), intent(in) :: s_above    !! stress of the cell above at t^n [Pa]
-      real(wp), intent(in) :: s_prev     !! section stress S^{n-1/2} [Pa]
-      real(wp), intent(in) :: v_n        !! node velocity v^n (mean over the step ending at t^n) [m/s]
-      real(wp), intent(in) :: v_np1      !! node velocity v^{n+1} [m/s]
-      real(wp), intent(in) :: z_above    !! impedance of the cell above [kg/(m^2 s)]
-      real(wp), intent(in) :: dm_above   !! mass of the cell above [kg/m^2]
-      real(wp), intent(in) :: g          !! gravity along +x [m/s^2]
-      real(wp) :: v_a
-      v_a = v_n + (s_above - s_prev + 0.5_wp * dm_above * g) / z_above        ! (3.1)1
-      s_new = s_above + z_above * (v_a - v_np1) + 0.5_wp * dm_above * g       ! (3.2)1
-   end function section_stress_a
-
-   !> (3.1)2 and (3.2)2: from the cell below.
-   pure elemental real(wp) function section_stress_b(s_below, s_prev, v_n, v_np1, z_below, &
-                                                     dm_below, g) result(s_new)
-      real(wp), intent(in) :: s_below    !! stress of the cell below at t^n [Pa]
-      real(wp), intent(in) :: s_prev     !! section stress S^{n-1/2} [Pa]
-      real(wp), intent(in) :: v_n        !! node velocity v^n [m/s]
-      real(wp), intent(in) :: v_np1      !! node velocity v^{n+1} [m/s]
-      real(wp), intent(in) :: z_below    !! impedance of the cell below [kg/(m^2 s)]
-      real(wp), intent(in) :: dm_below   !! mass of the cell below [kg/m^2]
-      real(wp), intent(in) :: g          !! gravity along +x [m/s^2]
-      real(wp) :: v_b
-      v_b = v_n + (s_prev - s_below + 0.5_wp * dm_below * g) / z_below        ! (3.1)2
-      s_new = s_below - z_below * (v_b - v_np1) - 0.5_wp * dm_below * g       ! (3.2)2
-   end function section_stress_b
+   include 'spb_section_forms.inc'
 end module spb_step

@@ -25,7 +25,9 @@
 !> held, free and transmitting ends, homogeneous and layered; bench/transmit_gravity.py).
 module spb_wave
    use spb_kinds, only: wp
-   use spb_mesh, only: mesh_t, end_free, end_base, end_fixed, end_transmit, end_velocity
+   use spb_mesh, only: mesh_t
+   use spb_ends, only: face_top, face_bottom, is_free_face, transmits, is_velocity_end, &
+      has_base, holds, gives_equation
    use spb_state, only: state_t
    implicit none
    private
@@ -233,18 +235,18 @@ contains
       e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
       if (present(w_sup)) then
          ! Z_1 f_1 = h_1 + s_1 dt at a constant-velocity top, Z_n g_n = h_bot at the bottom
-         if (top == 0 .and. mesh%top == end_velocity) w_sup = st%ends%v_end_top * &
+         if (top == 0 .and. is_velocity_end(st%ends(face_top))) w_sup = st%ends(face_top)%v_end * &
             (hd_1 + beta * merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0) + st%s(1) * dt)
-         if (bot == mesh%n .and. mesh%bottom == end_velocity) w_sup = w_sup + &
-            st%ends%v_end_bot * (hd + beta)
+         if (bot == mesh%n .and. is_velocity_end(st%ends(face_bottom))) w_sup = w_sup + &
+            st%ends(face_bottom)%v_end * (hd + beta)
       end if
       if (.not. present(rho)) return
       ! h of the end cells: h_1 = hd_1 + beta (-1)^(bot-top-1), h_bot = hd_bot + beta
-      if (top == 0 .and. mesh%top == end_transmit) then
+      if (top == 0 .and. transmits(st%ends(face_top))) then
          rho(1) = (hd_1 + beta * merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0) + &
                    st%s(1) * dt - fc%eta_top) / mesh%z(1)
       end if
-      if (bot == mesh%n .and. mesh%bottom == end_transmit) then
+      if (bot == mesh%n .and. transmits(st%ends(face_bottom))) then
          rho(2) = (hd + beta - fc%eta_bot) / mesh%z(bot)
       end if
    end subroutine fragment_wave
@@ -385,7 +387,7 @@ contains
       integer :: top, bot
       rho_top = 0.0_wp
       rho_bot = 0.0_wp
-      if (mesh%top == end_transmit) then
+      if (transmits(st%ends(face_top))) then
          bot = mesh%n
          if (st%n_split > 0) bot = st%split(1)
          fc = face_equations(mesh, st, g, 0, bot, i_top, i_bot)
@@ -394,7 +396,7 @@ contains
             rho_top = rho(1)
          end if
       end if
-      if (mesh%bottom == end_transmit) then
+      if (transmits(st%ends(face_bottom))) then
          top = 0
          if (st%n_split > 0) top = st%split(st%n_split)
          fc = face_equations(mesh, st, g, top, mesh%n, i_top, i_bot)
@@ -433,13 +435,13 @@ contains
       if (st%n_split > 0) top = st%split(st%n_split)
       bot = n
       if (st%n_split > 0) bot = st%split(1)
-      if (mesh%top == end_transmit .and. mesh%bottom == end_transmit .and. top == 0) then
+      if (transmits(st%ends(face_top)) .and. transmits(st%ends(face_bottom)) .and. top == 0) then
          amp = -rho_top * 2.0_wp * mesh%z(1) / (mesh%z(1) + mesh%z(n))
          call add_zigzag(mesh, st, 0, n, amp)
          return
       end if
-      if (mesh%top == end_transmit) call add_zigzag(mesh, st, 0, bot, -rho_top)
-      if (mesh%bottom == end_transmit) then
+      if (transmits(st%ends(face_top))) call add_zigzag(mesh, st, 0, bot, -rho_top)
+      if (transmits(st%ends(face_bottom))) then
          amp = -rho_bot * merge(1.0_wp, -1.0_wp, mod(n, 2) == 0)
          call add_zigzag(mesh, st, top, n, amp)
       end if
@@ -485,8 +487,10 @@ contains
             st%s_old(i) = st%s_old(i) - ds
          end if
       end do
-      if (bot == mesh%n .and. mesh%bottom == end_base .and. .not. st%ends%base_contact) then
-         st%ends%u_base = st%ends%u_base + merge(amp, -amp, mod(bot, 2) == 0)
+      if (bot == mesh%n .and. has_base(st%ends(face_bottom)) .and. &
+          .not. st%ends(face_bottom)%contact) then
+         st%ends(face_bottom)%u_contact = st%ends(face_bottom)%u_contact + &
+                                          merge(amp, -amp, mod(bot, 2) == 0)
       end if
       st%s_scale = max(st%s_scale, maxval(abs(st%s(top+1:bot))))
    end subroutine add_zigzag
@@ -690,8 +694,8 @@ contains
       jp = 0.0_wp
       ref_top = 0.0_wp
       ref_bot = 0.0_wp
-      if (mesh%top == end_velocity) ref_top = st%ub(top) - 0.5_wp * st%dub(top)
-      if (mesh%bottom == end_velocity) ref_bot = st%ua(bot) - 0.5_wp * st%dua(bot)
+      if (is_velocity_end(st%ends(face_top))) ref_top = st%ub(top) - 0.5_wp * st%dub(top)
+      if (is_velocity_end(st%ends(face_bottom))) ref_bot = st%ua(bot) - 0.5_wp * st%dua(bot)
       u_el = st%ub(top)
       do i = top, bot
          if (i > top) then
@@ -704,7 +708,7 @@ contains
                mesh%mb(i) * (u_el - 0.5_wp * st%dub(i) - ref))
          sgn = -sgn
       end do
-      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot) - ref_bot + st%ends%u_credit) / &
+      jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot) - ref_bot + st%u_credit) / &
            c_total
    end function held_weights
 
@@ -716,10 +720,8 @@ contains
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      held_odd = mod(bot - top, 2) == 1 .and. top == 0 .and. &
-                 (mesh%top == end_fixed .or. mesh%top == end_velocity) .and. &
-                 bot == mesh%n .and. (mesh%bottom == end_fixed .or. mesh%bottom == end_velocity &
-                 .or. (mesh%bottom == end_base .and. st%ends%base_contact))
+      held_odd = mod(bot - top, 2) == 1 .and. top == 0 .and. holds(st%ends(face_top)) .and. &
+                 bot == mesh%n .and. holds(st%ends(face_bottom))
    end function held_odd
 
    !> K = g^2 dt^3 / (8 C), C = sum 1/Z over the cells of the fragment top..bot: for a
@@ -803,8 +805,8 @@ contains
             if (st%coh%active(top)) fc%load_top = -0.5_wp * st%coh%q(top)
          end if
       else
-         fc%eq_top = mesh%top == end_free
-         if (fc%eq_top) fc%load_top = 0.5_wp * i_top
+         fc%eq_top = gives_equation(st%ends(face_top))
+         if (is_free_face(st%ends(face_top))) fc%load_top = 0.5_wp * i_top
       end if
       if (bot < mesh%n) then
          fc%eq_bot = .true.
@@ -812,21 +814,20 @@ contains
             if (st%coh%active(bot)) fc%load_bot = -0.5_wp * st%coh%q(bot)
          end if
       else
-         fc%eq_bot = mesh%bottom == end_free .or. &
-                     (mesh%bottom == end_base .and. .not. st%ends%base_contact)
-         if (mesh%bottom == end_free) fc%load_bot = 0.5_wp * i_bot
+         fc%eq_bot = gives_equation(st%ends(face_bottom))
+         if (is_free_face(st%ends(face_bottom))) fc%load_bot = 0.5_wp * i_bot
       end if
-      fc%tr_top = top == 0 .and. mesh%top == end_transmit .and. .not. fc%eq_bot
-      fc%tr_bot = bot == mesh%n .and. mesh%bottom == end_transmit .and. .not. fc%eq_top
+      fc%tr_top = top == 0 .and. transmits(st%ends(face_top)) .and. .not. fc%eq_bot
+      fc%tr_bot = bot == mesh%n .and. transmits(st%ends(face_bottom)) .and. .not. fc%eq_top
       fc%eq_top = fc%eq_top .or. fc%tr_top
       fc%eq_bot = fc%eq_bot .or. fc%tr_bot
       grav = 0.0_wp
       if (abs(g) > 0.0_wp) grav = 0.25_wp * g * mesh%dt**2
-      if (top == 0 .and. mesh%top == end_transmit) then
-         fc%eta_top = mesh%z(1) * (st%ends%w_in_top + grav)
+      if (top == 0 .and. transmits(st%ends(face_top))) then
+         fc%eta_top = mesh%z(1) * (st%ends(face_top)%w_in + grav)
       end if
-      if (bot == mesh%n .and. mesh%bottom == end_transmit) then
-         fc%eta_bot = mesh%z(mesh%n) * (st%ends%w_in_bot + grav)
+      if (bot == mesh%n .and. transmits(st%ends(face_bottom))) then
+         fc%eta_bot = mesh%z(mesh%n) * (st%ends(face_bottom)%w_in + grav)
       end if
    end function face_equations
 end module spb_wave

@@ -13,12 +13,13 @@ module spb_sim
       deck_file
    use spb_problem, only: problem_t, load_table
    use spb_load_table, only: read_table
-   use spb_mesh, only: mesh_t, build_mesh, mesh_size, end_base, end_velocity, mesh_fault_t, &
+   use spb_mesh, only: mesh_t, build_mesh, mesh_size, mesh_fault_t, &
       fault_none, node_area
    use spb_load, only: load_t, build_load
    use spb_cohesive, only: dissipated
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
+   use spb_ends, only: face_bottom, has_base, is_velocity_end
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t, &
       first_fractures
@@ -132,7 +133,7 @@ contains
          e_lost_w = e%e_lost
          return
       end if
-      call face_load_integrals(sim%mesh, sim%load, sim%st%step, q_top, q_bot)
+      call face_load_integrals(sim%mesh, sim%load, sim%st%step, sim%st, q_top, q_bot)
       wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
       w_wave = sim%st%ledger%w_wave + wv%w_support
       e_lost_w = sim%st%ledger%e_lost_wave
@@ -169,8 +170,8 @@ contains
          ov = max(ov, (sim%st%ua(i) - sim%st%ub(i) + crack_offset(sim%st, i)) / &
                       min(sim%mesh%dx(i), sim%mesh%dx(i + 1)))
       end do
-      if (sim%mesh%bottom == end_base) ov = max(ov, (sim%st%ua(sim%mesh%n) - sim%st%ends%u_base) / &
-                                                sim%mesh%dx(sim%mesh%n))
+      if (has_base(sim%st%ends(face_bottom))) ov = max(ov, (sim%st%ua(sim%mesh%n) - &
+         sim%st%ends(face_bottom)%u_contact) / sim%mesh%dx(sim%mesh%n))
       ov = max(ov, -1.0_wp)
    end function largest_overlap
 
@@ -202,7 +203,7 @@ contains
       call start_without_zigzag(sim%mesh, sim%prob%gravity, sim%st)
       ! the work of constant-velocity ends on the continuum state counts from t = 0: its part
       ! that is a function of the reading (wave_t%w_support) starts from its value then
-      if (sim%mesh%top == end_velocity .or. sim%mesh%bottom == end_velocity) then
+      if (any(is_velocity_end(sim%st%ends))) then
          w0 = wave_energy(sim%mesh, sim%st, sim%prob%gravity, 0.0_wp, 0.0_wp)
          sim%st%ledger%w_wave = -w0%w_support
       end if
@@ -324,7 +325,7 @@ contains
       real(wp) :: i_top, i_bot
       associate (p => sim%prob)
          call advance(sim%mesh, sim%load, p%gravity, sim%st)
-         call face_load_integrals(sim%mesh, sim%load, sim%st%step, i_top, i_bot)
+         call face_load_integrals(sim%mesh, sim%load, sim%st%step, sim%st, i_top, i_bot)
          call contact_step(sim%mesh, sim%st, p%gravity, p%timing, p%shift, events, i_top, &
                            i_bot, p%events, p%eps_rel)
          call fracture_step(sim%mesh, sim%st, p%gravity, p%eps_rel, events, p%events, i_top, &

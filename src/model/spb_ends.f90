@@ -1,0 +1,359 @@
+!> The two ends of the bar (doc/method.md, "Ends"): one record per end, its kind and what it
+!> keeps from step to step, and everything the step, the wave measure and the events ask of
+!> an end: the face's stress, the hold of a support, the booking of the end's work and
+!> impulse, the support's section stress, and the questions "is it held", "does its face
+!> give an equation of the wave measure". The kinds are told apart here and nowhere else
+!> in the stepping.
+!>
+!> Sides are face_top (node 0, end cell 1 below it) and face_bottom (node n, end cell n
+!> above it). The kernels take the end node's own numbers (masses, increments, the end
+!> cell's impedance), so top and bottom share their code: where a formula differs it is by
+!> the side's orientation (the top's face stress pushes node 0 like a cell above it, the
+!> bottom's pushes node n like a cell below it).
+module spb_ends
+   use spb_kinds, only: wp
+   use spb_problem, only: face_top, face_bottom, end_free, end_fixed, end_transmit, end_base, &
+      end_velocity
+   use spb_ledger, only: ledger_t
+   use spb_section, only: section_stress_a, section_stress_b
+   implicit none
+   private
+   public :: end_t, face_step_t, face_top, face_bottom
+   public :: is_free_face, transmits, is_velocity_end, is_fixed_end, has_base, on_base, &
+      holds, gives_equation, moves_with_bar, support_du
+   public :: face_stress, face_load_share, hold_face, book_ends, start_end, place_on_base
+
+   !> One end of the bar: its kind (end_* of spb_problem) and what the kind keeps from step to
+   !> step. The fields a kind does not use stay at their defaults.
+   type :: end_t
+      integer :: kind = end_free              !! end_free | end_fixed | end_transmit | end_base
+                                              !! | end_velocity
+      real(wp) :: s_static = 0.0_wp           !! static stress a transmitting end carries [Pa]
+      real(wp) :: v_far = 0.0_wp              !! velocity of the bar's continuation beyond a
+                                              !! transmitting end: the end's at t = 0 [m/s]
+      real(wp) :: v_end = 0.0_wp              !! velocity of a constant-velocity end: its
+                                              !! node's at t = 0, kept for the whole run [m/s]
+      real(wp) :: w_in = 0.0_wp               !! interval of the wave that came in through a
+                                              !! transmitting end over the last step [m]
+      logical :: contact = .false.            !! the face rests on the base
+      real(wp) :: u_contact = 0.0_wp          !! displacement of the end node at which its face
+                                              !! touches the base [m]
+      logical :: landing = .false.            !! the next support section stress starts from
+      real(wp) :: v_land = 0.0_wp             !! a moving bar half (collision with a support):
+                                              !! (3.1) then uses this velocity for v^n and
+                                              !! S^{n-1/2} = 0 [m/s]
+   end type end_t
+
+   !> What one step did at one end node: what its end stress's impulse and work, the
+   !> support's impulse and the support section stress of the step are booked from.
+   type :: face_step_t
+      real(wp) :: s = 0.0_wp                  !! end stress of the step, as the cell beyond the
+                                              !! end node [Pa]
+      real(wp) :: du_old = 0.0_wp             !! increment of the face half (B_0 at the top,
+                                              !! A_n at the bottom) before the step [m]
+      real(wp) :: du = 0.0_wp                 !! the same after it [m]
+      logical :: held = .false.               !! a support held the end node
+      real(wp) :: p = 0.0_wp                  !! ma du_A + mb du_B it stopped, relative to the
+                                              !! support's V dt (0 at a fixed end) [kg/m]
+      real(wp) :: s_cell = 0.0_wp             !! s^n of the end cell [Pa]
+      real(wp) :: q = 0.0_wp                  !! integral of the load over the step on that
+                                              !! face [Pa s]
+      real(wp) :: rho = 0.0_wp                !! zig-zag content at a transmitting end after the
+                                              !! step (spb_wave) [m]
+   end type face_step_t
+
+contains
+
+   !> A free face: it moves with the bar and carries the load where it acts.
+   elemental logical function is_free_face(e)
+      type(end_t), intent(in) :: e         !! the end
+      is_free_face = e%kind == end_free
+   end function is_free_face
+
+   !> A transmitting end: the bar continues beyond it without end.
+   elemental logical function transmits(e)
+      type(end_t), intent(in) :: e         !! the end
+      transmits = e%kind == end_transmit
+   end function transmits
+
+   !> A constant-velocity end (Saint-Venant's struck end).
+   elemental logical function is_velocity_end(e)
+      type(end_t), intent(in) :: e         !! the end
+      is_velocity_end = e%kind == end_velocity
+   end function is_velocity_end
+
+   !> A fixed end.
+   elemental logical function is_fixed_end(e)
+      type(end_t), intent(in) :: e         !! the end
+      is_fixed_end = e%kind == end_fixed
+   end function is_fixed_end
+
+   !> A rigid base the face can rest on, leave and land on again.
+   elemental logical function has_base(e)
+      type(end_t), intent(in) :: e         !! the end
+      has_base = e%kind == end_base
+   end function has_base
+
+   !> The face rests on the base.
+   elemental logical function on_base(e)
+      type(end_t), intent(in) :: e         !! the end
+      on_base = e%kind == end_base .and. e%contact
+   end function on_base
+
+   !> A support holds the end node (a rigid shift cannot move it): a fixed end, a
+   !> constant-velocity end (its position is V t), the base the face rests on.
+   elemental logical function holds(e)
+      type(end_t), intent(in) :: e         !! the end
+      holds = e%kind == end_fixed .or. e%kind == end_velocity .or. on_base(e)
+   end function holds
+
+   !> The end face gives an equation of the wave measure (spb_wave): a free face, or one off
+   !> the base (a transmitting end gives one where spb_wave says so).
+   elemental logical function gives_equation(e)
+      type(end_t), intent(in) :: e         !! the end
+      gives_equation = e%kind == end_free .or. (e%kind == end_base .and. .not. e%contact)
+   end function gives_equation
+
+   !> The end node moves with the bar next to it from t = 0 (no collision with its support
+   !> at t^0): a transmitting or a constant-velocity end.
+   elemental logical function moves_with_bar(e)
+      type(end_t), intent(in) :: e         !! the end
+      moves_with_bar = e%kind == end_transmit .or. e%kind == end_velocity
+   end function moves_with_bar
+
+   !> The increment a holding support gives its node over a step: V dt at a constant-velocity
+   !> end, 0 at a fixed end and on the base [m].
+   pure real(wp) function support_du(e, dt) result(du)
+      type(end_t), intent(in) :: e         !! the end
+      real(wp), intent(in) :: dt           !! time step [s]
+      du = 0.0_wp
+      if (e%kind == end_velocity) du = e%v_end * dt
+   end function support_du
+
+   !> The end's state at t = 0, once its node's velocity v and the static stress s_static it
+   !> carries (spb_static) are known: a transmitting end continues the bar without end, and
+   !> beyond it the bar keeps the motion its end had at t = 0 (as it keeps the static
+   !> stress), so a bar in uniform motion stays in it and no end depends on the frame of
+   !> reference; a constant-velocity end keeps the velocity its node starts with. w_in: what
+   !> comes in through a transmitting end before any load, the continuation's static stress
+   !> and motion.
+   pure subroutine start_end(e, side, v, s_static, z, dt)
+      type(end_t), intent(inout) :: e      !! the end (its kind set)
+      integer, intent(in) :: side          !! face_top | face_bottom
+      real(wp), intent(in) :: v            !! the end node's velocity at t = 0 [m/s]
+      real(wp), intent(in) :: s_static     !! static stress at the end (spb_static) [Pa]
+      real(wp), intent(in) :: z            !! impedance of the end cell [kg/(m^2 s) A]
+      real(wp), intent(in) :: dt           !! time step [s]
+      e%s_static = s_static
+      if (e%kind == end_transmit) e%v_far = v
+      if (e%kind == end_velocity) e%v_end = v
+      if (side == face_top) then
+         e%w_in = 0.5_wp * (e%s_static / z + e%v_far) * dt
+      else
+         e%w_in = 0.5_wp * (-e%s_static / z + e%v_far) * dt
+      end if
+   end subroutine start_end
+
+   !> The base below the bottom face at t = 0, gap below it: touching and at rest, the face
+   !> rests on it; moving onto it, the first step lands by the timing rule (and logs the
+   !> event); moving away from it, not in contact. A face at rest on it has no increment.
+   pure subroutine place_on_base(e, u_face, gap, du_face)
+      type(end_t), intent(inout) :: e      !! the end (a base)
+      real(wp), intent(in) :: u_face       !! the face half's displacement at t = 0 [m]
+      real(wp), intent(in) :: gap          !! the gap between the face and the base [m]
+      real(wp), intent(inout) :: du_face   !! the face half's increment du^0 [m]
+      e%u_contact = u_face + gap
+      e%contact = gap <= 0.0_wp .and. .not. (abs(du_face) > 0.0_wp)
+      if (e%contact) du_face = 0.0_wp
+   end subroutine place_on_base
+
+   !> The stress acting on the end face at t^n, as the cell beyond the end node: the stepwise
+   !> load P^n on a loaded free face; at a transmitting end the static stress it carries, the
+   !> radiation stress of the outgoing wave and, when the load acts on that end, 2 P^n for
+   !> the incident wave of stress p(t) arriving through it; 0 otherwise. At Courant 1,
+   !> u = F(t - x/a) + G(t + x/a): the virtual cell beyond node 0 has s_0 = -(E/dx) du_0^n
+   !> (outgoing G) + (E/dx) [F(n+1) - F(n-1)] = 2 P^n (incident F); the bottom is its mirror.
+   pure real(wp) function face_stress(e, side, p, loaded, stiff, du_face, dt) result(s)
+      type(end_t), intent(in) :: e         !! the end
+      integer, intent(in) :: side          !! face_top | face_bottom
+      real(wp), intent(in) :: p            !! the stepwise load P^n [Pa]
+      logical, intent(in) :: loaded        !! the load acts on this face
+      real(wp), intent(in) :: stiff        !! stiffness E A / dx of the end cell [Pa/m A]
+      real(wp), intent(in) :: du_face      !! the face half's increment du^n [m]
+      real(wp), intent(in) :: dt           !! time step [s]
+      s = 0.0_wp
+      select case (e%kind)
+      case (end_free)
+         if (loaded) s = p
+      case (end_transmit)
+         if (side == face_top) then
+            s = e%s_static - stiff * (du_face - e%v_far * dt)
+         else
+            s = e%s_static + stiff * (du_face - e%v_far * dt)
+         end if
+         if (loaded) s = s + 2.0_wp * p
+      case default
+         ! the other ends take no part here
+      end select
+   end function face_stress
+
+   !> The load integral q over a step as it works on the face's continuum state: all of it
+   !> on a loaded free face, none elsewhere [Pa s].
+   pure real(wp) function face_load_share(e, q, loaded) result(i_face)
+      type(end_t), intent(in) :: e         !! the end
+      real(wp), intent(in) :: q            !! the load's integral over the step [Pa s]
+      logical, intent(in) :: loaded        !! the load acts on this face
+      i_face = 0.0_wp
+      if (loaded .and. e%kind == end_free) i_face = q
+   end function face_load_share
+
+   !> A holding support stops the end node (a fixed end, the base it rests on) or moves it by
+   !> V dt (a constant-velocity end); the momentum it takes, what the node would have had
+   !> beyond m V, is recorded in f.
+   pure subroutine hold_face(e, ma, mb, dt, dua, dub, f)
+      type(end_t), intent(in) :: e         !! the end
+      real(wp), intent(in) :: ma           !! the end node's upper half mass [kg/m^2 A]
+      real(wp), intent(in) :: mb           !! its lower half mass [kg/m^2 A]
+      real(wp), intent(in) :: dt           !! time step [s]
+      real(wp), intent(inout) :: dua       !! its upper half's increment of the step [m]
+      real(wp), intent(inout) :: dub       !! its lower half's [m]
+      type(face_step_t), intent(inout) :: f   !! the step's record of this end (held, p)
+      real(wp) :: du
+      f%held = holds(e)
+      if (f%held) then
+         du = support_du(e, dt)
+         f%p = ma * (dua - du) + mb * (dub - du)
+         dua = du
+         dub = du
+      end if
+   end subroutine hold_face
+
+   !> The end nodes' part of one step, in the order the step makes it: impulse of the end
+   !> stresses and of the supports, work of the end stresses (on the scheme's and on the
+   !> continuum state), section stresses at the supports. z, dm: the end cells' impedance
+   !> and mass; m_in: the end node's half mass on the bar's side (mb(0), ma(n)).
+   pure subroutine book_ends(ends, f, z, dm, m_in, g, dt, full_mass, ledger, section)
+      type(end_t), intent(inout) :: ends(2)     !! the two ends
+      type(face_step_t), intent(in) :: f(2)     !! what the step did at each end node
+      real(wp), intent(in) :: z(2)              !! impedance of each end cell [kg/(m^2 s) A]
+      real(wp), intent(in) :: dm(2)             !! mass of each end cell [kg/m^2 A]
+      real(wp), intent(in) :: m_in(2)           !! the end node's half mass inside [kg/m^2 A]
+      real(wp), intent(in) :: g                 !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: dt                !! time step [s]
+      logical, intent(in) :: full_mass          !! the full-mass model (no section stresses)
+      type(ledger_t), intent(inout) :: ledger   !! the run's balances
+      real(wp), intent(inout) :: section(2)     !! section stress of each end node [Pa]
+      real(wp) :: w, du_old(2)
+      integer :: side
+      ! momentum balance: the end stresses act on the end nodes, supports take what reaches
+      ! them
+      ledger%i_ends = ledger%i_ends + (f(face_top)%s - f(face_bottom)%s) * dt
+      do side = face_top, face_bottom
+         if (f(side)%held) ledger%i_support = ledger%i_support - f(side)%p / dt
+      end do
+      ! work of the end stresses over the step: F^n (u^{n+1} - u^{n-1}) / 2, which keeps
+      ! the discrete energy ledger exact
+      do side = face_top, face_bottom
+         if (side == face_top) then
+            w = f(side)%s * 0.5_wp * (f(side)%du + f(side)%du_old)
+         else
+            w = -f(side)%s * 0.5_wp * (f(side)%du + f(side)%du_old)
+         end if
+         if (ends(side)%kind == end_transmit) then
+            ledger%w_transmit = ledger%w_transmit + w
+         else
+            ledger%w_load = ledger%w_load + w
+         end if
+      end do
+      ! a constant-velocity end's support force -p/dt^2 does the same product (its node moves
+      ! by V dt in both steps); in the continuum reading its work over the step is V times
+      ! the impulse the continuum's end section takes, -p/dt + Z (f^{n+1} - f^n) (f the
+      ! interval the support sends into the bar): the first part is booked here, the second
+      ! is a function of the reading at t^{n+1} (spb_wave, wave_t%w_support; doc/method.md)
+      do side = face_top, face_bottom
+         if (ends(side)%kind /= end_velocity) cycle
+         ledger%w_support = ledger%w_support - f(side)%p / dt**2 * 0.5_wp * &
+                            (f(side)%du + f(side)%du_old)
+         ledger%w_wave = ledger%w_wave - ends(side)%v_end * f(side)%p / dt
+      end do
+      ! the same work on the continuum state (spb_wave): I du / dt at a free loaded face; at a
+      ! transmitting end the energy the incoming wave (the static stress carried and the
+      ! incident load) brings minus what the outgoing one takes, Z du (2 w - du) / dt, w the
+      ! incoming interval: w_in, plus under gravity the fragment's zig-zag content rho
+      do side = face_top, face_bottom
+         select case (ends(side)%kind)
+         case (end_free)
+            if (side == face_top) then
+               ledger%w_wave = ledger%w_wave + f(side)%q * f(side)%du / dt
+            else
+               ledger%w_wave = ledger%w_wave - f(side)%q * f(side)%du / dt
+            end if
+         case (end_transmit)
+            if (side == face_top) then
+               ends(side)%w_in = (0.5_wp * ends(side)%s_static * dt + f(side)%q) / z(side) + &
+                                 0.5_wp * ends(side)%v_far * dt
+            else
+               ends(side)%w_in = -(0.5_wp * ends(side)%s_static * dt + f(side)%q) / z(side) + &
+                                 0.5_wp * ends(side)%v_far * dt
+            end if
+            ledger%w_wave = ledger%w_wave + z(side) * f(side)%du * &
+                            (2.0_wp * (ends(side)%w_in + f(side)%rho) - f(side)%du) / dt
+         case default
+            ! the other ends take no part here
+         end select
+      end do
+      ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}; a support
+      ! just hit by a moving half starts from that half's velocity
+      do side = face_top, face_bottom
+         du_old(side) = f(side)%du_old
+         if (ends(side)%landing) du_old(side) = ends(side)%v_land * dt
+      end do
+      ends%landing = .false.
+      do side = face_top, face_bottom
+         select case (ends(side)%kind)
+         case (end_fixed)
+            section(side) = support_form(side, f(side)%s_cell, section(side), du_old(side) / dt, &
+                                         0.0_wp, z(side), dm(side), g)
+         case (end_transmit, end_velocity)
+            section(side) = support_form(side, f(side)%s_cell, section(side), du_old(side) / dt, &
+                                         f(side)%du / dt, z(side), dm(side), g)
+         case (end_base)
+            ! resting on the rigid base: the base side does not move; v^n is the face half's
+            ! velocity before the step (0 while it rests)
+            if (ends(side)%contact .and. full_mass) then
+               ! full-mass model: no section stresses; the base takes the force on the node
+               if (side == face_top) then
+                  section(side) = f(side)%s_cell - m_in(side) * g
+               else
+                  section(side) = f(side)%s_cell + m_in(side) * g
+               end if
+            else if (ends(side)%contact) then
+               section(side) = support_form(side, f(side)%s_cell, section(side), &
+                                            du_old(side) / dt, 0.0_wp, z(side), dm(side), g)
+            else
+               section(side) = 0.0_wp
+            end if
+         case default
+            ! the other ends take no part here
+         end select
+      end do
+   end subroutine book_ends
+
+   !> The section stress (3.1)-(3.2) at an end node from its end cell: the B form (the cell
+   !> below) at the top, the A form (the cell above) at the bottom.
+   pure real(wp) function support_form(side, s_cell, s_prev, v_n, v_np1, z, dm, g) result(s_new)
+      integer, intent(in) :: side          !! face_top | face_bottom
+      real(wp), intent(in) :: s_cell       !! stress of the end cell at t^n [Pa]
+      real(wp), intent(in) :: s_prev       !! section stress S^{n-1/2} [Pa]
+      real(wp), intent(in) :: v_n          !! the face half's velocity v^n [m/s]
+      real(wp), intent(in) :: v_np1        !! the node's velocity v^{n+1} [m/s]
+      real(wp), intent(in) :: z            !! impedance of the end cell [kg/(m^2 s) A]
+      real(wp), intent(in) :: dm           !! mass of the end cell [kg/m^2 A]
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      if (side == face_top) then
+         s_new = section_stress_b(s_cell, s_prev, v_n, v_np1, z, dm, g)
+      else
+         s_new = section_stress_a(s_cell, s_prev, v_n, v_np1, z, dm, g)
+      end if
+   end function support_form
+end module spb_ends
