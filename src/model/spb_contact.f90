@@ -14,14 +14,15 @@
 module spb_contact
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_top, face_bottom, is_free_face, has_base
+   use spb_ends, only: face_bottom, has_base
    use spb_state, only: state_t, close_node
    use spb_section, only: section_stress_a
-   use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_base_collision
-   use spb_fracture, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id, &
-      anchored
-   use spb_arrays, only: append
-   use spb_wave, only: region_wave, held_odd, credit_bound, credit_position
+   use spb_events, only: event_t, event_list_t, ev_collision
+   use spb_fragments, only: node_energy, fragment_span, shift_span, span_mass, new_fragment_id, &
+      anchored, choose_time, du_before_a, du_before_b, path_speed, shift_late, shift_part, &
+      extend_up, extend_down, finish_event, book_shift_work, skip_next, keep_credit
+   use spb_base, only: touch_base
+   use spb_wave, only: region_wave
    use spb_problem, only: events_admissible, timing_accelerate, timing_delay, timing_min, &
       shift_above, shift_fragment
    implicit none
@@ -45,25 +46,6 @@ contains
       alpha = z_below / z_above
       sz = (2.0_wp * (alpha * s_above + s_below) + (v_a - v_b) * z_below) / (alpha + 1.0_wp)
    end function collision_stress
-
-   !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay), or where the
-   !> correction is smaller (min, (5.3)); corr is the chosen correction (5.2).
-   pure subroutine choose_time(timing, d_acc, d_del, at_n, corr)
-      integer, intent(in) :: timing        !! collision timing rule (timing_*)
-      real(wp), intent(in) :: d_acc          !! correction (5.2) for a join at t^n [m]
-      real(wp), intent(in) :: d_del          !! correction (5.2) for a join at t^{n+1} [m]
-      logical, intent(out) :: at_n           !! join at t^n (else at t^{n+1})
-      real(wp), intent(out) :: corr          !! the correction of the chosen time [m]
-      select case (timing)
-      case (timing_accelerate)
-         at_n = .true.
-      case (timing_delay)
-         at_n = .false.
-      case default
-         at_n = abs(d_acc) <= abs(d_del)
-      end select
-      corr = merge(d_acc, d_del, at_n)
-   end subroutine choose_time
 
    !> Whether split node i is a cohesive crack that still carries traction (its faces'
    !> contact is the crack's own, spb_cohesive).
@@ -147,63 +129,17 @@ contains
          end if
       end do
       end do
-      if (has_base(st%ends(face_bottom)) .and. .not. st%ends(face_bottom)%contact) then
-         tol = 0.0_wp
-         if (rules == events_admissible) tol = eps_rel * mesh%dx(mesh%n)
-         if (st%ua(mesh%n) - st%ends(face_bottom)%u_contact > tol) then
-            if (rules == events_admissible) then
-               call fragment_span(mesh, st, mesh%n, r_top, r_bot)
-               r_bot = mesh%n
-            else
-               call event_region(mesh, st, g, timing, policy, rules, mesh%n, r_top, r_bot, &
-                                 i_top, i_bot)
-            end if
-            e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-            call land(mesh, st, g, timing, policy, events, rules, i_top, tol)
-            if (rules == events_admissible) call keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
-            st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
-                             region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-         end if
-      end if
+      ! the rigid base the bottom face may land on (spb_base)
+      call touch_base(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
    end subroutine contact_step
 
-   !> A landing or a join that leaves the bar one fragment held at both ends with an odd cell
-   !> count changes its measure by c d^2 - g mu d (d the faces' trial step beyond what a
-   !> lift-off or a break would redo), which adds up to K = g^2 dt^3 / (8C) for small d: no
-   !> landing rule avoids it within the penetration allowance (doc/method.md, "A landing
-   !> credit"). That gain, up to K, is kept as the held bar's credit (its measure lower by
-   !> as much, constant while it is held) instead of being created; the lift-off or break
-   !> that ends the hold pays it (spb_fracture). e_wave0: the region's measure before the
-   !> event. Anything beyond K stays booked, where the ledger shows it.
-   pure subroutine keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
-      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      real(wp), intent(in) :: e_wave0      !! region_wave of the event's region before it [J/m^2]
-      real(wp) :: gain
-      if (.not. abs(g) > 0.0_wp .or. st%n_split > 0 .or. mesh%full_mass) return
-      if (.not. held_odd(mesh, st, 0, mesh%n)) return
-      gain = region_wave(mesh, st, g, i_top, i_bot, 0, mesh%n) - e_wave0
-      if (.not. gain > 0.0_wp) return
-      st%u_credit = st%u_credit + &
-                         credit_position(mesh, g, min(gain, credit_bound(mesh, g, 0, mesh%n)))
-   end subroutine keep_credit
-
-   !> The correction (5.2) that closes the gap at t^n, u_A^n - u_B^n (the base for i = n with
-   !> the base below), where an overlap at t^n within the contact tolerance counts as touching:
+   !> The correction (5.2) that closes the gap at t^n, u_A^n - u_B^n, where an overlap at t^n within the contact tolerance counts as touching:
    !> the faces met then (to round-off), and moving a side by that much would only lift it.
-   pure real(wp) function gap_at_n(mesh, st, i, tol) result(d_acc)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
+   pure real(wp) function gap_at_n(st, i, tol) result(d_acc)
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: i             !! split node
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
-      if (i == mesh%n) then
-         d_acc = (st%ua(i) - st%dua(i)) - st%ends(face_bottom)%u_contact
-      else
-         d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
-      end if
+      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
       if (d_acc > 0.0_wp .and. d_acc <= tol) d_acc = 0.0_wp
    end function gap_at_n
 
@@ -220,7 +156,7 @@ contains
       real(wp), intent(in) :: tol              !! contact tolerance [m]
       real(wp) :: d_acc, d_del, corr, x, y
       integer :: top, bot
-      d_acc = gap_at_n(mesh, st, i, tol)
+      d_acc = gap_at_n(st, i, tol)
       d_del = st%ua(i) - st%ub(i)
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
@@ -260,14 +196,6 @@ contains
          return
       end if
       call fragment_span(mesh, st, i, j, k)
-      if (i == mesh%n) then
-         d_acc = (st%ua(i) - st%dua(i)) - st%ends(face_bottom)%u_contact
-         d_del = st%ua(i) - st%ends(face_bottom)%u_contact
-         call land_side(mesh, st, policy, d_acc, top, amount)
-         call land_side(mesh, st, policy, d_del, bot, amount)
-         r_top = min(j, top, bot)
-         return
-      end if
       d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
       d_del = st%ua(i) - st%ub(i)
       r_top = j
@@ -279,24 +207,6 @@ contains
       r_top = min(r_top, top)
       r_bot = max(r_bot, bot)
    end subroutine event_region
-
-   !> Trial increment of a split half over the step just taken, and its increment before.
-   pure real(wp) function du_before_a(mesh, st, g, i) result(d)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i             !! split node
-      d = st%dua(i) - (st%s_old(i) + mesh%ma(i) * g) / mesh%ma(i) * mesh%dt**2
-   end function du_before_a
-
-   !> Trial increment of the lower half of split node i over the step before.
-   pure real(wp) function du_before_b(mesh, st, g, i) result(d)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i             !! split node
-      d = st%dub(i) - (mesh%mb(i) * g - st%s_old(i + 1)) / mesh%mb(i) * mesh%dt**2
-   end function du_before_b
 
    !> Choose the rule's time, shift one side, join node i.
    pure subroutine collide(mesh, st, g, timing, policy, i, events, rules, i_top, i_bot, tol)
@@ -320,7 +230,7 @@ contains
       dua0 = du_before_a(mesh, st, g, i)
       dub0 = du_before_b(mesh, st, g, i)
       ! (5.2): corrections that close the gap at t^n or remove the overlap at t^{n+1}
-      d_acc = gap_at_n(mesh, st, i, tol)                          ! u_A^n - u_B^n (< 0: a gap)
+      d_acc = gap_at_n(st, i, tol)                          ! u_A^n - u_B^n (< 0: a gap)
       d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
       call choose_time(timing, d_acc, d_del, at_n, corr)
       if (rules == events_admissible) then
@@ -408,94 +318,6 @@ contains
       call finish_event(mesh, st, ev, i, at_n, corr, shift_amount, st%gen%frag_id(j), parent_dn, events)
    end subroutine collide
 
-   !> Momentum of the region from B_top to A_bot over the last step [kg/(m s)].
-   pure real(wp) function span_momentum(mesh, st, top, bot) result(mom)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top           !! top node of the region (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      integer :: i
-      mom = 0.0_wp
-      do i = top, bot
-         if (i > top .or. top == 0) mom = mom + mesh%ma(i) * st%dua(i)
-         if (i < bot .or. bot == mesh%n) mom = mom + mesh%mb(i) * st%dub(i)
-      end do
-      mom = mom / mesh%dt
-   end function span_momentum
-
-   !> Load on a free end face that belongs to the region top..bot, along +x [N/m^2].
-   pure real(wp) function end_force(mesh, st, top, bot) result(f)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top           !! top node of the region (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      f = 0.0_wp
-      if (top == 0 .and. is_free_face(st%ends(face_top))) f = f + st%s(0)
-      if (bot == mesh%n .and. is_free_face(st%ends(face_bottom))) f = f - st%s(mesh%n + 1)
-   end function end_force
-
-   !> Velocity change w of a region shifted on its path (see shift_late): the real root
-   !> of M w^2/2 + (P + F dt/2) w - F shift = 0 on the side of the region's motion, with
-   !> P its momentum over the step and F = M g + end loads the constant force on it (the
-   !> ledger measures potential and work at mid-step); ok = .false. where there is none
-   !> (the region is too slow to have come that far) or where it would set the region
-   !> back by more than the step.
-   pure subroutine path_speed(mesh, st, g, top, bot, shift, w, ok)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: shift        !! its shift along x [m]
-      integer, intent(in) :: top           !! top node of the region (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      real(wp), intent(out) :: w               !! [m/s]
-      logical, intent(out) :: ok               !! w exists and sets the region back by at most dt
-      real(wp) :: mass, force, vm, disc
-      w = 0.0_wp
-      ok = .true.
-      mass = span_mass(mesh, top, bot)
-      force = g * mass + end_force(mesh, st, top, bot)
-      if (.not. (abs(force) > 0.0_wp .and. abs(shift) > 0.0_wp .and. mass > 0.0_wp)) return
-      vm = (span_momentum(mesh, st, top, bot) + 0.5_wp * force * mesh%dt) / mass
-      disc = vm**2 + 2.0_wp * force / mass * shift
-      ok = disc >= 0.0_wp
-      if (ok) w = sign(sqrt(disc), vm) - vm
-      ! the velocity change is the force's over the time the region is set back; the
-      ! contact happened within the step, so that time is at most dt
-      ok = ok .and. abs(w) <= abs(force / mass) * mesh%dt
-   end subroutine path_speed
-
-   !> The correction of a join at t^{n+1} moves the shifted region along its path: besides
-   !> the rigid shift (5.2) that removes the overlap, its increments change by a uniform
-   !> w dt (path_speed) so that kinetic plus potential energy change by exactly the work
-   !> the end loads do on the region's move (booked in w_load). A rigid shift alone would
-   !> lift the region against gravity and the loads for nothing: the paper's "fragments
-   !> keep being pushed apart". The momentum w gives the region is booked in p_shift.
-   pure subroutine shift_late(mesh, st, g, top, bot, shift, w)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: shift        !! its shift along x [m]
-      real(wp), intent(in) :: w            !! its velocity change (path_speed) [m/s]
-      integer, intent(in) :: top           !! top node of the region (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      real(wp) :: de, mass, mom, f_end, work
-      integer :: i
-      mass = span_mass(mesh, top, bot)
-      mom = span_momentum(mesh, st, top, bot)
-      f_end = end_force(mesh, st, top, bot)
-      call shift_span(mesh, st, g, top, bot, shift, de)
-      do i = top, bot
-         if (i > top .or. top == 0) st%dua(i) = st%dua(i) + w * mesh%dt
-         if (i < bot .or. bot == mesh%n) st%dub(i) = st%dub(i) + w * mesh%dt
-      end do
-      work = f_end * (shift - 0.5_wp * w * mesh%dt)
-      st%ledger%w_load = st%ledger%w_load + work
-      ! kinetic + potential change minus that work: zero but for the root's rounding
-      st%ledger%e_shift = st%ledger%e_shift - (mom * w + mass * (0.5_wp * w**2 + 0.5_wp * g * mesh%dt * w) &
-                                 + de - work)
-      st%ledger%p_shift = st%ledger%p_shift + mass * w
-   end subroutine shift_late
-
    !> The admissible correction of a collision at split node i: both sides move rigidly so
    !> that their faces meet and their common centre of mass stays (upper by -d M_l/(M_u + M_l),
    !> lower by +d M_u/(M_u + M_l), d the chosen (5.2) correction): no direction is preferred
@@ -540,23 +362,6 @@ contains
          if (.not. abs(x) > 0.0_wp) moved = y
       end if
    end subroutine shift_both_sides
-
-   !> Shift the nodes a..b rigidly by delta (shift_span), booking the gravity energy in
-   !> e_shift; far: the part lies beyond the fragments whose wave measure the event takes
-   !> before and after, so the change is booked in e_lost_wave here too.
-   pure subroutine shift_part(mesh, st, g, a, b, delta, far)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: delta        !! the shift along x [m]
-      integer, intent(in) :: a             !! top node of the part (as top in shift_span)
-      integer, intent(in) :: b             !! bottom node of the part (as bot in shift_span)
-      logical, intent(in) :: far           !! the part lies beyond the two fragments
-      real(wp) :: de
-      call shift_span(mesh, st, g, a, b, delta, de)
-      st%ledger%e_shift = st%ledger%e_shift - de
-      if (far) st%ledger%e_lost_wave = st%ledger%e_lost_wave - de
-   end subroutine shift_part
 
    !> What shift_both_sides moves: the upper side top..i by -x, the lower side i..bot by +y,
    !> at the time (at_n) and with the correction (corr) it settles on.
@@ -698,206 +503,4 @@ contains
            - 0.5_wp * closing * (mb * st%s(i) + ma * st%s(i + 1)) / (ma + mb)
    end function late_join_energy
 
-   !> The region a landing's correction moves: the fragment on the base's side (all of the
-   !> bar for 'above'), unless it is anchored; top node j.
-   pure subroutine land_side(mesh, st, policy, corr, j, shift_amount)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: policy        !! shift policy (shift_*)
-      real(wp), intent(in) :: corr         !! the chosen correction (5.2) [m]
-      integer, intent(out) :: j            !! top node of the region
-      real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
-      integer :: k
-      call fragment_span(mesh, st, mesh%n, j, k)
-      if (policy == shift_above) j = 0
-      shift_amount = 0.0_wp
-      if (.not. anchored(mesh, st, j, mesh%n)) then
-         shift_amount = -corr
-         call extend_up(mesh, st, j, shift_amount)
-         ! taking along what it is pushed into can reach a held top: then nothing moves
-         if (anchored(mesh, st, j, mesh%n)) shift_amount = 0.0_wp
-      end if
-   end subroutine land_side
-
-   !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
-   pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top, tol)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
-      real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
-      integer, intent(in) :: timing        !! collision timing rule (timing_*)
-      integer, intent(in) :: policy        !! shift policy (shift_*)
-      integer, intent(in) :: rules         !! event rules (events_*)
-      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias, other
-      integer :: n, j, j_near, k
-      logical :: at_n, ok
-      type(event_t) :: ev
-      n = mesh%n
-      dua0 = du_before_a(mesh, st, g, n)
-      d_acc = gap_at_n(mesh, st, n, tol)
-      d_del = st%ua(n) - st%ends(face_bottom)%u_contact
-      call choose_time(timing, d_acc, d_del, at_n, corr)
-      call land_side(mesh, st, policy, corr, j, shift_amount)
-      if (rules == events_admissible) then
-         ! the base does not move: the bar's side takes the whole correction, rigidly; where
-         ! that would move it against gravity and a load on its top face the other time is
-         ! taken (closing the gap at t^n moves it down, removing the overlap at t^{n+1} up)
-         bias = g * span_mass(mesh, j, n) * mesh%dt
-         if (j == 0) bias = bias + i_top
-         ! the bar side moves by -corr: against the bias, take the other time's correction
-         ! if it moves along it, or the smaller one where both go against
-         other = merge(d_del, d_acc, at_n)
-         if (-bias * corr < 0.0_wp .and. (.not. -bias * other < 0.0_wp .or. &
-                                          abs(other) < abs(corr))) then
-            at_n = .not. at_n
-            corr = other
-            call land_side(mesh, st, policy, corr, j, shift_amount)
-         end if
-         ! a bar side that cannot move (held by a fixed top) lands at t^n: the face keeps the
-         ! small gap it had then, never an overlap
-         if (.not. abs(shift_amount) > 0.0_wp .and. .not. at_n) then
-            at_n = .true.
-            corr = d_acc
-         end if
-         if (abs(shift_amount) > 0.0_wp) then
-            call fragment_span(mesh, st, n, j_near, k)
-            if (j < j_near) call shift_part(mesh, st, g, j, j_near, shift_amount, .true.)
-            call shift_part(mesh, st, g, max(j, j_near), n, shift_amount, .false.)
-            if (j == 0) call book_shift_work(st, i_top / mesh%dt * shift_amount)
-         end if
-      else if (.not. at_n) then
-         ! as for a collision: on its path, and never creating energy, else at t^n
-         call path_speed(mesh, st, g, j, n, shift_amount, w, ok)
-         du_trial = st%dua(n) + w * mesh%dt
-         if (.not. ok .or. -0.5_wp * mesh%ma(n) * ((du_trial / mesh%dt)**2 + g * du_trial) &
-             - 0.5_wp * st%s(n) * du_trial > 0.0_wp) then
-            at_n = .true.
-            corr = d_acc
-            call land_side(mesh, st, policy, corr, j, shift_amount)
-         end if
-      end if
-      if (abs(shift_amount) > 0.0_wp .and. rules /= events_admissible) then
-         if (at_n) then
-            call shift_span(mesh, st, g, j, n, shift_amount, de)
-            st%ledger%e_shift = st%ledger%e_shift - de
-         else
-            call shift_late(mesh, st, g, j, n, shift_amount, w)
-         end if
-      end if
-      ev%kind = ev_base_collision
-      if (at_n) then
-         ev%stress = 2.0_wp * st%s_old(n) + mesh%z(n) * dua0 / mesh%dt
-      else
-         ev%stress = 2.0_wp * st%s(n) + mesh%z(n) * st%dua(n) / mesh%dt
-      end if
-      ev%stress_bound = abs(2.0_wp * st%s(n))                      ! (6.3), alpha -> infinity
-      e0 = node_energy(mesh, st, g, n)
-      du_trial = st%dua(n)
-      st%ends(face_bottom)%contact = .true.
-      st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * du_trial / mesh%dt
-      st%dua(n) = 0.0_wp
-      st%dub(n) = 0.0_wp
-      if (at_n) then
-         st%ua(n) = st%ua(n) - du_trial
-         st%ub(n) = st%ua(n)
-         st%s(n) = st%s(n) + mesh%stiff(n) * du_trial
-         st%section(n) = section_stress_a(st%s_old(n), 0.0_wp, dua0 / mesh%dt, 0.0_wp, mesh%z(n), &
-                                      mesh%dm(n), g)
-      else
-         ! joined at t^{n+1}: as for a collision between fragments, s_old follows the
-         ! increment so that the ledger's telescoping stays exact; the next step's base
-         ! section stress starts from the bottom half's own velocity with S^{n+1/2} = 0, the
-         ! collision stress (5.6), alpha -> infinity
-         st%s_old(n) = st%s_old(n) - mesh%stiff(n) * du_trial
-         st%section(n) = 0.0_wp
-         st%ends(face_bottom)%landing = .true.
-         st%ends(face_bottom)%v_land = du_trial / mesh%dt
-         call skip_next(st, n)
-      end if
-      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, n))
-      call finish_event(mesh, st, ev, n, at_n, corr, shift_amount, st%gen%frag_id(j), 0, events)
-   end subroutine land
-
-   !> A shifted fragment must not be pushed into its neighbour: while the shift would make
-   !> the faces at the region's top node overlap, the fragment above moves with it.
-   pure subroutine extend_up(mesh, st, top, shift)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(inout) :: top        !! top node of the region (0 or a split node)
-      real(wp), intent(in) :: shift        !! its shift along x [m]
-      do while (top > 0)
-         if (st%joined(top)) exit
-         if (.not. ((st%ub(top) + shift) - st%ua(top) < 0.0_wp)) exit
-         top = top - 1
-         do while (top > 0)
-            if (.not. st%joined(top)) exit
-            top = top - 1
-         end do
-         if (anchored(mesh, st, top, mesh%n - 1)) exit
-      end do
-   end subroutine extend_up
-
-   !> The same downward, for a shift of the lower side.
-   pure subroutine extend_down(mesh, st, bot, shift)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(inout) :: bot        !! bottom node of the region (n or a split node)
-      real(wp), intent(in) :: shift        !! its shift along x [m]
-      do while (bot < mesh%n)
-         if (st%joined(bot)) exit
-         if (.not. (st%ub(bot) - (st%ua(bot) + shift) < 0.0_wp)) exit
-         bot = bot + 1
-         do while (bot < mesh%n)
-            if (.not. st%joined(bot)) exit
-            bot = bot + 1
-         end do
-         if (anchored(mesh, st, 1, bot)) exit
-      end do
-   end subroutine extend_down
-
-   !> Fill the time, place and correction of a collision event and append it.
-   pure subroutine finish_event(mesh, st, ev, node, at_n, corr, shift, above, below, events)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      type(event_t), intent(inout) :: ev       !! kind, stress and stress_bound already set
-      integer, intent(in) :: node              !! node of the section (n: the base)
-      integer, intent(in) :: above             !! fragment id for frag_above (collision: the
-                                               !! merged fragment)
-      integer, intent(in) :: below             !! fragment id for frag_below (collision: the
-                                               !! lower one merged; base: 0)
-      logical, intent(in) :: at_n              !! joined at t^n (else t^{n+1})
-      real(wp), intent(in) :: corr             !! correction (5.2) of the chosen time [m]
-      real(wp), intent(in) :: shift            !! the shift applied [m]
-      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      ev%step = st%step
-      if (at_n) ev%step = st%step - 1
-      ev%node = node
-      ev%t = real(ev%step, wp) * mesh%dt
-      ev%x = mesh%x(node)
-      ev%dt_bound = mesh%dt
-      ev%dx_bound = 0.0_wp
-      ev%opening = corr
-      ev%shift = shift
-      ev%frag_above = above
-      ev%frag_below = below
-      call push_event(events, ev)
-   end subroutine finish_event
-
-   !> Work a face load does on a rigid shift of its face [J/m^2]: booked as work and, since no
-   !> wave energy follows, as what the event removed.
-   pure subroutine book_shift_work(st, work)
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: work         !! work of the face load on the shift [J/m^2]
-      st%ledger%w_wave = st%ledger%w_wave + work
-      st%ledger%e_lost_wave = st%ledger%e_lost_wave + work
-   end subroutine book_shift_work
-
-   !> Node i was joined at t^{n+1}: its section is not tested for breaking this step.
-   pure subroutine skip_next(st, i)
-      type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: i             !! split node
-      call append(st%skip_test, st%n_skip, i)
-   end subroutine skip_next
 end module spb_contact

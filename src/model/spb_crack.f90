@@ -7,7 +7,7 @@ module spb_crack
    use spb_state, only: state_t, open_node
    use spb_wave, only: fragment_characteristics, region_wave
    use spb_cohesive, only: cohesive_force, law_integral
-   use spb_fracture, only: fragment_span
+   use spb_fragments, only: fragment_span
    implicit none
    private
    public :: start_cracks, cohesive_step

@@ -9,116 +9,20 @@
 module spb_fracture
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_top, face_bottom, holds, on_base
+   use spb_ends, only: face_bottom, holds, on_base
    use spb_state, only: state_t, open_node, separates
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation, ev_crack
    use spb_arrays, only: append
-   use spb_wave, only: fragment_characteristics, region_wave, held_odd, vertex_offset, &
-      credit_position
+   use spb_wave, only: fragment_characteristics, region_wave, credit_position
    use spb_problem, only: events_admissible, events_paper
+   use spb_fragments, only: node_energy, anchored, fragment_span, shift_span, new_fragment_id
+   use spb_base, only: lift_off
    implicit none
    private
-   public :: fracture_step, events_admissible, events_paper, node_energy, fragment_span
-   public :: shift_span, span_mass, new_fragment_id, first_overlap, anchored, pay_credit
+   public :: fracture_step, events_admissible, events_paper, first_overlap, pay_credit
 
 
 contains
-
-   !> Energy terms that live at node i: kinetic and potential energy of its two halves and
-   !> the strain energy of the cells on either side (the scheme's own forms, spb_diag).
-   pure real(wp) function node_energy(mesh, st, g, i) result(e)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer, intent(in) :: i             !! node
-      real(wp) :: dt
-      dt = mesh%dt
-      e = 0.5_wp * (mesh%ma(i) * st%dua(i)**2 + mesh%mb(i) * st%dub(i)**2) / dt**2 &
-          - g * (mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i)) + mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i)))
-      if (i >= 1) e = e + 0.5_wp * st%s_old(i) * st%s(i) / mesh%stiff(i)
-      if (i <= mesh%n - 1) e = e + 0.5_wp * st%s_old(i + 1) * st%s(i + 1) / mesh%stiff(i + 1)
-   end function node_energy
-
-   !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
-   !> support that a rigid shift cannot move: a fixed end, a constant-velocity end (its
-   !> position is V t), or the base the bar rests on.
-   pure logical function anchored(mesh, st, top, bot)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top           !! top node of the region (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      anchored = (top == 0 .and. holds(st%ends(face_top))) .or. &
-                 (bot == mesh%n .and. holds(st%ends(face_bottom)))
-   end function anchored
-
-   !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
-   pure subroutine fragment_span(mesh, st, i, j, k)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: i             !! node
-      integer, intent(out) :: j   !! top node of the fragment ending at A_i (0 or a split node)
-      integer, intent(out) :: k   !! bottom node of the fragment starting at B_i (n or split)
-      j = i - 1
-      do while (j > 0)
-         if (.not. st%joined(j)) exit
-         j = j - 1
-      end do
-      k = i + 1
-      do while (k < mesh%n)
-         if (.not. st%joined(k)) exit
-         k = k + 1
-      end do
-   end subroutine fragment_span
-
-   !> Mass of the region from B_top to A_bot (as moved by shift_span) [kg/m^2]: its cells,
-   !> and the outer half mass of an end node (a transmitting or full-mass end).
-   pure real(wp) function span_mass(mesh, top, bot) result(mass)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      integer, intent(in) :: top           !! top node of the region (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
-      mass = mesh%m_above(bot) - mesh%m_above(top)
-      if (top == 0) mass = mass + mesh%ma(0)
-      if (bot == mesh%n) mass = mass + mesh%mb(mesh%n)
-   end function span_mass
-
-   !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
-   !> rigidly by delta; returns the change of gravity potential energy. A cohesive crack at an
-   !> end keeps its opening: the shift goes to its offset (spb_state cohesive_t).
-   pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: delta        !! rigid shift along x [m]
-      integer, intent(in) :: top           !! top node: its lower half B_top moves (all of it if 0)
-      integer, intent(in) :: bot           !! bottom node: its upper half A_bot moves (all if n)
-      real(wp), intent(out) :: de_pot      !! [J/m^2]
-      integer :: i
-      do i = top, bot
-         if (i > top .or. top == 0) st%ua(i) = st%ua(i) + delta
-         if (i < bot .or. bot == mesh%n) st%ub(i) = st%ub(i) + delta
-      end do
-      if (st%coh%on) then
-         if (top > 0) then
-            if (st%coh%active(top)) st%coh%offset(top) = st%coh%offset(top) + delta
-         end if
-         if (bot < mesh%n) then
-            if (st%coh%active(bot)) st%coh%offset(bot) = st%coh%offset(bot) - delta
-         end if
-      end if
-      de_pot = -g * span_mass(mesh, top, bot) * delta
-   end subroutine shift_span
-
-   !> Issue a new fragment id for the fragment whose top node is `node`, with its parent and
-   !> birth step (kept per node like the id: memory does not grow with the events).
-   pure subroutine new_fragment_id(st, parent, node)
-      type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: parent        !! id of the parent fragment (0: none)
-      integer, intent(in) :: node          !! top node of the new fragment
-      st%gen%n_frag_ids = st%gen%n_frag_ids + 1
-      st%gen%frag_id(node) = st%gen%n_frag_ids
-      st%gen%frag_parent(node) = parent
-      st%gen%frag_birth(node) = st%step
-   end subroutine new_fragment_id
 
    !> Test every joined interior node at t^{n+1} = st%step dt and break those in tension
    !> beyond their strength; append one event per fracture.
@@ -523,88 +427,6 @@ contains
       ev%frag_below = st%gen%frag_id(i)
       call push_event(events, ev)
    end subroutine record_break
-
-   !> The bar leaves the rigid base when the base section stress falls below -eps (the
-   !> base has no tensile strength): 'paper', stage 1 and 2 on the bar side only;
-   !> 'admissible', as a break: the bar left at t^n, and its bottom face moves over the step
-   !> by 2 f_n of the continuum state at t^n (the base's impulse of the step is given back).
-   !> A bar held by a fixed top with an odd cell count, under gravity: its bottom face moves
-   !> by 2 f_n + d*/2 (d* = g dt^2 / (Z_n C)), where the free bar's measure has its vertex,
-   !> K lower (vertex_offset), which pays the credit of its landing (K - credit >= 0 is
-   !> removed); it leaves only where that step is still off the base, 2 f_n + d*/2 < 0: for
-   !> g > 0 the base holds a pull of up to Z_n d* / (2 dt) (doc/method.md, "A landing
-   !> credit").
-   pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: eps          !! round-off guard [Pa]
-      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      integer, intent(in) :: rules         !! event rules (events_*)
-      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
-      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      real(wp) :: s_base, d_a, e0, de, e_wave0, vertex
-      real(wp), allocatable :: f(:), gw(:)
-      integer :: n, j, k
-      type(event_t) :: ev
-      n = mesh%n
-      if (any(st%skip_test(1:st%n_skip) == n)) return
-      if (.not. (st%section(n) < -eps)) return
-      s_base = st%section(n)
-      call fragment_span(mesh, st, n, j, k)
-      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, j, n)
-      if (rules == events_admissible .and. .not. mesh%full_mass) then
-         allocate(f(j+1:n), gw(j+1:n))
-         call fragment_characteristics(mesh, st, g, j, n, i_top, i_bot, .true., f, gw)
-         vertex = 0.0_wp
-         if (held_odd(mesh, st, j, n)) vertex = vertex_offset(mesh, g, j, n, n)
-         ! the base lets go where the continuum reading's base stress pulls too (as breaks),
-         ! beyond the pull it holds for the held bar's vertex
-         if (.not. (mesh%z(n) / mesh%dt * (2.0_wp * f(n) + vertex) < -eps)) then
-            st%section(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
-            return
-         end if
-         ! the step redone from t^n for the bottom face: it moves by 2 f_n (+ the vertex's
-         ! offset)
-         d_a = st%dua(n) - (2.0_wp * f(n) + vertex)
-      else
-         ! stage 1 on the bar side; the full-mass model lets go without corrections (it has
-         ! no section stresses)
-         d_a = merge(0.0_wp, -s_base * mesh%dt**2 / mesh%dm(n), mesh%full_mass)
-      end if
-      e0 = node_energy(mesh, st, g, n)
-      st%ua(n) = st%ua(n) - d_a
-      st%dua(n) = st%dua(n) - d_a
-      st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * d_a / mesh%dt
-      st%ub(n) = st%ua(n)
-      st%dub(n) = st%dua(n)
-      if (rules == events_admissible) then
-         st%s(n) = st%s(n) + mesh%stiff(n) * d_a    ! the cell above follows the redone step
-      else if (.not. mesh%full_mass) then
-         st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
-      end if
-      st%ends(face_bottom)%contact = .false.
-      st%u_credit = 0.0_wp
-      st%section(n) = 0.0_wp
-      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, n))
-      if (rules /= events_admissible .and. .not. anchored(mesh, st, j, n)) then
-         ! stage 2
-         call shift_span(mesh, st, g, j, n, 0.5_wp * d_a, de)
-         st%ledger%e_fracture = st%ledger%e_fracture - de
-      end if
-      ev%kind = ev_separation
-      ev%step = st%step
-      ev%node = n
-      ev%t = real(st%step, wp) * mesh%dt
-      ev%x = mesh%x(n)
-      ev%stress = s_base
-      ev%dt_bound = mesh%dt
-      ev%dx_bound = 0.0_wp
-      ev%opening = st%ends(face_bottom)%u_contact - st%ua(n)
-      ev%frag_above = st%gen%frag_id(j)
-      call push_event(events, ev)
-      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
-   end subroutine lift_off
 
    !> The naive full-mass model (the paper's Fig. 12 comparison): a spring whose own stress
    !> falls below -R - eps is cut; from then on it carries compression only. No half masses,

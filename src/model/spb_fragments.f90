@@ -1,0 +1,365 @@
+!> Fragments and the moves events make of them (used by spb_contact, spb_fracture and
+!> spb_base): a fragment's span, mass, momentum and node energies; the rigid shifts of the
+!> corrections (5.2) and their booking; the timing rule (5.2)-(5.3); fragment ids; an
+!> event's time, place and correction; the landing credit of a bar held at both ends.
+module spb_fragments
+   use spb_kinds, only: wp
+   use spb_mesh, only: mesh_t
+   use spb_ends, only: face_top, face_bottom, is_free_face, holds
+   use spb_state, only: state_t
+   use spb_events, only: event_t, event_list_t, push_event
+   use spb_arrays, only: append
+   use spb_wave, only: region_wave, held_odd, credit_bound, credit_position
+   use spb_problem, only: timing_accelerate, timing_delay
+   implicit none
+   private
+   public :: node_energy, anchored, fragment_span, span_mass, shift_span, new_fragment_id
+   public :: choose_time, du_before_a, du_before_b, span_momentum, end_force, path_speed, &
+      shift_late, shift_part, extend_up, extend_down, finish_event, book_shift_work, skip_next, &
+      keep_credit
+
+contains
+
+   !> Energy terms that live at node i: kinetic and potential energy of its two halves and
+   !> the strain energy of the cells on either side (the scheme's own forms, spb_diag).
+   pure real(wp) function node_energy(mesh, st, g, i) result(e)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! node
+      real(wp) :: dt
+      dt = mesh%dt
+      e = 0.5_wp * (mesh%ma(i) * st%dua(i)**2 + mesh%mb(i) * st%dub(i)**2) / dt**2 &
+          - g * (mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i)) + mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i)))
+      if (i >= 1) e = e + 0.5_wp * st%s_old(i) * st%s(i) / mesh%stiff(i)
+      if (i <= mesh%n - 1) e = e + 0.5_wp * st%s_old(i + 1) * st%s(i + 1) / mesh%stiff(i + 1)
+   end function node_energy
+
+   !> Whether the region of nodes top..bot (its end halves as in shift_span) holds a
+   !> support that a rigid shift cannot move: a fixed end, a constant-velocity end (its
+   !> position is V t), or the base the bar rests on.
+   pure logical function anchored(mesh, st, top, bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
+      anchored = (top == 0 .and. holds(st%ends(face_top))) .or. &
+                 (bot == mesh%n .and. holds(st%ends(face_bottom)))
+   end function anchored
+
+   !> Nodes of the fragment above split node i (top = j) or below it (bottom = k).
+   pure subroutine fragment_span(mesh, st, i, j, k)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! node
+      integer, intent(out) :: j   !! top node of the fragment ending at A_i (0 or a split node)
+      integer, intent(out) :: k   !! bottom node of the fragment starting at B_i (n or split)
+      j = i - 1
+      do while (j > 0)
+         if (.not. st%joined(j)) exit
+         j = j - 1
+      end do
+      k = i + 1
+      do while (k < mesh%n)
+         if (.not. st%joined(k)) exit
+         k = k + 1
+      end do
+   end subroutine fragment_span
+
+   !> Mass of the region from B_top to A_bot (as moved by shift_span) [kg/m^2]: its cells,
+   !> and the outer half mass of an end node (a transmitting or full-mass end).
+   pure real(wp) function span_mass(mesh, top, bot) result(mass)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
+      mass = mesh%m_above(bot) - mesh%m_above(top)
+      if (top == 0) mass = mass + mesh%ma(0)
+      if (bot == mesh%n) mass = mass + mesh%mb(mesh%n)
+   end function span_mass
+
+   !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
+   !> rigidly by delta; returns the change of gravity potential energy. A cohesive crack at an
+   !> end keeps its opening: the shift goes to its offset (spb_state cohesive_t).
+   pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: delta        !! rigid shift along x [m]
+      integer, intent(in) :: top           !! top node: its lower half B_top moves (all of it if 0)
+      integer, intent(in) :: bot           !! bottom node: its upper half A_bot moves (all if n)
+      real(wp), intent(out) :: de_pot      !! [J/m^2]
+      integer :: i
+      do i = top, bot
+         if (i > top .or. top == 0) st%ua(i) = st%ua(i) + delta
+         if (i < bot .or. bot == mesh%n) st%ub(i) = st%ub(i) + delta
+      end do
+      if (st%coh%on) then
+         if (top > 0) then
+            if (st%coh%active(top)) st%coh%offset(top) = st%coh%offset(top) + delta
+         end if
+         if (bot < mesh%n) then
+            if (st%coh%active(bot)) st%coh%offset(bot) = st%coh%offset(bot) - delta
+         end if
+      end if
+      de_pot = -g * span_mass(mesh, top, bot) * delta
+   end subroutine shift_span
+
+   !> Issue a new fragment id for the fragment whose top node is `node`, with its parent and
+   !> birth step (kept per node like the id: memory does not grow with the events).
+   pure subroutine new_fragment_id(st, parent, node)
+      type(state_t), intent(inout) :: st   !! the state
+      integer, intent(in) :: parent        !! id of the parent fragment (0: none)
+      integer, intent(in) :: node          !! top node of the new fragment
+      st%gen%n_frag_ids = st%gen%n_frag_ids + 1
+      st%gen%frag_id(node) = st%gen%n_frag_ids
+      st%gen%frag_parent(node) = parent
+      st%gen%frag_birth(node) = st%step
+   end subroutine new_fragment_id
+
+   !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay), or where the
+   !> correction is smaller (min, (5.3)); corr is the chosen correction (5.2).
+   pure subroutine choose_time(timing, d_acc, d_del, at_n, corr)
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      real(wp), intent(in) :: d_acc          !! correction (5.2) for a join at t^n [m]
+      real(wp), intent(in) :: d_del          !! correction (5.2) for a join at t^{n+1} [m]
+      logical, intent(out) :: at_n           !! join at t^n (else at t^{n+1})
+      real(wp), intent(out) :: corr          !! the correction of the chosen time [m]
+      select case (timing)
+      case (timing_accelerate)
+         at_n = .true.
+      case (timing_delay)
+         at_n = .false.
+      case default
+         at_n = abs(d_acc) <= abs(d_del)
+      end select
+      corr = merge(d_acc, d_del, at_n)
+   end subroutine choose_time
+
+   !> Trial increment of a split half over the step just taken, and its increment before.
+   pure real(wp) function du_before_a(mesh, st, g, i) result(d)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! split node
+      d = st%dua(i) - (st%s_old(i) + mesh%ma(i) * g) / mesh%ma(i) * mesh%dt**2
+   end function du_before_a
+
+   !> Trial increment of the lower half of split node i over the step before.
+   pure real(wp) function du_before_b(mesh, st, g, i) result(d)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! split node
+      d = st%dub(i) - (mesh%mb(i) * g - st%s_old(i + 1)) / mesh%mb(i) * mesh%dt**2
+   end function du_before_b
+
+   !> Momentum of the region from B_top to A_bot over the last step [kg/(m s)].
+   pure real(wp) function span_momentum(mesh, st, top, bot) result(mom)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
+      integer :: i
+      mom = 0.0_wp
+      do i = top, bot
+         if (i > top .or. top == 0) mom = mom + mesh%ma(i) * st%dua(i)
+         if (i < bot .or. bot == mesh%n) mom = mom + mesh%mb(i) * st%dub(i)
+      end do
+      mom = mom / mesh%dt
+   end function span_momentum
+
+   !> Load on a free end face that belongs to the region top..bot, along +x [N/m^2].
+   pure real(wp) function end_force(mesh, st, top, bot) result(f)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
+      f = 0.0_wp
+      if (top == 0 .and. is_free_face(st%ends(face_top))) f = f + st%s(0)
+      if (bot == mesh%n .and. is_free_face(st%ends(face_bottom))) f = f - st%s(mesh%n + 1)
+   end function end_force
+
+   !> Velocity change w of a region shifted on its path (see shift_late): the real root
+   !> of M w^2/2 + (P + F dt/2) w - F shift = 0 on the side of the region's motion, with
+   !> P its momentum over the step and F = M g + end loads the constant force on it (the
+   !> ledger measures potential and work at mid-step); ok = .false. where there is none
+   !> (the region is too slow to have come that far) or where it would set the region
+   !> back by more than the step.
+   pure subroutine path_speed(mesh, st, g, top, bot, shift, w, ok)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: shift        !! its shift along x [m]
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
+      real(wp), intent(out) :: w               !! [m/s]
+      logical, intent(out) :: ok               !! w exists and sets the region back by at most dt
+      real(wp) :: mass, force, vm, disc
+      w = 0.0_wp
+      ok = .true.
+      mass = span_mass(mesh, top, bot)
+      force = g * mass + end_force(mesh, st, top, bot)
+      if (.not. (abs(force) > 0.0_wp .and. abs(shift) > 0.0_wp .and. mass > 0.0_wp)) return
+      vm = (span_momentum(mesh, st, top, bot) + 0.5_wp * force * mesh%dt) / mass
+      disc = vm**2 + 2.0_wp * force / mass * shift
+      ok = disc >= 0.0_wp
+      if (ok) w = sign(sqrt(disc), vm) - vm
+      ! the velocity change is the force's over the time the region is set back; the
+      ! contact happened within the step, so that time is at most dt
+      ok = ok .and. abs(w) <= abs(force / mass) * mesh%dt
+   end subroutine path_speed
+
+   !> The correction of a join at t^{n+1} moves the shifted region along its path: besides
+   !> the rigid shift (5.2) that removes the overlap, its increments change by a uniform
+   !> w dt (path_speed) so that kinetic plus potential energy change by exactly the work
+   !> the end loads do on the region's move (booked in w_load). A rigid shift alone would
+   !> lift the region against gravity and the loads for nothing: the paper's "fragments
+   !> keep being pushed apart". The momentum w gives the region is booked in p_shift.
+   pure subroutine shift_late(mesh, st, g, top, bot, shift, w)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: shift        !! its shift along x [m]
+      real(wp), intent(in) :: w            !! its velocity change (path_speed) [m/s]
+      integer, intent(in) :: top           !! top node of the region (0 or a split node)
+      integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
+      real(wp) :: de, mass, mom, f_end, work
+      integer :: i
+      mass = span_mass(mesh, top, bot)
+      mom = span_momentum(mesh, st, top, bot)
+      f_end = end_force(mesh, st, top, bot)
+      call shift_span(mesh, st, g, top, bot, shift, de)
+      do i = top, bot
+         if (i > top .or. top == 0) st%dua(i) = st%dua(i) + w * mesh%dt
+         if (i < bot .or. bot == mesh%n) st%dub(i) = st%dub(i) + w * mesh%dt
+      end do
+      work = f_end * (shift - 0.5_wp * w * mesh%dt)
+      st%ledger%w_load = st%ledger%w_load + work
+      ! kinetic + potential change minus that work: zero but for the root's rounding
+      st%ledger%e_shift = st%ledger%e_shift - (mom * w + mass * (0.5_wp * w**2 + 0.5_wp * g * mesh%dt * w) &
+                                 + de - work)
+      st%ledger%p_shift = st%ledger%p_shift + mass * w
+   end subroutine shift_late
+
+   !> Shift the nodes a..b rigidly by delta (shift_span), booking the gravity energy in
+   !> e_shift; far: the part lies beyond the fragments whose wave measure the event takes
+   !> before and after, so the change is booked in e_lost_wave here too.
+   pure subroutine shift_part(mesh, st, g, a, b, delta, far)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: delta        !! the shift along x [m]
+      integer, intent(in) :: a             !! top node of the part (as top in shift_span)
+      integer, intent(in) :: b             !! bottom node of the part (as bot in shift_span)
+      logical, intent(in) :: far           !! the part lies beyond the two fragments
+      real(wp) :: de
+      call shift_span(mesh, st, g, a, b, delta, de)
+      st%ledger%e_shift = st%ledger%e_shift - de
+      if (far) st%ledger%e_lost_wave = st%ledger%e_lost_wave - de
+   end subroutine shift_part
+
+   !> A shifted fragment must not be pushed into its neighbour: while the shift would make
+   !> the faces at the region's top node overlap, the fragment above moves with it.
+   pure subroutine extend_up(mesh, st, top, shift)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(inout) :: top        !! top node of the region (0 or a split node)
+      real(wp), intent(in) :: shift        !! its shift along x [m]
+      do while (top > 0)
+         if (st%joined(top)) exit
+         if (.not. ((st%ub(top) + shift) - st%ua(top) < 0.0_wp)) exit
+         top = top - 1
+         do while (top > 0)
+            if (.not. st%joined(top)) exit
+            top = top - 1
+         end do
+         if (anchored(mesh, st, top, mesh%n - 1)) exit
+      end do
+   end subroutine extend_up
+
+   !> The same downward, for a shift of the lower side.
+   pure subroutine extend_down(mesh, st, bot, shift)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(inout) :: bot        !! bottom node of the region (n or a split node)
+      real(wp), intent(in) :: shift        !! its shift along x [m]
+      do while (bot < mesh%n)
+         if (st%joined(bot)) exit
+         if (.not. (st%ub(bot) - (st%ua(bot) + shift) < 0.0_wp)) exit
+         bot = bot + 1
+         do while (bot < mesh%n)
+            if (.not. st%joined(bot)) exit
+            bot = bot + 1
+         end do
+         if (anchored(mesh, st, 1, bot)) exit
+      end do
+   end subroutine extend_down
+
+   !> Fill the time, place and correction of a collision event and append it.
+   pure subroutine finish_event(mesh, st, ev, node, at_n, corr, shift, above, below, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      type(event_t), intent(inout) :: ev       !! kind, stress and stress_bound already set
+      integer, intent(in) :: node              !! node of the section (n: the base)
+      integer, intent(in) :: above             !! fragment id for frag_above (collision: the
+                                               !! merged fragment)
+      integer, intent(in) :: below             !! fragment id for frag_below (collision: the
+                                               !! lower one merged; base: 0)
+      logical, intent(in) :: at_n              !! joined at t^n (else t^{n+1})
+      real(wp), intent(in) :: corr             !! correction (5.2) of the chosen time [m]
+      real(wp), intent(in) :: shift            !! the shift applied [m]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      ev%step = st%step
+      if (at_n) ev%step = st%step - 1
+      ev%node = node
+      ev%t = real(ev%step, wp) * mesh%dt
+      ev%x = mesh%x(node)
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = 0.0_wp
+      ev%opening = corr
+      ev%shift = shift
+      ev%frag_above = above
+      ev%frag_below = below
+      call push_event(events, ev)
+   end subroutine finish_event
+
+   !> Work a face load does on a rigid shift of its face [J/m^2]: booked as work and, since no
+   !> wave energy follows, as what the event removed.
+   pure subroutine book_shift_work(st, work)
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: work         !! work of the face load on the shift [J/m^2]
+      st%ledger%w_wave = st%ledger%w_wave + work
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + work
+   end subroutine book_shift_work
+
+   !> Node i was joined at t^{n+1}: its section is not tested for breaking this step.
+   pure subroutine skip_next(st, i)
+      type(state_t), intent(inout) :: st   !! the state
+      integer, intent(in) :: i             !! split node
+      call append(st%skip_test, st%n_skip, i)
+   end subroutine skip_next
+
+   !> A landing or a join that leaves the bar one fragment held at both ends with an odd cell
+   !> count changes its measure by c d^2 - g mu d (d the faces' trial step beyond what a
+   !> lift-off or a break would redo), which adds up to K = g^2 dt^3 / (8C) for small d: no
+   !> landing rule avoids it within the penetration allowance (doc/method.md, "A landing
+   !> credit"). That gain, up to K, is kept as the held bar's credit (its measure lower by
+   !> as much, constant while it is held) instead of being created; the lift-off or break
+   !> that ends the hold pays it (spb_fracture). e_wave0: the region's measure before the
+   !> event. Anything beyond K stays booked, where the ledger shows it.
+   pure subroutine keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), intent(in) :: e_wave0      !! region_wave of the event's region before it [J/m^2]
+      real(wp) :: gain
+      if (.not. abs(g) > 0.0_wp .or. st%n_split > 0 .or. mesh%full_mass) return
+      if (.not. held_odd(mesh, st, 0, mesh%n)) return
+      gain = region_wave(mesh, st, g, i_top, i_bot, 0, mesh%n) - e_wave0
+      if (.not. gain > 0.0_wp) return
+      st%u_credit = st%u_credit + &
+                         credit_position(mesh, g, min(gain, credit_bound(mesh, g, 0, mesh%n)))
+   end subroutine keep_credit
+end module spb_fragments
