@@ -250,9 +250,9 @@ class SaintVenant:
         the last period of the contact wave with alternating sign.
     The contact ends at t_r, the first zero of sigma_c (not before T: sigma_c > 0 on [0, T)). On
     [T, 2T), g = 0: sigma_c = sigma0 e^{-2 alpha xi} [2 + e^{-2 alpha} - 4 alpha xi], xi = x - 1, so
-    t_r / T = 1 + (2 + e^{-2 alpha}) / (4 alpha) when that is below 2 (alpha > 0.57859...; alpha = 1:
-    1.5338338208); smaller alpha release later (root finding). Stresses and the limits of f at the
-    jumps are right limits.
+    t_r / T = 1 + (2 + e^{-2 alpha}) / (4 alpha) when that is below 2 (alpha > 0.57859...;
+    alpha = 1: 1.5338338208); smaller alpha release later (root finding). Stresses and the limits
+    of f at the jumps are right limits.
 
     After the release the face is free and driven by the trapped wave, and it can strike the mass
     again (g = 0; found with impactor_reference.py over 12 T): alpha = 1 at 2.1246 T (released at
@@ -531,6 +531,13 @@ class Transmitting:
         """Mass (= face) displacement [m]."""
         t = np.asarray(t, dtype=float)
         return self.v_inf * t - (self.v0 - self.v_inf) * self.tau * np.expm1(-t / self.tau)
+
+    def stress_integral(self, t1, t2):
+        """int_{t1}^{t2} sigma = sigma_g (t2 - t1) + (sigma0 - sigma_g) tau e^{-t1/tau}
+        (1 - e^{-(t2 - t1)/tau}) [Pa s] (no difference of large numbers)."""
+        h = t2 - t1
+        return self.sigma_g * h + (self.sigma0 - self.sigma_g) * self.tau * \
+            math.exp(-t1 / self.tau) * -math.expm1(-h / self.tau)
 
     def release_time(self):
         """tau log1p(sigma0 / |sigma_g|) when g < 0, else math.inf [s]."""
