@@ -222,6 +222,10 @@ def transmitting():
             n = int(t_end / dt)
             check(tag + ": step means, dt = tau/%d" % round(tau / dt),
                   dev(ref.step_means("sigma", dt, n), tr.step_means(dt, n), s0))
+        edges = np.sort(np.random.default_rng(7).uniform(0.0, t_end, 41))
+        check(tag + ": integrals over random intervals",
+              dev([ref.integral("sigma", a, b) / (b - a) for a, b in zip(edges[:-1], edges[1:])],
+                  [tr.stress_integral(a, b) / (b - a) for a, b in zip(edges[:-1], edges[1:])], s0))
 
 
 def cushion():
