@@ -1,4 +1,4 @@
-!> Outputs (INTERFACE.md): the column text files PREFIX.his, .prf, .evt, .frg (and .gau with
+!> Outputs (doc/outputs.md): the column text files PREFIX.his, .prf, .evt, .frg (and .gau with
 !> &gauges) and, with
 !> &run hdf5 = .true., PREFIX.h5 holding the same (layout in doc/outputs.md).
 !>

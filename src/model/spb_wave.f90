@@ -1,5 +1,5 @@
 !> The continuum energy a lattice state represents, and its zig-zag Jordan amplitude
-!> (METHOD.md §8; doc/method.md, "Wave energy").
+!> (doc/method.md, "Wave energy" and "The zig-zag Jordan block at dx = a dt").
 !>
 !> At dx = a dt the lattice reproduces at its nodes every solution u = F(t - x/a) + G(t + x/a)
 !> of each cell (plus g t^2/2 under gravity). A lattice state at t^{n+1} (cell stresses
