@@ -7,6 +7,7 @@
 #   make test-translator  the .pf unit tests again through tests/pf2f90.py (what CI adds)
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
+#   make event-study  the event layer's energy, momentum, invariance table (bench/event_study.py)
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): brittle Weibull bar
 #                  and the cohesive ZMR benchmark (plots/zmr_study.py): figures, tables
 #   make golden REF=REV  every output of the Release program against revision REV's (scripts/golden.py)
@@ -36,12 +37,12 @@ CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran $(CMAKE_FLAGS)
 
 PREFIX ?= /usr/local
 
-.PHONY: install all setup build debug debug-configure run test test-translator figures bench fragmentation golden archive-check rebaseline clean help
+.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study fragmentation golden archive-check rebaseline clean help
 
 all: build
 
 help:
-	@sed -n '1,16p' Makefile
+	@sed -n '1,17p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -81,6 +82,12 @@ PYTHON ?= $(shell test -x .venv/bin/python && echo .venv/bin/python || echo pyth
 bench: build
 	$(PYTHON) bench/run.py --exe $(BUILD_RELEASE)/bin/spallbar --label "$$(git describe --always --dirty 2>/dev/null || echo build)" \
 	  --table doc/benchmarks-latest.md --plot doc/figures/bench_scaling.png
+
+# doc/benchmarks.md "The event study": the tables doc/validation.md summarises (wave measure)
+event-study: build
+	$(PYTHON) bench/event_study.py --exe $(BUILD_RELEASE)/bin/spallbar --work $(BUILD_RELEASE)/event-study \
+	  --energy-column e_wave --json $(BUILD_RELEASE)/event-study/results.json \
+	  --label "$$(git describe --always --dirty 2>/dev/null || echo build), wave measure"
 
 fragmentation: build
 	$(PYTHON) plots/fragmentation_study.py --exe $(BUILD_RELEASE)/bin/spallbar --realizations 16 \

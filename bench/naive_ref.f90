@@ -1,8 +1,9 @@
 !> Naive Fortran reference of the compact scheme (2.3) for bench/run.py's intact bar: the
 !> loop anyone would write first. Half-node model of one material (E = 2e11 Pa,
 !> rho = 8000 kg/m^3, dt = 1e-6 s, dx = a dt = 5 mm), free ends, the power-law load
-!> p0 (1 - t/t_k) on the top face in its stepwise form (METHOD.md §3), no gravity; two loops
-!> over the bar per step, no blocking. bench/run.py compiles it with spallbar's Release flags.
+!> p0 (1 - t/t_k) on the top face in its stepwise form (doc/method.md, "Loads in the stepwise
+!> form"), no gravity; two loops over the bar per step, no blocking. bench/run.py compiles it
+!> with spallbar's Release flags.
 !>
 !>     P^n      = (1/(2 dt)) integral of p over [t^(n-1), t^(n+1)]
 !>     du^(n+1) = du^n + (s_i - s_(i+1)) dt^2 / m_i      (s_0 = P^n, s_(N+1) = 0)

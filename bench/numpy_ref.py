@@ -6,7 +6,7 @@ t_k = t_cut = 1e-4 s) on the top face in its stepwise form, no gravity. Written 
 competent NumPy user would: Python floats for the scalars, every array allocated once,
 in-place ufuncs, one Python iteration per time step.
 
-    P^n      = (1/(2 dt)) integral of p over [t^{n-1}, t^{n+1}]     (METHOD.md §3)
+    P^n      = (1/(2 dt)) integral of p over [t^{n-1}, t^{n+1}]     (doc/method.md, loads)
     du^{n+1} = du^n + (s_i - s_{i+1}) dt^2 / m_i   (s_0 = P^n, s_{N+1} = 0: the faces)
     u^{n+1}  = u^n + du^{n+1}
     s^{n+1}  = s^n + (E/dx) (du_{k-1} - du_k)                       (cells k = 1..N)

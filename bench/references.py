@@ -32,7 +32,8 @@ ROOT = os.path.dirname(HERE)
 # The references agree with spallbar to round-off, not to the bit: NumPy multiplies by a
 # precomputed dt^2/m where spallbar multiplies by 1/m, then by dt^2, and spallbar integrates
 # the load through expm1/log1p. Each step adds O(1e-16) relative differences; the free-free
-# bar's zig-zag mode (METHOD.md §8) lets them grow linearly, so after 2000 steps a few 1e-14
+# bar's zig-zag mode (doc/method.md, "The zig-zag Jordan block at dx = a dt") lets them grow
+# linearly, so after 2000 steps a few 1e-14
 # at most. 1e-12 leaves two decades of margin and still catches any change of the scheme
 # (a load window off by half a step, as in the old NumPy reference, is a 1e-2 difference).
 TOLERANCE = 1.0e-12

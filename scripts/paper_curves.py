@@ -42,7 +42,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PAPER = os.path.join(ROOT, "archive", "paper")
 COMPARE = os.path.join(ROOT, "app", "spallbar_compare.py")
 
-# Example 1 (seed; METHOD.md §7)
+# Example 1: the paper's closed forms (doc/validation.md, "The paper's figures as archival
+# data")
 DT1, CELLS1, G = 5.0e-4, 20, 9.81
 DM1, SIG1, DEL1 = 1.8e5 * DT1, 160.0e3, 60.0e3
 N1 = range(3, 41)
@@ -67,7 +68,7 @@ def write_archive():
     os.makedirs(PAPER, exist_ok=True)
     with open(os.path.join(PAPER, "fig07c_example1.txt"), "w") as f:
         f.write("# Fig. 7c, Example 1: the splinter's translation V^n and vibration V~^n [m/s],\n"
-                "# closed forms of the paper (seed; METHOD.md 7): V^n = [2 s_1 - d_1 + (n - 2.5)"
+                "# closed forms of the paper (doc/validation.md): V^n = [2 s_1 - d_1 + (n - 2.5)"
                 " dm g] dt/dm,\n# V~^n = (-1)^n (d_1 + 0.5 dm g) dt/dm; s_1 = 160 kPa, d_1 = 60 "
                 "kPa, dm = 90 kg/m^2, dt = 5e-4 s, g = 9.81\n"
                 "# written by scripts/paper_curves.py --write-archive\n")

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Command-line contract for bad input (INTERFACE.md): exit status 2, exactly one line on
-stderr naming the group and variable, and no output file written or touched.
+"""Command-line contract for bad input (doc/deck.md; README.md, "A short tour"): exit status 2,
+exactly one line on stderr naming the group and variable, and no output file written or
+touched.
 
 usage: cli_deck_errors.py SPALLBAR WORKDIR
 """

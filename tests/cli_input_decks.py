@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every deck in input/ runs (exit 0) and its outputs keep the INTERFACE.md contract:
+"""Every deck in input/ runs (exit 0) and its outputs keep the contract of doc/outputs.md:
 the history's last header line names the required columns, rows are numbers, the energy
 ledger is constant, profiles come in '# t = ' blocks of 2N rows.
 
@@ -101,8 +101,9 @@ def main():
               f"{name}: {frag_col[-1]} fragments after {opened} openings and {closed} collisions")
         print(f"ok   {name}: {len(rows)} history rows, {len(starts)} profiles, {len(ev)} events, "
               f"ledger drift {drift:.2e}")
-    # paths in a deck are relative to its folder (INTERFACE.md): example1's load table is
-    # found when the deck is run from elsewhere, and the results are the same numbers
+    # paths in a deck are relative to its folder (doc/deck.md, "Paths in a deck"): example1's
+    # load table is found when the deck is run from elsewhere, and the results are the same
+    # numbers
     elsewhere = os.path.join(work, "elsewhere")
     os.makedirs(elsewhere)
     r = run(exe, [os.path.join(os.path.abspath(indir), "example1.nml"), "--output", "ex1",

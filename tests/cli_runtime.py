@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Run-time contract (INTERFACE.md): a run that goes wrong stops with exit status 3 and one
-message, and what was written until then stays readable.
+"""Run-time contract (README.md, "A short tour"; doc/outputs.md, "Before anything is written;
+when writing fails"): a run that goes wrong stops with exit status 3 and one message, and
+what was written until then stays readable.
 
 The case (issue 17): two one-cell bars meeting at t = 0 with the paper's literal event rules
 (events = 'paper'): the stage-1 correction of their separation leaves a component along the

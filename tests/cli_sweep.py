@@ -59,7 +59,7 @@ ref = sweep("serial", 0)
 cols, ref_rows = rows(ref)
 check(len(ref_rows) == 12, f"12 cases, got {len(ref_rows)}")
 check(cols[:5] == ["id", "fragments", "mean_fragment_length", "max_reaction_bottom",
-                   "first_fracture_t"], f"INTERFACE.md columns first: {cols[:5]}")
+                   "first_fracture_t"], f"doc/sweeps.md's first columns: {cols[:5]}")
 others = []
 if mpiexec != "-":
     others = [sweep("np1", 1), sweep("np2_static", 2),

@@ -1,8 +1,8 @@
 !> Fallback for the part of pFUnit's `funit` module that spallbar's .pf tests use.
 !>
-!> Semantics follow ../shared/spec/PFUNIT.md: tolerances are absolute and inclusive,
-!> expected comes first, a test stops at its first failing assertion (the translator adds
-!> `if (anyExceptions()) return` after each one). The bookkeeping below is the test
+!> Semantics follow pFUnit 4.14's (doc/build.md, "What pFUnit 4.14 requires of a .pf file"):
+!> tolerances are absolute and inclusive, expected comes first, a test stops at its first
+!> failing assertion (the translator adds `if (anyExceptions()) return` after each one). The bookkeeping below is the test
 !> harness's own state, as in pFUnit; the library under test has none.
 module funit
    use, intrinsic :: iso_fortran_env, only: real64, output_unit

@@ -2,8 +2,8 @@
 """Translate the subset of pFUnit .pf syntax that spallbar uses into plain Fortran.
 
 Used when the build is configured without real pFUnit (SPALLBAR_TEST_FRAMEWORK=translator,
-or no pFUnit found). The same .pf files compile under real pFUnit 4.14 (see
-../shared/spec/PFUNIT.md and doc/build.md); this translator gives the same verdicts:
+or no pFUnit found). The same .pf files compile under real pFUnit 4.14 (see doc/build.md,
+"What pFUnit 4.14 requires of a .pf file"); this translator gives the same verdicts:
 
   * @test, @before, @after, @disable annotate the next `subroutine NAME`;
   * @assertXxx(args) becomes `call assertXxx(args, location='file:line')` followed by

@@ -1,4 +1,4 @@
-!> The namelist deck (INTERFACE.md): reading, validation, the problem it describes, echo.
+!> The namelist deck (doc/deck.md): reading, validation, the problem it describes, echo.
 !>
 !> The variables themselves (name, default, unit, meaning, echo) are listed once, in
 !> spb_deck_params; this module reads a deck group by group through that list and checks
@@ -1056,7 +1056,7 @@ contains
    end function pad
 
    !> A file named in the deck (&load table, &run checkpoint) as the program opens it: a
-   !> relative name is relative to the deck's folder (INTERFACE.md, "Paths in a deck"), so a
+   !> relative name is relative to the deck's folder (doc/deck.md, "Paths in a deck"), so a
    !> deck runs the same from any working directory; '' stays ''.
    function deck_file(deck, name) result(path)
       type(deck_t), intent(in) :: deck         !! the deck (its path)

@@ -1,4 +1,4 @@
-!> The deck's types (INTERFACE.md): one component per deck variable, with its default;
+!> The deck's types (doc/deck.md): one component per deck variable, with its default;
 !> the keyword lists each keyword variable accepts; the record the outputs keep of a deck.
 !>
 !> What a variable means, its unit and how it is echoed are said once, in its call in

@@ -1,4 +1,4 @@
-!> PREFIX.h5 (INTERFACE.md, layout in doc/outputs.md): the only module that uses HDF5.
+!> PREFIX.h5 (layout in doc/outputs.md): the only module that uses HDF5.
 !>
 !> An opaque file type with open / write / flush / close. Tables (the history, the events)
 !> are groups of one extendible 1-D dataset per column, chunked and deflated, appended

@@ -1,4 +1,4 @@
-!> Outputs (INTERFACE.md): the column text files PREFIX.his, .prf, .evt, .frg (and .gau with
+!> Outputs (doc/outputs.md): the column text files PREFIX.his, .prf, .evt, .frg (and .gau with
 !> &gauges) and, with
 !> &run hdf5 = .true., PREFIX.h5 holding the same (layout in doc/outputs.md).
 !>
@@ -210,7 +210,8 @@ contains
       end if
       call header(out%his, 'history: one row every history_every steps', 1)
       write(out%his, '(a)') '# energies at row time t^{n+1}: e_kin from v^{n+1}, e_strain from' &
-         // ' s^n s^{n+1}, e_pot from (u^n+u^{n+1})/2 (the scheme''s invariant, METHOD.md 3)'
+         // ' s^n s^{n+1}, e_pot from (u^n+u^{n+1})/2 (the scheme''s invariant, doc/method.md' &
+         // ' "Energy ledger")'
       write(out%his, '(a)') '# ledger = e_kin + e_strain + e_pot - w_ext + e_lost is constant; ' &
          // 'w_ext = w_load + w_transmit; e_lost = e_fracture'
       write(out%his, '(a)') '# momentum balance: momentum - momentum(t=0) = i_gravity + i_ends ' &

@@ -1,4 +1,5 @@
-!> Collisions (5.1)-(5.7) and the rigid base (METHOD.md §6).
+!> Collisions (5.1)-(5.7) and the rigid base (doc/method.md, "Collisions" and "Rigid base and
+!> dry interfaces").
 !>
 !> After the trial step every open section is tested for passing faces (5.1). The
 !> collision is put on the grid by the timing rule: 'accelerate' joins at t^n, 'delay' at

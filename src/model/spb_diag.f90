@@ -5,7 +5,7 @@
 !> changes over a step by exactly the work F^n (u^{n+1} - u^{n-1})/2 of the nodal forces.
 !> Gravity's part is -(change of e_pot) with e_pot = -g sum m (u^n + u^{n+1})/2; the end
 !> stresses' part is w_ext. So e_kin + e_strain + e_pot - w_ext + e_lost is constant to
-!> round-off (METHOD.md §3).
+!> round-off (doc/method.md, "Energy ledger").
 module spb_diag
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t

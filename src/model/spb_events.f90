@@ -10,7 +10,7 @@ module spb_events
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
    !> A cohesive crack starts (its end, the full opening, is a fracture); codes 5 and 6 are
-   !> the striking mass's impact and release (INTERFACE.md)
+   !> kept for the striking mass's impact and release (planned: doc/planned.md)
    integer, parameter :: ev_crack = 7
    !> Names of the kinds, in code order (the .evt 'kind' column; HDF5 stores the codes)
    character(len=14), parameter :: event_kind_names(7) = [character(len=14) :: 'fracture', &

@@ -1,4 +1,5 @@
-!> Spall: fracture of a section (3.3)-(3.6) with the two-stage correction (METHOD.md §5).
+!> Spall: fracture of a section (3.3)-(3.6) with the two-stage correction (doc/method.md,
+!> "Fracture").
 !>
 !> After each step, a joined interior node breaks at t^{n+1} when its section stress
 !> S^{n+1/2} < -R_i - eps, eps = eps_rel * (largest stress magnitude so far). Stage 1

@@ -2,12 +2,12 @@
 !> position x of the bar read.
 !>
 !> At a node (x equal to the node's position to within 1e-9 of its cells' length) the
-!> stress is the section stress S of the node (METHOD.md §4, (3.1)-(3.2)): the stress a
-!> gauge on the section reads; 0 when the node is split (a crack, an open contact); at an
-!> end node the support's section stress, or on a free face the load on it (its mean over
-!> the step). Strictly inside a cell the stress is the cell's. Velocity and displacement are
-!> interpolated linearly between the cell's two nodes, each node by its half on the cell's
-!> side; at a node, the mean of its two halves.
+!> stress is the section stress S of the node ((3.1)-(3.2), doc/method.md, "Section stresses
+!> at every node"): the stress a gauge on the section reads; 0 when the node is split (a
+!> crack, an open contact); at an end node the support's section stress, or on a free face
+!> the load on it (its mean over the step). Strictly inside a cell the stress is the cell's.
+!> Velocity and displacement are interpolated linearly between the cell's two nodes, each
+!> node by its half on the cell's side; at a node, the mean of its two halves.
 !>
 !> The section stress of an interior node is kept by the step only where a node can break:
 !> the nodes gauges read are listed in mesh%watch, which the step keeps as well.

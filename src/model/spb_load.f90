@@ -1,5 +1,6 @@
-!> End loads in the "stepwise form" (METHOD.md §3): the pressure applied at t^n is the
-!> mean of p(t) over the two steps around t^n, integrated analytically.
+!> End loads in the "stepwise form" (doc/method.md, "Loads in the stepwise form"): the
+!> pressure applied at t^n is the mean of p(t) over the two steps around t^n, integrated
+!> analytically.
 module spb_load
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp

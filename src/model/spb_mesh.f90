@@ -1,4 +1,4 @@
-!> The lumped-mass mesh (METHOD.md §2): one dt, dx_j = a_j dt, half-node masses.
+!> The lumped-mass mesh (doc/method.md, "Mesh"): one dt, dx_j = a_j dt, half-node masses.
 module spb_mesh
    use spb_kinds, only: wp
    use spb_strings, only: itoa, rtoa

@@ -20,7 +20,7 @@ module spb_problem
    !> Kinds of end load, and the face it acts on.
    integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
    integer, parameter :: face_top = 1, face_bottom = 2
-   !> Collision timing rules (5.2)-(5.3) and shift policies (METHOD.md §6).
+   !> Collision timing rules (5.2)-(5.3) and shift policies (doc/method.md, "Collisions").
    integer, parameter :: timing_accelerate = 1, timing_delay = 2, timing_min = 3
    integer, parameter :: shift_above = 1, shift_fragment = 2
    !> Event rules: 'admissible' keeps the continuum state a break or a lift-off acts on (no

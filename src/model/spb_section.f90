@@ -1,4 +1,5 @@
-!> Section stress at a node at half steps, (3.1)-(3.2) (doc/method.md, "Section stresses").
+!> Section stress at a node at half steps, (3.1)-(3.2) (doc/method.md, "Section stresses at
+!> every node" and "Section stress at a support").
 !>
 !> S^{n+1/2} is the stress that holds in the node's characteristic section from
 !> t^{n+1/2} to t^{n+3/2}. Both forms give the same value for a joined node; the A form

@@ -1,5 +1,6 @@
-!> The compact update (2.3) of the half-node model (METHOD.md §3) for one step, and the
-!> section stresses (3.1)-(3.2) (METHOD.md §4) it evaluates at every breakable node.
+!> The compact update (2.3) of the half-node model (doc/method.md, "The compact update") for
+!> one step, and the section stresses (3.1)-(3.2) (doc/method.md, "Section stresses at every
+!> node") it evaluates at every breakable node.
 module spb_step
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t

@@ -1,5 +1,5 @@
 !> The continuum energy a lattice state represents, and its zig-zag Jordan amplitude
-!> (METHOD.md §8; doc/method.md, "Wave energy").
+!> (doc/method.md, "Wave energy" and "The zig-zag Jordan block at dx = a dt").
 !>
 !> At dx = a dt the lattice reproduces at its nodes every solution u = F(t - x/a) + G(t + x/a)
 !> of each cell (plus g t^2/2 under gravity). A lattice state at t^{n+1} (cell stresses
@@ -739,7 +739,7 @@ contains
 
    !> g dt^2 / (2 Z_k C): where the measure of a fragment (nodes top..bot, odd cell count, held
    !> at its other end) has its vertex in the step of its free face next to cell k, beyond the
-   !> g = 0 one, along gravity [m] (bench/landing_rules/face_parabola.py). 0 for an even count.
+   !> g = 0 one, along gravity [m] (doc/method.md, "A landing credit"). 0 for an even count.
    pure real(wp) function vertex_offset(mesh, g, top, bot, k) result(d)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]

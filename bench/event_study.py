@@ -4,15 +4,21 @@
     event_study.py --exe PATH/spallbar --work DIR [--energy-column NAME] [--only NAME,...]
                    [--json OUT.json] [--jobs K] [--label TEXT] [--list]
 
+A measurement, not a test (issue 17; doc/benchmarks.md, "The event study", says how to run
+it and doc/validation.md, "The event layer", what it found): `make event-study` runs it on the
+Release program in the wave measure (--energy-column e_wave), in a few seconds; the checks
+that run in CI are tests/cli_event_layer.py's.
+
 Writes a fixed set of decks into DIR (from the strings below), runs each with
 `spallbar DECK --output DIR/NAME --quiet`, reads NAME.his / .evt / .prf by their headers
 (doc/outputs.md) and prints
 
 1. one row per run: exit status, wall time, events by kind, the energy excess
    max_rows (E - E0 - w_ext)/scale (E = e_kin + e_strain + e_pot, or NAME + e_pot with
-   --energy-column NAME), the same in J/m^2, the excess at t_end, the final E/E0 (E0
-   includes e_pot, so it can be 0 or negative with a static state), the largest decrease of e_lost
-   between rows (/scale; <= 0 when e_lost never decreases), the ledger drift (/scale), the
+   --energy-column NAME; with e_wave the wave measure e_wave + e_pot + e_wave_g, and w_wave,
+   e_lost_w, ledger_w for w_ext, e_lost, ledger), the same in J/m^2, the excess at t_end,
+   the final E/E0 (E0 includes e_pot, so it can be 0 or negative with a static state), the
+   largest decrease of e_lost between rows (/scale; <= 0 when e_lost never decreases), the ledger drift (/scale), the
    final momentum and the largest momentum-balance residual, the largest overlap of split
    faces u(A_i) - u(B_i) in the profiles (/dx), the largest base penetration (/dx);
 2. the Galilean (gal0 vs gal0_v3) and mirror (gal0 vs gal0_mirror) comparisons per
@@ -544,9 +550,16 @@ def print_main(results, order, energy_column):
     lines = []
     lines.append("spallbar event study: one row per run (scale = max(e_kin+|e_strain| at t=0, "
                  "max|w_ext|))")
+    if energy_column == "e_wave":
+        measure = ("e_wave + e_pot + e_wave_g (and w_wave, e_lost_w, ledger_w in place of "
+                   "w_ext, e_lost, ledger)")
+    elif energy_column:
+        measure = energy_column + " + e_pot"
+    else:
+        measure = "e_kin + e_strain + e_pot"
     lines.append("E = %s; exc = max_t (E - E0 - w_ext)/scale, exc_abs the same in J/m^2, "
-                 "exc_end at t_end; E/E0 at t_end ('-': E0 = 0; E0 includes e_pot, may be < 0)" % (
-                     (energy_column + " + e_pot") if energy_column else "e_kin + e_strain + e_pot"))
+                 "exc_end at t_end; E/E0 at t_end ('-': E0 = 0; E0 includes e_pot, may be < 0)"
+                 % measure)
     lines.append("lost_dec = largest decrease of e_lost between rows /scale (<= 0: monotone); "
                  "ledger = max|ledger - ledger0|/scale")
     lines.append("p_bal = momentum - p0 - (i_gravity + i_ends + i_support + p_shift) at its "
@@ -620,6 +633,19 @@ def print_compare(comps):
 
 
 # --------------------------------------------------------------------------- main
+def documented_his_columns():
+    """The PREFIX.his columns doc/outputs.md documents: the names in the first cell of each
+    row of its table under "## PREFIX.his"."""
+    cols, inside = set(), False
+    with open(os.path.join(ROOT, "doc", "outputs.md"), encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("## "):
+                inside = line.startswith("## PREFIX.his")
+            elif inside and line.startswith("| `"):
+                cols.update(re.findall(r"`(\w+)`", line.split("|")[1]))
+    return cols
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -697,7 +723,9 @@ def main(argv=None):
     for n in ok_names:
         try:
             with open(os.path.join(work, n + ".his")) as f:
-                version = f.readline()[1:].split("--")[0].strip()
+                # the first '#' line names the program (a column-name line may come before it)
+                version = next((line[1:].split("--")[0].strip() for line in f
+                                if line.startswith("# spallbar")), "?")
             break
         except OSError:
             pass
@@ -708,10 +736,7 @@ def main(argv=None):
     if comps:
         lines += print_compare(comps)
     notes = [(n, results[n]["notes"]) for n in names if results[n].get("notes")]
-    doc_cols = {"t", "reaction_bottom", "reaction_top", "fragments", "e_kin", "e_strain",
-                "e_pot", "w_ext", "e_lost", "momentum", "step", "s_end_top", "s_end_bottom",
-                "w_load", "w_transmit", "ledger", "e_fracture", "e_join", "e_shift",
-                "e_contact", "i_gravity", "i_ends", "i_support", "p_shift"}
+    doc_cols = documented_his_columns()
     cols_seen = set()
     for n in ok_names:
         cols_seen |= set(results[n].get("metrics", {}).get("columns", []) or [])
