@@ -1,7 +1,7 @@
-!> The rigid base (doc/method.md, "Rigid base and dry interfaces"): the bottom face lands on it and lifts
-!> off it again. Landing is a collision with a partner of infinite impedance (alpha -> oo in
-!> (5.6)) put on the grid by the timing rule; lift-off is a break of the face's section
-!> against the base. Both are here, called where the collisions (spb_contact) and the
+!> The rigid base (doc/method.md, "Rigid base and dry interfaces"): the bottom face lands on
+!> it and lifts off it again. Landing is a collision with a partner of infinite impedance
+!> (alpha -> oo in (5.6)) put on the grid by the timing rule; lift-off is a break of the
+!> face's section against the base. Both are here, called where the collisions (spb_contact) and the
 !> breaks (spb_fracture) of the step are made, so the events keep their order.
 module spb_base
    use spb_kinds, only: wp

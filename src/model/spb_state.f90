@@ -260,7 +260,9 @@ contains
             st%section(i) = s(i) + 0.5_wp * mesh%dm(i) * g
          end do
          if (.not. is_free_face(st%ends(face_top))) st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
-         if (.not. is_free_face(st%ends(face_bottom))) st%section(n) = s(n) + 0.5_wp * mesh%dm(n) * g
+         if (.not. is_free_face(st%ends(face_bottom))) then
+            st%section(n) = s(n) + 0.5_wp * mesh%dm(n) * g
+         end if
       else
          do i = 1, n - 1
             st%section(i) = s(i)
