@@ -24,6 +24,7 @@ module spb_deck
    use spb_mesh, only: mesh_fault_t, max_cells, max_steps, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, end_velocity, &
+      end_impactor, &
       load_none, load_power, load_table, load_exponential, face_top, face_bottom, &
       timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment, &
       events_admissible, events_paper
@@ -74,6 +75,18 @@ contains
       prob%bottom = code_of(bottom_words, deck%ends%bottom, [end_free, end_fixed, end_base, &
                             end_transmit, end_velocity])
       prob%base_gap = deck%ends%base_gap
+      if (deck%impactor%on) then
+         prob%impactor_face = code_of(face_words, deck%impactor%face, [face_top, face_bottom])
+         prob%impactor_mass = deck%impactor%mass
+         prob%impactor_velocity = deck%impactor%velocity
+         prob%impactor_gap = deck%impactor%gap
+         prob%impactor_cushion = deck%impactor%cushion
+         if (prob%impactor_face == face_top) then
+            prob%top = end_impactor
+         else
+            prob%bottom = end_impactor
+         end if
+      end if
       prob%load_kind = code_of(kind_words, deck%load%kind, [load_none, load_power, &
                                load_exponential, load_table])
       prob%load_face = code_of(face_words, deck%load%face, [face_top, face_bottom])
@@ -140,6 +153,7 @@ contains
          call read_group(deck, trim(known_groups(g)), err)
          if (allocated(err)) exit
       end do
+      deck%impactor%on = has_group(deck%scan, 'impactor')
       if (.not. allocated(err)) then
          deck%sweep%n_values = 0
          do k = 1, max_sweep_values
@@ -346,7 +360,41 @@ contains
       if (.not. allocated(err)) call validate_initial(deck, err)
       if (.not. allocated(err)) call validate_field(deck, err)
       if (.not. allocated(err)) call validate_gauges(deck, err)
+      if (.not. allocated(err)) call validate_impactor(deck, err)
    end subroutine validate_deck
+
+   !> &impactor: a mass > 0 striking a free face that no load acts on (the half-mass model:
+   !> its exact step needs the face's half node, doc/impactor.md); velocity finite, gap and
+   !> cushion >= 0.
+   subroutine validate_impactor(deck, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      character(len=name_len) :: face_end
+      associate (m => deck%impactor)
+         if (.not. m%on) return
+         call need_choice(err, 'impactor', 'face', m%face, face_words)
+         call need_positive(err, 'impactor', 'mass', m%mass)
+         call need_finite(err, 'impactor', 'velocity', m%velocity)
+         call need_nonnegative(err, 'impactor', 'gap', m%gap)
+         call need_nonnegative(err, 'impactor', 'cushion', m%cushion, ' (0: rigid contact)')
+         if (allocated(err)) return
+         if (m%face == 'top') then
+            face_end = deck%ends%top
+         else
+            face_end = deck%ends%bottom
+         end if
+         if (face_end /= 'free') then
+            call make_error(err, '&impactor: face = ''' // trim(m%face) // ''' is a ''' // &
+                            trim(face_end) // ''' end (&ends); the mass strikes a free face')
+         else if (deck%load%kind /= 'none' .and. deck%load%face == m%face) then
+            call make_error(err, '&impactor: face = ''' // trim(m%face) // ''' is the loaded ' &
+                            // 'face (&load face); the mass strikes a face no load acts on')
+         else if (deck%run%model == 'full-mass') then
+            call make_error(err, '&impactor: the striking mass needs &run model = ' // &
+                            '''half-mass'' (its exact step rests on the face''s half node)')
+         end if
+      end associate
+   end subroutine validate_impactor
 
    !> &gauges: positions given in order x(1), x(2), ... (at most max_gauges), each finite and
    !> within the bar [0, sum of the segment lengths] (to the round-off of that sum); every

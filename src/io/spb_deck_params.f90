@@ -19,7 +19,7 @@ module spb_deck_params
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, ltoa, lower
-   use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, echo_item_t, is_set, timing_words, &
+   use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, impactor_cfg, echo_item_t, is_set, timing_words, &
       shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
       interface_words, kind_words, face_words, state_words, field_words, distribution_words, &
       header_words
@@ -174,7 +174,26 @@ contains
       if (deck%is_sweep .or. pass%mode == pass_doc) call sweep_params(deck%sweep, pass)
       ! echoed only by a deck that has gauges: the outputs of every other deck stay as they were
       if (pass%mode /= pass_echo .or. deck%gauges%n > 0) call gauge_params(deck%gauges, pass)
+      ! the same for a striking mass
+      if (pass%mode /= pass_echo .or. deck%impactor%on) call impactor_params(deck%impactor, pass)
    end subroutine deck_params
+
+   !> &impactor's variables (optional group: a striking mass, doc/impactor.md).
+   subroutine impactor_params(m, p)
+      type(impactor_cfg), intent(inout) :: m  !! &impactor values
+      type(param_pass_t), intent(inout) :: p  !! what this pass does
+      call param(p, 'impactor', 'face', '', 'the end of the bar the mass strikes', t=m%face, &
+                 choices=face_words)
+      call param(p, 'impactor', 'mass', 'kg', 'the striking mass (per m^2 when every area ' &
+                 // 'is 1; required)', r=m%mass, sweep=.true.)
+      call param(p, 'impactor', 'velocity', 'm/s', 'its velocity along +x (down) at t = 0', &
+                 r=m%velocity, sweep=.true.)
+      call param(p, 'impactor', 'gap', 'm', 'distance between the mass and the face at t = 0', &
+                 r=m%gap, sweep=.true.)
+      call param(p, 'impactor', 'cushion', 'N/m', 'stiffness of a linear spring between the ' &
+                 // 'mass and the face (per m^2 when every area is 1; 0: rigid contact)', &
+                 r=m%cushion, sweep=.true.)
+   end subroutine impactor_params
 
    !> &gauges' variables (optional group: PREFIX.gau).
    subroutine gauge_params(g, p)

@@ -11,7 +11,7 @@ module spb_deck_types
    implicit none
    private
    public :: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, initial_cfg, &
-      strength_field_cfg, sweep_cfg, gauges_cfg, deck_record_t, echo_item_t, known_groups, unset, is_set
+      strength_field_cfg, sweep_cfg, gauges_cfg, impactor_cfg, deck_record_t, echo_item_t, known_groups, unset, is_set
    public :: timing_words, shift_words, events_words, model_words, fit_words, top_words, &
       bottom_words, interface_words, kind_words, face_words, state_words, field_words, &
       distribution_words, header_words
@@ -41,8 +41,8 @@ module spb_deck_types
       'dynamic']
    character(len=*), parameter :: header_words(2) = [character(len=8) :: 'names', 'comments']
 
-   character(len=16), parameter :: known_groups(9) = [character(len=16) :: 'run', 'mesh', &
-      'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep', 'gauges']
+   character(len=16), parameter :: known_groups(10) = [character(len=16) :: 'run', 'mesh', &
+      'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep', 'gauges', 'impactor']
 
    !> One echoed deck value (write_echo, and the attributes of PREFIX.h5).
    type :: echo_item_t
@@ -153,6 +153,18 @@ module spb_deck_types
                                                        !! &run history_every)
    end type gauges_cfg
 
+   !> &impactor (optional): a rigid striking mass at one end (doc/impactor.md).
+   type :: impactor_cfg
+      logical :: on = .false.                          !! the deck has the group
+      character(len=name_len) :: face = 'top'          !! 'top' | 'bottom': the end it strikes
+      real(wp) :: mass = unset                         !! [kg] (per m^2 when every area is 1)
+      real(wp) :: velocity = 0.0_wp                    !! along +x at t = 0 [m/s]
+      real(wp) :: gap = 0.0_wp                         !! between the mass and the face at t = 0 [m]
+      real(wp) :: cushion = 0.0_wp                     !! linear spring between mass and face
+                                                       !! [N/m] (per m^2 when every area is 1;
+                                                       !! 0: rigid contact)
+   end type impactor_cfg
+
    !> What the outputs and the checkpoints say of a deck (and need of it): where it came
    !> from, its title, every value as echoed, and the settings that shape the files.
    type :: deck_record_t
@@ -181,6 +193,7 @@ module spb_deck_types
       type(strength_field_cfg) :: field
       type(sweep_cfg) :: sweep
       type(gauges_cfg) :: gauges
+      type(impactor_cfg) :: impactor
       logical :: is_sweep = .false.   !! read for --sweep: &sweep is required and echoed
       type(deck_scan_t) :: scan   !! what the file assigned (marks echo lines as input)
    end type deck_t

@@ -13,15 +13,18 @@
 module spb_ends
    use spb_kinds, only: wp
    use spb_problem, only: face_top, face_bottom, end_free, end_fixed, end_transmit, end_base, &
-      end_velocity
+      end_velocity, end_impactor
+   use spb_mesh, only: mesh_t
    use spb_ledger, only: ledger_t
    use spb_section, only: section_stress_a, section_stress_b
+   use spb_impactor, only: mass_state_t, mass_step_t, strike_step, mass_energy
    implicit none
    private
    public :: end_t, face_step_t, face_top, face_bottom
    public :: is_free_face, transmits, is_velocity_end, is_fixed_end, has_base, on_base, &
-      holds, gives_equation, moves_with_bar, support_du
-   public :: face_stress, face_load_share, hold_face, book_ends, start_end, place_on_base
+      holds, gives_equation, moves_with_bar, support_du, is_striker, has_free_face
+   public :: face_stress, face_load_share, hold_face, book_ends, start_end, place_on_base, &
+      define_ends, strike, striker_energy, striker_momentum, face_integral
 
    !> One end of the bar: its kind (end_* of spb_problem) and what the kind keeps from step to
    !> step. The fields a kind does not use stay at their defaults.
@@ -42,6 +45,19 @@ module spb_ends
       real(wp) :: v_land = 0.0_wp             !! a moving bar half (collision with a support):
                                               !! (3.1) then uses this velocity for v^n and
                                               !! S^{n-1/2} = 0 [m/s]
+      ! a striking mass (end_impactor): what it is (define_ends), then its state
+      real(wp) :: mass = 0.0_wp               !! its mass M [kg/m^2 A]
+      real(wp) :: cushion = 0.0_wp            !! its cushion's stiffness k (0: rigid) [Pa/m A]
+      real(wp) :: gap0 = 0.0_wp               !! its gap to the face at t = 0 [m]
+      type(mass_state_t) :: striker           !! the mass at t^n: displacement, velocity,
+                                              !! contact (spb_impactor)
+      real(wp) :: q = 0.0_wp                  !! integral of the contact stress over the step
+                                              !! that ends at t^q_step, I [Pa s A]
+      real(wp) :: q_before = 0.0_wp           !! the same over the step before it [Pa s A]
+      integer :: q_step = 0                   !! that step's end index
+      real(wp) :: de_mass = 0.0_wp            !! change of the mass's energy (kinetic, gravity,
+                                              !! cushion) over the last step [J/m^2 A]
+      type(mass_step_t) :: struck             !! what the last step did (impacts, releases)
    end type end_t
 
    !> What one step did at one end node: what its end stress's impulse and work, the
@@ -107,11 +123,13 @@ contains
       holds = e%kind == end_fixed .or. e%kind == end_velocity .or. on_base(e)
    end function holds
 
-   !> The end face gives an equation of the wave measure (spb_wave): a free face, or one off
-   !> the base (a transmitting end gives one where spb_wave says so).
+   !> The end face gives an equation of the wave measure (spb_wave): a free face (a striking
+   !> mass's contact stress is a load on it), or one off the base (a transmitting end gives
+   !> one where spb_wave says so).
    elemental logical function gives_equation(e)
       type(end_t), intent(in) :: e         !! the end
-      gives_equation = e%kind == end_free .or. (e%kind == end_base .and. .not. e%contact)
+      gives_equation = e%kind == end_free .or. e%kind == end_impactor .or. &
+                       (e%kind == end_base .and. .not. e%contact)
    end function gives_equation
 
    !> The end node moves with the bar next to it from t = 0 (no collision with its support
@@ -120,6 +138,32 @@ contains
       type(end_t), intent(in) :: e         !! the end
       moves_with_bar = e%kind == end_transmit .or. e%kind == end_velocity
    end function moves_with_bar
+
+   !> A striking mass acts on the face (spb_impactor).
+   elemental logical function is_striker(e)
+      type(end_t), intent(in) :: e         !! the end
+      is_striker = e%kind == end_impactor
+   end function is_striker
+
+   !> The bar's end face is free of any support: a free face, or one a striking mass acts on
+   !> through a contact stress (it moves with the bar; its statics is a free end's).
+   elemental logical function has_free_face(e)
+      type(end_t), intent(in) :: e         !! the end
+      has_free_face = e%kind == end_free .or. e%kind == end_impactor
+   end function has_free_face
+
+   !> The ends' kinds and what a striking mass is, from the mesh: at the start and when a
+   !> checkpoint is read (which holds what the ends keep, not what they are).
+   pure subroutine define_ends(ends, mesh)
+      type(end_t), intent(inout) :: ends(2)   !! the two ends
+      type(mesh_t), intent(in) :: mesh        !! the mesh
+      ends%kind = mesh%end_kind
+      where (ends%kind == end_impactor)
+         ends%mass = mesh%impactor_mass
+         ends%cushion = mesh%impactor_cushion
+         ends%gap0 = mesh%impactor_gap
+      end where
+   end subroutine define_ends
 
    !> The increment a holding support gives its node over a step: V dt at a constant-velocity
    !> end, 0 at a fixed end and on the base [m].
@@ -192,10 +236,84 @@ contains
             s = e%s_static + stiff * (du_face - e%v_far * dt)
          end if
          if (loaded) s = s + 2.0_wp * p
+      case (end_impactor)
+         ! the stepwise form of the contact stress over the last two steps (strike)
+         s = 0.5_wp * (e%q_before + e%q) / dt
       case default
          ! the other ends take no part here
       end select
    end function face_stress
+
+   !> The integral of the face stress over the step that ends at t^step on a face whose
+   !> load works on the continuum state: a loaded free face's load integral q, a striking
+   !> mass's contact stress [Pa s].
+   pure real(wp) function face_integral(e, q, loaded, step) result(i_face)
+      type(end_t), intent(in) :: e         !! the end
+      real(wp), intent(in) :: q            !! the load's integral over that step [Pa s]
+      logical, intent(in) :: loaded        !! the load acts on this face
+      integer, intent(in) :: step          !! the step's end index
+      if (e%kind == end_impactor) then
+         i_face = 0.0_wp
+         if (step == e%q_step) then
+            i_face = e%q
+         else if (step == e%q_step - 1) then
+            i_face = e%q_before
+         end if
+      else
+         i_face = face_load_share(e, q, loaded)
+      end if
+   end function face_integral
+
+   !> The striking mass's step (spb_impactor strike_step) from t^n, before the lattice's: the
+   !> face, left alone, would move at w over it, the rate of the lattice's free update (what
+   !> the step brings to the face: its increment du^n, the end cell's stress s^n, the
+   !> contact integral of the step before, gravity); the contact integral I^{n+1} found
+   !> makes the face's stress (I^n + I^{n+1}) / (2 dt) (face_stress), with which the
+   !> lattice's update moves the face by w dt + sigma I^{n+1} / Z: the mass's own motion
+   !> (doc/impactor.md). u_face: the face's displacement at t^n (the gap follows from it).
+   pure subroutine strike(e, side, step, u_face, du_face, s_cell, z, g, dt)
+      type(end_t), intent(inout) :: e      !! the end (a striking mass)
+      integer, intent(in) :: side          !! face_top | face_bottom
+      integer, intent(in) :: step          !! the step index n (the step from t^n)
+      real(wp), intent(in) :: u_face       !! the face half's displacement u^n [m]
+      real(wp), intent(in) :: du_face      !! its increment du^n [m]
+      real(wp), intent(in) :: s_cell       !! stress of the end cell s^n [Pa A]
+      real(wp), intent(in) :: z            !! impedance of the end cell [kg/(m^2 s) A]
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: dt           !! time step [s]
+      real(wp) :: sigma, w, e0
+      sigma = merge(1.0_wp, -1.0_wp, side == face_top)
+      w = (du_face + sigma * (e%q - 2.0_wp * s_cell * dt) / z + g * dt**2) / dt
+      if (.not. (e%striker%touching .and. .not. (e%cushion > 0.0_wp))) then
+         e%striker%gap = e%gap0 + sigma * (u_face - e%striker%x)
+      end if
+      e0 = mass_energy(e%striker, e%mass, e%cushion, g)
+      call strike_step(e%striker, e%mass, e%cushion, z, g, sigma, w, dt, e%struck)
+      e%de_mass = mass_energy(e%striker, e%mass, e%cushion, g) - e0
+      e%q_before = e%q
+      e%q = e%struck%q
+      e%q_step = step + 1
+   end subroutine strike
+
+   !> Kinetic, gravity and cushion energy of a striking mass (0 for another end) [J/m^2 A].
+   elemental real(wp) function striker_energy(e, g) result(en)
+      type(end_t), intent(in) :: e         !! the end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      en = 0.0_wp
+      if (e%kind == end_impactor) en = mass_energy(e%striker, e%mass, e%cushion, g)
+   end function striker_energy
+
+   !> A striking mass's momentum on the lattice's footing: M V + sigma I/2 with I the
+   !> contact integral of the last step (sigma = +1 at the top, -1 at the bottom), so that
+   !> with the bar's momentum (the mean over the last step) it changes by the external
+   !> impulses only (doc/impactor.md) [kg/(m s) A].
+   elemental real(wp) function striker_momentum(e, side) result(p)
+      type(end_t), intent(in) :: e         !! the end
+      integer, intent(in) :: side          !! face_top | face_bottom
+      p = 0.0_wp
+      if (e%kind == end_impactor) p = e%mass * e%striker%v + &
+                                      merge(0.5_wp, -0.5_wp, side == face_top) * e%q
+   end function striker_momentum
 
    !> The load integral q over a step as it works on the face's continuum state: all of it
    !> on a loaded free face, none elsewhere [Pa s].

@@ -37,7 +37,11 @@ module spb_mesh
       integer :: nsteps = 0                  !! steps to reach t_end
       integer :: end_kind(2) = end_free      !! end condition (end_*) of the top and the bottom
                                              !! (face_top, face_bottom): the state's end
-                                             !! records take it (spb_ends)
+                                             !! records take it (spb_ends define_ends)
+      real(wp) :: impactor_mass = 0.0_wp     !! a striking mass's M [kg/m^2 A]
+      real(wp) :: impactor_cushion = 0.0_wp  !! its cushion's stiffness (0: rigid) [Pa/m A]
+      real(wp) :: impactor_gap = 0.0_wp      !! its gap to the face at t = 0 [m]
+      real(wp) :: impactor_velocity = 0.0_wp !! its velocity at t = 0 [m/s]
       logical :: full_mass = .false.         !! the paper's naive comparison model (Fig. 12)
       ! per segment
       integer, allocatable :: first(:), last(:)        !! cell range of each segment
@@ -172,6 +176,10 @@ contains
       ! a t_end within round-off of a grid time is that grid time
       mesh%nsteps = max(1, ceiling(steps_real - 1.0e-9_wp))
       mesh%end_kind = [prob%top, prob%bottom]
+      mesh%impactor_mass = prob%impactor_mass
+      mesh%impactor_cushion = prob%impactor_cushion
+      mesh%impactor_gap = prob%impactor_gap
+      mesh%impactor_velocity = prob%impactor_velocity
       mesh%n = sum(cells)
       mesh%wave_speed = a
       mesh%impedance = zz

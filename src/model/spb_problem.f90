@@ -9,14 +9,14 @@ module spb_problem
    implicit none
    private
    public :: problem_t
-   public :: end_free, end_fixed, end_transmit, end_base, end_velocity
+   public :: end_free, end_fixed, end_transmit, end_base, end_velocity, end_impactor
    public :: load_none, load_power, load_table, load_exponential, face_top, face_bottom
    public :: timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment
    public :: events_admissible, events_paper
 
    !> End conditions of the bar.
    integer, parameter :: end_free = 1, end_fixed = 2, end_transmit = 3, end_base = 4, &
-      end_velocity = 5
+      end_velocity = 5, end_impactor = 6
    !> Kinds of end load, and the face it acts on.
    integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
    integer, parameter :: face_top = 1, face_bottom = 2
@@ -51,6 +51,12 @@ module spb_problem
       ! ends and the rigid base
       integer :: top = end_free                    !! end_* code of node 0
       integer :: bottom = end_free                 !! end_* code of node n
+      ! the striking mass (end_impactor at impactor_face)
+      integer :: impactor_face = face_top          !! face_* code of the end it strikes
+      real(wp) :: impactor_mass = 0.0_wp           !! [kg/m^2 A]
+      real(wp) :: impactor_velocity = 0.0_wp       !! along +x at t = 0 [m/s]
+      real(wp) :: impactor_gap = 0.0_wp            !! between the mass and the face at t = 0 [m]
+      real(wp) :: impactor_cushion = 0.0_wp        !! spring stiffness (0: rigid) [Pa/m A]
       real(wp) :: base_gap = 0.0_wp                !! gap to the base [m]
       ! the end load
       integer :: load_kind = load_none             !! load_* code
