@@ -11,12 +11,12 @@ program spallbar
    use spb_error, only: spb_error_t, make_error, exit_input
    use spb_strings, only: itoa
    use spb_deck, only: deck_t, read_deck, write_deck_help, deck_warnings
-   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, checkpoint_t
+   use spb_sim, only: sim_t, sim_setup, sim_run, checkpoint_t
+   use spb_summary, only: run_summary_t, write_summary
    use spb_checkpoint, only: read_checkpoint
    use spb_output, only: write_mesh_summary
    use spb_hdf5, only: h5_library_version
-   use spb_diag, only: frag_info_t, fragment_list, first_fractures
-   use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision
+   use spb_diag, only: frag_info_t, fragment_list
    use spb_sys, only: sys_exit, stderr_is_terminal, catch_stop_signals, heap_for_large_arrays
    use spb_sweep, only: run_sweep, sweep_summary_t
    use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings
@@ -84,53 +84,16 @@ program spallbar
                    batch_seconds=batch, notes=warnings(deck, sim%mesh%nsteps, est))
    end if
    if (allocated(err)) call fail(err)
-   if (.not. quiet) then
-      write(output_unit, '(a,i0,a,es9.2,a,es9.2,a,es9.2,a)') '  done: ', summary%steps, &
-         ' steps in ', summary%wall, ' s; energy ledger drift ', summary%ledger_drift, &
-         ' J/m^2 (', summary%ledger_drift / max(summary%energy_scale, tiny(1.0_wp)), &
-         ' of the largest energy term)'
-      write(output_unit, '(a,es9.2,a)') '  largest excess of mechanical energy (wave measure) ' // &
-         'over initial + work: ', summary%max_excess, ' of the energy scale'
-      write(output_unit, '(a,es9.2,a,es9.2,a)') '  wave energy ledger drift ', summary%wave_drift, &
-         ' J/m^2; largest Jordan amplitude ', summary%max_jordan, ' (events must leave none: round-off)'
-      call write_outcome()
-   end if
+   if (.not. quiet) call write_outcome()
 
 contains
 
-   !> The end of the summary: the events by kind, the fragments at the end (the first few:
-   !> where, how long, how fast), and every file the run wrote.
+   !> The end-of-run text (spb_summary), with the fragments at the end and every file the
+   !> run wrote.
    subroutine write_outcome()
       type(frag_info_t), allocatable :: list(:)
       character(len=:), allocatable :: files
-      integer :: k, nf
-      character(len=200) :: line
-      write(output_unit, '(a)') '  events: ' // itoa(summary%events) // ' (fractures ' // &
-         itoa(summary%n_kind(ev_fracture)) // ', collisions ' // &
-         itoa(summary%n_kind(ev_collision)) // ', separations ' // &
-         itoa(summary%n_kind(ev_separation)) // ', base collisions ' // &
-         itoa(summary%n_kind(ev_base_collision)) // ')'
-      nf = summary%n_kind(ev_fracture)
-      if (nf > 0) write(output_unit, '(a)') '  fractures: ' // itoa(nf) // ' (time, place, ' // &
-         'section stress; compression > 0):'
-      do k = 1, min(nf, first_fractures)
-         write(line, '(a,es11.4,a,es11.4,a,es11.4,a)') '    t = ', summary%fracture_t(k), &
-            ' s at x = ', summary%fracture_x(k), ' m, stress ', summary%fracture_s(k), ' Pa'
-         write(output_unit, '(a)') trim(line)
-      end do
-      if (nf > first_fractures) write(output_unit, '(a)') '    ... and ' // &
-         itoa(nf - first_fractures) // ' more (' // prefix // '.evt)'
       call fragment_list(sim%mesh, sim%st, list)
-      write(output_unit, '(a)') '  fragments at the end: ' // itoa(size(list)) // &
-         ' (x of the faces now, length, mean velocity):'
-      do k = 1, min(size(list), 5)
-         write(line, '(a,i0,a,es11.4,a,es11.4,a,es10.3,a,es10.3,a)') '    ', list(k)%id, ': x = ', &
-            list(k)%x_top, ' .. ', list(k)%x_bot, ' m, length ', list(k)%x_bot - list(k)%x_top, &
-            ' m, velocity ', list(k)%velocity, ' m/s'
-         write(output_unit, '(a)') trim(line)
-      end do
-      if (size(list) > 5) write(output_unit, '(a)') '    ... and ' // itoa(size(list) - 5) // &
-         ' more (' // prefix // '.frg lists them all at a profile time equal to t_end)'
       files = prefix // '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
       if (allocated(sim%record%gauge_x)) then
          if (size(sim%record%gauge_x) > 0) files = files // ', ' // prefix // '.gau'
@@ -138,7 +101,7 @@ contains
       if (sim%record%hdf5) files = files // ', ' // prefix // '.h5, ' // prefix // '.xmf'
       if (summary%checkpoints > 0) files = files // ', checkpoint ' // sim%opt%checkpoint // &
          ' (step ' // itoa(summary%steps) // ')'
-      write(output_unit, '(a)') '  wrote ' // files
+      call write_summary(output_unit, summary, list, prefix, files)
    end subroutine write_outcome
 
    !> Write the error's message to standard error and exit with its code.

@@ -20,8 +20,8 @@ module spb_sweep
    use spb_random, only: realization_seed
    use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings, &
       sweep_estimate
-   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model, memory_text, &
-      run_base_bytes
+   use spb_sim, only: sim_t, sim_setup, sim_run, setup_model, memory_text, run_base_bytes
+   use spb_summary, only: run_summary_t
    use spb_diag, only: frag_info_t, fragment_list
    use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision, ev_crack
    use spb_cohesive, only: dissipated
