@@ -9,8 +9,7 @@ module spb_summary
    use spb_field_io, only: field_io_t
    use spb_diag, only: energies_t, frag_info_t
    use spb_wave, only: wave_t
-   use spb_events, only: event_list_t, ev_fracture, ev_collision, ev_separation, &
-      ev_base_collision
+   use spb_events, only: event_list_t, ev_fracture, event_kinds, n_event_kinds
    implicit none
    private
    public :: run_summary_t, first_fractures, summary_start, summary_row, summary_guard
@@ -29,7 +28,7 @@ module spb_summary
       real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
       real(wp) :: max_excess = 0.0_wp      !! largest (E - E0) - w_ext, relative to the guard's
                                            !! scale [-]
-      integer :: n_kind(7) = 0             !! events by kind (ev_fracture .. ev_crack)
+      integer :: n_kind(n_event_kinds) = 0 !! events by kind (spb_events event_kinds)
       real(wp) :: first_fracture_t = -1.0_wp   !! time of the first fracture; -1: none [s]
       real(wp) :: max_reaction_bottom = 0.0_wp !! largest section stress at the bottom node
                                                !! over all steps (compression > 0) [Pa]
@@ -165,14 +164,18 @@ contains
       integer :: k
       call io%field(group, 'steps', summary%steps)
       call io%field(group, 'events', summary%events)
-      do k = 1, 4
-         call io%field(group, 'n_kind_' // itoa(k), summary%n_kind(k))
+      ! the counts by kind: a core kind's always, another's only where there were some (a
+      ! checkpoint of a run without them, or of a version before them, has none)
+      do k = 1, size(event_kinds)
+         if (event_kinds(k)%core) then
+            call io%field(group, 'n_kind_' // itoa(k), summary%n_kind(k))
+         else if (io%writing) then
+            if (summary%n_kind(k) > 0) call io%field(group, 'n_kind_' // itoa(k), &
+                                                     summary%n_kind(k))
+         else if (io%has(group, 'n_kind_' // itoa(k))) then
+            call io%field(group, 'n_kind_' // itoa(k), summary%n_kind(k))
+         end if
       end do
-      ! cracks (kind 7) only where there were some: older checkpoints have none
-      if ((io%writing .and. summary%n_kind(7) > 0) .or. (.not. io%writing .and. &
-          io%has(group, 'n_kind_7'))) then
-         call io%field(group, 'n_kind_7', summary%n_kind(7))
-      end if
       call io%field(group, 'checkpoints', summary%checkpoints)
       call io%field(group, 'ledger0', summary%ledger0)
       call io%field(group, 'ledger_drift', summary%ledger_drift)
@@ -227,11 +230,7 @@ contains
          'over initial + work: ', summary%max_excess, ' of the energy scale'
       write(unit, '(a,es9.2,a,es9.2,a)') '  wave energy ledger drift ', summary%wave_drift, &
          ' J/m^2; largest Jordan amplitude ', summary%max_jordan, ' (events must leave none: round-off)'
-      write(unit, '(a)') '  events: ' // itoa(summary%events) // ' (fractures ' // &
-         itoa(summary%n_kind(ev_fracture)) // ', collisions ' // &
-         itoa(summary%n_kind(ev_collision)) // ', separations ' // &
-         itoa(summary%n_kind(ev_separation)) // ', base collisions ' // &
-         itoa(summary%n_kind(ev_base_collision)) // ')'
+      write(unit, '(a)') '  events: ' // itoa(summary%events) // ' (' // by_kind(summary) // ')'
       nf = summary%n_kind(ev_fracture)
       if (nf > 0) write(unit, '(a)') '  fractures: ' // itoa(nf) // ' (time, place, ' // &
          'section stress; compression > 0):'
@@ -254,4 +253,19 @@ contains
          ' more (' // prefix // '.frg lists them all at a profile time equal to t_end)'
       write(unit, '(a)') '  wrote ' // files
    end subroutine write_summary
+
+   !> The events by kind for the summary's events line, 'fractures 3, collisions 1, ...':
+   !> every kind with a plural in event_kinds, a core kind's even when 0.
+   function by_kind(summary) result(text)
+      type(run_summary_t), intent(in) :: summary   !! the run's summary
+      character(len=:), allocatable :: text
+      integer :: k
+      text = ''
+      do k = 1, size(event_kinds)
+         if (len_trim(event_kinds(k)%plural) == 0) cycle
+         if (.not. event_kinds(k)%core .and. summary%n_kind(k) == 0) cycle
+         if (len(text) > 0) text = text // ', '
+         text = text // trim(event_kinds(k)%plural) // ' ' // itoa(summary%n_kind(k))
+      end do
+   end function by_kind
 end module spb_summary
