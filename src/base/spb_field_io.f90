@@ -24,6 +24,7 @@ module spb_field_io
       !> An integer field of group, written or read back.
       subroutine int_field(io, group, name, v)
          import :: field_io_t
+         implicit none
          class(field_io_t), intent(inout) :: io   !! the file
          character(len=*), intent(in) :: group    !! group path
          character(len=*), intent(in) :: name     !! field name
@@ -32,6 +33,7 @@ module spb_field_io
       !> A real field of group, written or read back.
       subroutine real_field(io, group, name, v)
          import :: field_io_t, wp
+         implicit none
          class(field_io_t), intent(inout) :: io   !! the file
          character(len=*), intent(in) :: group    !! group path
          character(len=*), intent(in) :: name     !! field name
@@ -40,6 +42,7 @@ module spb_field_io
       !> True when the file (being read) holds the field name of group.
       logical function has_field(io, group, name)
          import :: field_io_t
+         implicit none
          class(field_io_t), intent(inout) :: io   !! the file
          character(len=*), intent(in) :: group    !! group path
          character(len=*), intent(in) :: name     !! field name
