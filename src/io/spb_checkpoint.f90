@@ -324,7 +324,7 @@ contains
       if (.not. writing) v = flag /= 0
    end subroutine field_logical
 
-   !> field_io_t's integer field: field_int in the direction ck%writing.
+   !> field_io_t's integer field: field_int in the direction io%writing.
    subroutine io_int(io, group, name, v)
       class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
       character(len=*), intent(in) :: group   !! group path
@@ -333,7 +333,7 @@ contains
       call field_int(io, io%writing, group, name, v)
    end subroutine io_int
 
-   !> field_io_t's real field: field_real in the direction ck%writing.
+   !> field_io_t's real field: field_real in the direction io%writing.
    subroutine io_real(io, group, name, v)
       class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
       character(len=*), intent(in) :: group   !! group path
