@@ -10,7 +10,7 @@ module spb_state
    use spb_mesh, only: mesh_t
    use spb_ledger, only: ledger_t
    use spb_ends, only: end_t, face_top, face_bottom, start_end, is_free_face, is_fixed_end, &
-      has_base, moves_with_bar, place_on_base
+      define_ends, has_base, moves_with_bar, place_on_base
    use spb_static, only: static_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
    implicit none
@@ -132,7 +132,7 @@ contains
       st%gen%frag_id = 0
       st%gen%frag_id(0) = 1
       st%gen%n_frag_ids = 1
-      st%ends%kind = mesh%end_kind
+      call define_ends(st%ends, mesh)
       v = initial_velocities(prob, mesh, st%ends)
       s_top = 0.0_wp
       s_bot = 0.0_wp
