@@ -17,11 +17,21 @@ import os
 
 import numpy as np
 
-EVENT_KINDS = {1: "fracture", 2: "collision", 3: "separation", 4: "base-collision"}
 
 
 def _text(value):
     return value.decode(errors="replace") if isinstance(value, bytes) else str(value)
+
+
+def event_kinds(kind_codes):
+    """The event kinds' names by code from the program's list of them, the /events
+    attribute kind_codes (and the .evt header): "1 fracture, 2 collision, ..." -> {1:
+    "fracture", 2: "collision", ...} (the list is src/model/spb_events.f90 event_kinds)."""
+    kinds = {}
+    for item in _text(kind_codes).split(","):
+        code, _, name = item.strip().partition(" ")
+        kinds[int(code)] = name.strip()
+    return kinds
 
 
 class Run:
@@ -47,7 +57,8 @@ class Run:
             self.history = {k: f["history"][k][:] for k in f["history"]}
             self.events = {k: f["events"][k][:] for k in f["events"]}
             if "kind" in self.events:
-                self.events["kind"] = np.array([EVENT_KINDS[int(k)] for k in self.events["kind"]],
+                kinds = event_kinds(f["events"].attrs["kind_codes"])
+                self.events["kind"] = np.array([kinds[int(k)] for k in self.events["kind"]],
                                                dtype=object)
             x_half = f["mesh"]["x_half"][:]
             for name in sorted(f["fields"]["profiles"]):

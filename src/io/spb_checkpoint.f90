@@ -23,7 +23,8 @@ module spb_checkpoint
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
    use spb_ends, only: face_top, face_bottom
-   use spb_diag, only: run_summary_t, first_fractures
+   use spb_field_io, only: field_io_t
+   use spb_summary, only: run_summary_t, summary_fields, summary_problem
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
       h5_write, h5_get, h5_get_attr, h5_has_attr
@@ -39,7 +40,7 @@ module spb_checkpoint
    character(len=*), parameter :: format_1 = 'spallbar checkpoint 1'
    character(len=1), parameter :: nl = achar(10)
 
-   !> One entry of a field list (state_fields, summary_fields): written or read back.
+   !> One entry of a field list (state_fields): written or read back.
    interface field
       module procedure field_int, field_real, field_logical
    end interface field
@@ -58,11 +59,16 @@ module spb_checkpoint
    !> A checkpoint file being written or read, and its checksum in two parts: fields, every
    !> value the field lists carry (state, run summary, output counts: all format 2 summed);
    !> rest, everything else a restart reads (the identity, profile times, a load table, the
-   !> text files' marks), in the order write_checkpoint writes them.
-   type :: ck_file_t
+   !> text files' marks), in the order write_checkpoint writes them. As a field_io_t it
+   !> writes or reads the field lists of other modules (spb_summary summary_fields).
+   type, extends(field_io_t) :: ck_file_t
       type(h5file_t) :: h5                     !! the HDF5 file
       type(fletcher_t) :: fields               !! the field lists' values
       type(fletcher_t) :: rest                 !! the other values a restart reads
+   contains
+      procedure :: int_field => io_int
+      procedure :: real_field => io_real
+      procedure :: has => io_has
    end type ck_file_t
 
    integer(int64), parameter :: fletcher_prime = 4294967291_int64
@@ -149,7 +155,8 @@ contains
       ! the run's summary
       call h5_group(cf%h5, '/run')
       run_copy = summary
-      call summary_fields(cf, run_copy, .true.)
+      cf%writing = .true.
+      call summary_fields(run_copy, cf, '/run')
       ! how far the outputs reach (byte counts as float64: exact below 2^53)
       call h5_group(cf%h5, '/outputs')
       do k = 1, text_count(rec)
@@ -262,46 +269,6 @@ contains
       call array_field(ck, writing, 'coh_active', st%coh%active)
    end subroutine cohesive_fields
 
-   !> The one list of what the checkpoint keeps of the run summary (attributes of /run).
-   subroutine summary_fields(ck, summary, writing)
-      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
-      type(run_summary_t), intent(inout) :: summary   !! the run's summary
-      logical, intent(in) :: writing       !! write (else read back)
-      integer :: k
-      call field(ck, writing, '/run', 'steps', summary%steps)
-      call field(ck, writing, '/run', 'events', summary%events)
-      do k = 1, 4
-         call field(ck, writing, '/run', 'n_kind_' // itoa(k), summary%n_kind(k))
-      end do
-      ! cracks (kind 7) only where there were some: older checkpoints have none
-      if ((writing .and. summary%n_kind(7) > 0) .or. (.not. writing .and. &
-          h5_has_attr(ck%h5, '/run', 'n_kind_7'))) then
-         call field(ck, writing, '/run', 'n_kind_7', summary%n_kind(7))
-      end if
-      call field(ck, writing, '/run', 'checkpoints', summary%checkpoints)
-      call field(ck, writing, '/run', 'ledger0', summary%ledger0)
-      call field(ck, writing, '/run', 'ledger_drift', summary%ledger_drift)
-      call field(ck, writing, '/run', 'energy_scale', summary%energy_scale)
-      call field(ck, writing, '/run', 'max_excess', summary%max_excess)
-      call field(ck, writing, '/run', 'first_fracture_t', summary%first_fracture_t)
-      call field(ck, writing, '/run', 'max_reaction_bottom', summary%max_reaction_bottom)
-      call field(ck, writing, '/run', 'e_kin_end', summary%e_kin_end)
-      call field(ck, writing, '/run', 'w_ext_end', summary%w_ext_end)
-      call field(ck, writing, '/run', 'e_mech0', summary%e_mech0)
-      call field(ck, writing, '/run', 'guard_scale', summary%guard_scale)
-      call field(ck, writing, '/run', 'ledger_w0', summary%ledger_w0)
-      call field(ck, writing, '/run', 'wave_drift', summary%wave_drift)
-      call field(ck, writing, '/run', 'max_jordan', summary%max_jordan)
-      call field(ck, writing, '/run', 'jordan_scale', summary%jordan_scale)
-      call field(ck, writing, '/run', 'fracture_stress_sum', summary%fracture_stress_sum)
-      ! added later (a checkpoint without them restarts; its summary lists fewer fractures)
-      do k = 1, first_fractures
-         call later_field(ck, writing, '/run', 'fracture_t_' // itoa(k), summary%fracture_t(k))
-         call later_field(ck, writing, '/run', 'fracture_x_' // itoa(k), summary%fracture_x(k))
-         call later_field(ck, writing, '/run', 'fracture_stress_' // itoa(k), summary%fracture_s(k))
-      end do
-   end subroutine summary_fields
-
    !> A real attribute of group added after checkpoints existed: always written; read back
    !> (and counted in the checksum) only where the checkpoint has it, so that one written
    !> before it still matches its checksum.
@@ -357,6 +324,32 @@ contains
       call field_int(ck, writing, group, name, flag)
       if (.not. writing) v = flag /= 0
    end subroutine field_logical
+
+   !> field_io_t's integer field: field_int in the direction io%writing.
+   subroutine io_int(io, group, name, v)
+      class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      integer, intent(inout) :: v          !! the value
+      call field_int(io, io%writing, group, name, v)
+   end subroutine io_int
+
+   !> field_io_t's real field: field_real in the direction io%writing.
+   subroutine io_real(io, group, name, v)
+      class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      real(wp), intent(inout) :: v         !! the value
+      call field_real(io, io%writing, group, name, v)
+   end subroutine io_real
+
+   !> field_io_t's question: the checkpoint has the attribute name of group.
+   logical function io_has(io, group, name)
+      class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      io_has = h5_has_attr(io%h5, group, name)
+   end function io_has
 
    !> An array of /state: the dataset /state/NAME with the attributes NAME:lbound and
    !> NAME:size of /state (an unallocated array is not written; read back, a missing or
@@ -581,7 +574,7 @@ contains
       ! what the ends are is the mesh's (the deck's); the checkpoint holds what they keep
       ck%st%ends%kind = mesh%end_kind
       call read_profile_times(cf, times)
-      call summary_fields(cf, ck%summary, .false.)
+      call summary_fields(ck%summary, cf, '/run')
       call read_marks(cf, ck%marks, rec)
       if (allocated(cf%h5%error)) then
          call refuse('cannot be read: ' // cf%h5%error)
@@ -895,17 +888,6 @@ contains
          if (len(why) > 0) return
       end do
    end function marks_problem
-
-   !> Why the run summary read back cannot be continued ('' when it can): its counts not
-   !> negative.
-   function summary_problem(summary) result(why)
-      type(run_summary_t), intent(in) :: summary   !! the run's summary read back
-      character(len=:), allocatable :: why
-      why = ''
-      if (min(summary%steps, summary%events, summary%checkpoints, minval(summary%n_kind)) < 0) then
-         why = 'is damaged: a count of its run summary is negative'
-      end if
-   end function summary_problem
 
    !> The one list of the outputs' row and block counts a checkpoint keeps (attributes of
    !> /outputs), written or read back; rows_gauges only by a run with gauges.

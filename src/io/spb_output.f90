@@ -20,7 +20,7 @@ module spb_output
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
-   use spb_events, only: event_list_t, event_kind_names
+   use spb_events, only: event_list_t, event_kinds
    use spb_diag, only: frag_info_t
    use spb_gauge, only: gauge_t, locate_gauges
    implicit none
@@ -977,9 +977,9 @@ contains
       character(len=:), allocatable :: line
       integer :: k
       line = ''
-      do k = 1, size(event_kind_names)
+      do k = 1, size(event_kinds)
          if (k > 1) line = line // ', '
-         line = line // itoa(k) // ' ' // trim(event_kind_names(k))
+         line = line // itoa(k) // ' ' // trim(event_kinds(k)%name)
       end do
    end function kind_codes
 
@@ -1452,9 +1452,9 @@ contains
    pure function kind_field(kind) result(f)
       integer, intent(in) :: kind   !! event kind (ev_*)
       character(len=16) :: f
-      character(len=16), parameter :: fields(size(event_kind_names)) = &
-         adjustr('  ' // event_kind_names)
-      f = fields(max(1, min(size(event_kind_names), kind)))
+      character(len=16), parameter :: fields(size(event_kinds)) = &
+         adjustr('  ' // event_kinds%name)
+      f = fields(max(1, min(size(event_kinds), kind)))
    end function kind_field
 
    !> A namelist string value without its quotes ('a' -> a); lists are left as they are.

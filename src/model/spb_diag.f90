@@ -12,7 +12,7 @@ module spb_diag
    use spb_state, only: state_t, separates
    implicit none
    private
-   public :: energies_t, energies, frag_info_t, fragment_list, run_summary_t, first_fractures
+   public :: energies_t, energies, frag_info_t, fragment_list
 
    type :: energies_t
       real(wp) :: e_kin = 0.0_wp      !! [J/m^2]
@@ -35,40 +35,6 @@ module spb_diag
       real(wp) :: e_vib = 0.0_wp           !! kinetic energy relative to the mean motion plus
                                            !! strain energy [J/m^2]
    end type frag_info_t
-
-   integer, parameter :: first_fractures = 5   !! fractures the run summary keeps
-
-   !> What a run reports and carries from step to step (a restart file keeps it).
-   type :: run_summary_t
-      integer :: steps = 0
-      integer :: events = 0                !! events written
-      real(wp) :: wall = 0.0_wp            !! [s]
-      real(wp) :: ledger0 = 0.0_wp         !! ledger at t = 0 [J/m^2]
-      real(wp) :: ledger_drift = 0.0_wp    !! largest |ledger - ledger0| over rows [J/m^2]
-      real(wp) :: energy_scale = 0.0_wp    !! largest energy term seen [J/m^2]
-      real(wp) :: max_excess = 0.0_wp      !! largest (E - E0) - w_ext, relative to the guard's
-                                           !! scale [-]
-      integer :: n_kind(7) = 0             !! events by kind (ev_fracture .. ev_crack)
-      real(wp) :: first_fracture_t = -1.0_wp   !! time of the first fracture; -1: none [s]
-      real(wp) :: max_reaction_bottom = 0.0_wp !! largest section stress at the bottom node
-                                               !! over all steps (compression > 0) [Pa]
-      real(wp) :: e_kin_end = 0.0_wp       !! kinetic energy at the end [J/m^2]
-      real(wp) :: w_ext_end = 0.0_wp       !! work of the loads and ends at the end [J/m^2]
-      integer :: checkpoints = 0           !! checkpoints written
-      real(wp) :: fracture_stress_sum = 0.0_wp !! sum of |section stress| at the fractures [Pa]
-      real(wp) :: e_mech0 = 0.0_wp         !! the energy guard's reference: mechanical energy
-                                           !! at t = 0, e_wave + e_pot + e_wave_g [J/m^2]
-      real(wp) :: guard_scale = 0.0_wp     !! the guard's scale: e_wave at t = 0, then the
-                                           !! largest |w_wave| [J/m^2]
-      real(wp) :: ledger_w0 = 0.0_wp       !! wave ledger at t = 0 [J/m^2]
-      real(wp) :: wave_drift = 0.0_wp      !! largest |ledger_w - ledger_w0| over rows [J/m^2]
-      real(wp) :: max_jordan = 0.0_wp      !! largest relative Jordan amplitude over rows [-]
-      real(wp) :: jordan_scale = 0.0_wp    !! largest momentum scale of the bar over rows, what
-                                           !! the Jordan amplitude is relative to [kg/(m s)]
-      real(wp) :: fracture_t(first_fractures) = 0.0_wp    !! the first fractures: time [s],
-      real(wp) :: fracture_x(first_fractures) = 0.0_wp    !! reference position [m],
-      real(wp) :: fracture_s(first_fractures) = 0.0_wp    !! section stress [Pa]
-   end type run_summary_t
 
 contains
 

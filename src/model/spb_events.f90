@@ -5,16 +5,39 @@ module spb_events
    implicit none
    private
    public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
-   public :: ev_base_collision, ev_crack, event_kind_names
+   public :: ev_base_collision, ev_crack, event_kind_t, event_kinds, n_event_kinds
 
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
    !> A cohesive crack starts (its end, the full opening, is a fracture); codes 5 and 6 are
    !> kept for the striking mass's impact and release (planned: doc/planned.md)
    integer, parameter :: ev_crack = 7
-   !> Names of the kinds, in code order (the .evt 'kind' column; HDF5 stores the codes)
-   character(len=14), parameter :: event_kind_names(7) = [character(len=14) :: 'fracture', &
-      'collision', 'separation', 'base-collision', 'impact', 'release', 'crack']
+
+   !> What the writers need to know of an event kind (entry code of event_kinds).
+   type :: event_kind_t
+      character(len=14) :: name = ''      !! the .evt 'kind' column, HDF5 /events kind_codes
+      character(len=16) :: plural = ''    !! its count in the run summary's events line ('':
+                                          !! not there)
+      character(len=24) :: column = ''    !! its count's column in the sweep table ('': none)
+      !> one of the kinds from the first format on: its count is in the run summary's events
+      !> line and the checkpoint even when 0, and its sweep column after status; the others'
+      !> counts only when some occurred (outputs without them stay as they were), their
+      !> columns after e_fracture
+      logical :: core = .false.
+   end type event_kind_t
+
+   !> The event kinds, in code order: the one list the outputs, the run summary, the
+   !> checkpoint and the sweep table follow (a new kind is a line here and its physics).
+   !> Codes 5 and 6 are named in the outputs' lists of kinds and no module makes them yet.
+   type(event_kind_t), parameter :: event_kinds(7) = [ &
+      event_kind_t('fracture', 'fractures', 'fractures', .true.), &
+      event_kind_t('collision', 'collisions', 'collisions', .true.), &
+      event_kind_t('separation', 'separations', 'separations', .true.), &
+      event_kind_t('base-collision', 'base collisions', 'base_collisions', .true.), &
+      event_kind_t('impact', '', '', .false.), &
+      event_kind_t('release', '', '', .false.), &
+      event_kind_t('crack', '', 'cracks', .false.)]
+   integer, parameter :: n_event_kinds = size(event_kinds)   !! codes 1 .. n_event_kinds
 
    type :: event_t
       integer :: kind = ev_fracture     !! ev_* constant

@@ -21,9 +21,10 @@ module spb_sim
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
    use spb_ends, only: face_bottom, has_base, is_velocity_end
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
-   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list, run_summary_t, &
-      first_fractures
-   use spb_events, only: event_list_t, ev_fracture
+   use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
+   use spb_events, only: event_list_t
+   use spb_summary, only: run_summary_t, summary_start, summary_row, summary_guard, &
+      summary_reaction, summary_events, summary_checkpoint, summary_end
    use spb_fracture, only: fracture_step
    use spb_contact, only: contact_step
    use spb_gauge, only: gauge_t, locate_gauges, watch_gauges, read_gauges
@@ -38,7 +39,7 @@ module spb_sim
       act_check, act_field, act_checkpoint, act_progress, act_gauge
    implicit none
    private
-   public :: sim_t, sim_setup, sim_run, run_summary_t, sim_step, checkpoint_t, setup_model, &
+   public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
       run_options_t, memory_text, run_base_bytes, run_cell_bytes
 
    !> The between-step actions run every check_every steps (finiteness, energy guard) and
@@ -395,8 +396,8 @@ contains
             if (allocated(err)) err%message = err%message // where_outputs(run%out)
          end block
       end if
-      summary%steps = sim%st%step
-      summary%wall = real(c_now - run%c0, wp) / real(max(run%rate, 1_int64), wp)
+      call summary_end(summary, sim%st%step, &
+                       real(c_now - run%c0, wp) / real(max(run%rate, 1_int64), wp))
    end subroutine sim_run
 
    !> Open (or resume) the outputs, check the checkpoint path, and lay out the schedule.
@@ -467,11 +468,8 @@ contains
       real(wp) :: w_w, e_l
       e0 = energies(sim%mesh, sim%st, sim%prob%gravity)
       call measure(sim, e0, w0, w_w, e_l)
-      summary%e_mech0 = w0%e_wave + e0%e_pot + w0%e_gravity
-      summary%guard_scale = w0%e_wave
-      if (sim%mesh%full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
-      summary%ledger_w0 = summary%e_mech0 - w_w + e_l
-      summary%max_reaction_bottom = sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n)
+      call summary_start(summary, e0, w0, w_w, e_l, sim%mesh%full_mass, &
+                         sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       call row(sim, run, summary, err)
       if (run%sched%every(act_gauge) > 0) call gauge_row(sim, run)
       call profiles(sim, run)
@@ -493,13 +491,11 @@ contains
       if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
          call advance_joined(sim%mesh, sim%load, sim%prob%gravity, sim%st, k - 1, &
                              max_sec_bottom=sec_max)
-         summary%max_reaction_bottom = max(summary%max_reaction_bottom, &
-                                           sec_max / sim%mesh%area(sim%mesh%n))
+         call summary_reaction(summary, sec_max / sim%mesh%area(sim%mesh%n))
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
-      summary%max_reaction_bottom = max(summary%max_reaction_bottom, &
-                                        sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
+      call summary_reaction(summary, sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       if (run%events%n == 0) return
       ! the events' section forces as stresses over their sections (spb_mesh)
       do j = 1, run%events%n
@@ -509,22 +505,7 @@ contains
          end associate
       end do
       if (run%to_files) call write_events(run%out, run%events)
-      summary%events = summary%events + run%events%n
-      do j = 1, run%events%n
-         associate (ev => run%events%e(j))
-            summary%n_kind(ev%kind) = summary%n_kind(ev%kind) + 1
-            if (ev%kind == ev_fracture) then
-               if (summary%first_fracture_t < 0.0_wp) summary%first_fracture_t = ev%t
-               k = summary%n_kind(ev_fracture)
-               if (k <= first_fractures) then
-                  summary%fracture_t(k) = ev%t
-                  summary%fracture_x(k) = ev%x
-                  summary%fracture_s(k) = ev%stress
-               end if
-               summary%fracture_stress_sum = summary%fracture_stress_sum + abs(ev%stress)
-            end if
-         end associate
-      end do
+      call summary_events(summary, run%events)
    end subroutine take_steps
 
    !> What is due after step n: the row or the check between rows, profiles, the field row,
@@ -634,8 +615,7 @@ contains
       call mark_outputs(run%out, marks)
       call check_written(run%out, err)
       if (allocated(err)) return
-      summary%checkpoints = summary%checkpoints + 1
-      summary%steps = sim%st%step
+      call summary_checkpoint(summary, sim%st%step)
       call write_checkpoint(sim%opt%checkpoint, sim%record, sim%mesh, sim%load, &
                             sim%st, summary, marks, err)
       ! a checkpoint continues these outputs: from here on they are the run's (doc/outputs.md)
@@ -670,12 +650,8 @@ contains
          return
       end if
       call measure(sim, e, wv, w_w, e_l)
-      ! the Jordan amplitude relative to the largest momentum scale so far (the current one
-      ! vanishes once a bar has come to rest or radiated its waves away)
-      summary%jordan_scale = max(summary%jordan_scale, wv%momentum_scale)
-      if (summary%jordan_scale > 0.0_wp) wv%jordan = wv%jordan_abs / summary%jordan_scale
-      summary%e_kin_end = e%e_kin
-      summary%w_ext_end = e%w_ext
+      ! the summary's running values (wv%jordan made relative to the largest momentum scale)
+      call summary_row(summary, sim%st%step, e, wv, w_w, e_l)
       ! the values in the order of history_table (spb_output)
       if (run%to_files) call write_history_row(run%out, [real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n), &
@@ -688,14 +664,7 @@ contains
          sim%st%ledger%i_ends, sim%st%ledger%i_support, sim%st%ledger%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
          w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim), &
          cohesive_dissipated(sim%st), sim%st%ledger%w_cohesive, real(sim%st%coh%n_active, wp)])
-      if (sim%st%step == 0) summary%ledger0 = e%ledger
       call guard(sim, summary, e, wv, w_w, err)
-      summary%ledger_drift = max(summary%ledger_drift, abs(e%ledger - summary%ledger0))
-      summary%wave_drift = max(summary%wave_drift, abs(wv%e_wave + e%e_pot + wv%e_gravity - &
-         w_w + e_l - summary%ledger_w0))
-      summary%max_jordan = max(summary%max_jordan, wv%jordan)
-      summary%energy_scale = max(summary%energy_scale, abs(e%e_kin), abs(e%e_strain), &
-                                 abs(e%e_pot), abs(e%w_ext))
    end subroutine row
 
    !> Stop when the mechanical energy exceeds the initial energy plus the work of the
@@ -711,10 +680,7 @@ contains
       real(wp) :: excess
       character(len=16) :: b1, b2
       if (allocated(err)) return
-      summary%guard_scale = max(summary%guard_scale, abs(w_w))
-      excess = (wv%e_wave + e%e_pot + wv%e_gravity - summary%e_mech0) - w_w
-      if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
-         excess / summary%guard_scale)
+      call summary_guard(summary, e, wv, w_w, excess)
       associate (limit => sim%opt%energy_guard)
          if (limit > 0.0_wp .and. excess > limit * summary%guard_scale .and. &
              summary%guard_scale > 0.0_wp) then

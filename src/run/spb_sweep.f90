@@ -20,10 +20,10 @@ module spb_sweep
    use spb_random, only: realization_seed
    use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings, &
       sweep_estimate
-   use spb_sim, only: sim_t, sim_setup, sim_run, run_summary_t, setup_model, memory_text, &
-      run_base_bytes
+   use spb_sim, only: sim_t, sim_setup, sim_run, setup_model, memory_text, run_base_bytes
+   use spb_summary, only: run_summary_t
    use spb_diag, only: frag_info_t, fragment_list
-   use spb_events, only: ev_fracture, ev_collision, ev_separation, ev_base_collision, ev_crack
+   use spb_events, only: ev_fracture, event_kinds
    use spb_cohesive, only: dissipated
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
    use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs, program_line
@@ -41,9 +41,10 @@ module spb_sweep
       'e_fracture (the fracture corrections'' energy) [J/m^2]; mean_fracture_stress [Pa] ' // &
       '(mean |section stress| at the fractures, 0: none); cracks [-] (cohesive cracks opened), ' // &
       'e_cohesive [J/m^2] (energy they dissipated)'
-   integer, parameter :: n_columns = 23
-   !> PREFIX.sweep and /cases: the one list of the sweep table's columns, in order.
-   type(column_t), parameter :: sweep_table(n_columns) = [ &
+   !> PREFIX.sweep and /cases: the one list of the sweep table's columns, in order
+   !> (sweep_table), but the event kinds' counts: those follow spb_events event_kinds, each
+   !> under its column name, the core kinds' after status, the others' after e_fracture.
+   type(column_t), parameter :: case_columns(9) = [ &
       column_t('id', '-', .true.), &
       column_t('fragments', '-', .true.), &
       column_t('mean_fragment_length', 'm', .false.), &
@@ -52,11 +53,8 @@ module spb_sweep
       column_t('value', '-', .false.), &
       column_t('realization', '-', .true.), &
       column_t('seed', '-', .true.), &
-      column_t('status', '-', .true.), &
-      column_t('fractures', '-', .true.), &
-      column_t('collisions', '-', .true.), &
-      column_t('separations', '-', .true.), &
-      column_t('base_collisions', '-', .true.), &
+      column_t('status', '-', .true.)]
+   type(column_t), parameter :: run_columns(8) = [ &
       column_t('e_kin_end', 'J/m^2', .false.), &
       column_t('w_ext_end', 'J/m^2', .false.), &
       column_t('max_excess', '-', .false.), &
@@ -64,14 +62,22 @@ module spb_sweep
       column_t('steps', '-', .true.), &
       column_t('e_vib_end', 'J/m^2', .false.), &
       column_t('mean_fracture_stress', 'Pa', .false.), &
-      column_t('e_fracture', 'J/m^2', .false.), &
-      column_t('cracks', '-', .true.), &
-      column_t('e_cohesive', 'J/m^2', .false.) ]
+      column_t('e_fracture', 'J/m^2', .false.)]
+   type(column_t), parameter :: cohesive_columns(1) = [ &
+      column_t('e_cohesive', 'J/m^2', .false.)]
+   !> the event kinds with a column: core, and the others
+   integer, parameter :: n_core_kinds = count(event_kinds%core .and. event_kinds%column /= '')
+   integer, parameter :: n_other_kinds = count(.not. event_kinds%core .and. &
+                                               event_kinds%column /= '')
+   integer, parameter :: n_columns = size(case_columns) + size(run_columns) + &
+      size(cohesive_columns) + n_core_kinds + n_other_kinds
    integer, parameter :: col_id = 1, col_fragments = 2, col_mean_length = 3, col_max_reaction = 4, &
       col_first_fracture = 5, col_value = 6, col_realization = 7, col_seed = 8, col_status = 9, &
-      col_kinds = 10, col_e_kin = 14, col_w_ext = 15, col_excess = 16, col_drift = 17, &
-      col_steps = 18, col_e_vib = 19, col_fracture_stress = 20, col_e_fracture = 21, &
-      col_cracks = 22, col_e_cohesive = 23
+      col_e_kin = n_core_kinds + 10, col_w_ext = n_core_kinds + 11, &
+      col_excess = n_core_kinds + 12, col_drift = n_core_kinds + 13, &
+      col_steps = n_core_kinds + 14, col_e_vib = n_core_kinds + 15, &
+      col_fracture_stress = n_core_kinds + 16, col_e_fracture = n_core_kinds + 17, &
+      col_e_cohesive = n_core_kinds + n_other_kinds + 18
    integer, parameter :: status_not_run = -1
    integer, parameter :: tag_request = 1000000001, tag_work = 1000000002, tag_check = 1000000003
    !> Memory of the sweep's tables per case, besides its runs [bytes]: a row (n_columns
@@ -150,7 +156,7 @@ contains
       type(spb_error_t), allocatable :: err
       type(frag_info_t), allocatable :: list(:)
       real(wp) :: value, length
-      integer :: realization, f, b
+      integer :: realization, f, b, k
       row = 0.0_wp
       hist = 0
       row(col_id) = real(c, wp)
@@ -177,8 +183,9 @@ contains
       row(col_mean_length) = row(col_mean_length) / real(max(1, size(list)), wp)
       row(col_max_reaction) = summary%max_reaction_bottom
       row(col_first_fracture) = summary%first_fracture_t
-      row(col_kinds:col_kinds + 3) = real(summary%n_kind([ev_fracture, ev_collision, &
-                                                          ev_separation, ev_base_collision]), wp)
+      do k = 1, size(event_kinds)
+         if (kind_column(k) > 0) row(kind_column(k)) = real(summary%n_kind(k), wp)
+      end do
       row(col_e_kin) = summary%e_kin_end
       row(col_w_ext) = summary%w_ext_end
       row(col_excess) = summary%max_excess
@@ -187,7 +194,6 @@ contains
       if (summary%n_kind(ev_fracture) > 0) row(col_fracture_stress) = &
          summary%fracture_stress_sum / real(summary%n_kind(ev_fracture), wp)
       row(col_e_fracture) = sim%st%ledger%e_fracture
-      row(col_cracks) = real(summary%n_kind(ev_crack), wp)
       if (sim%st%coh%on) row(col_e_cohesive) = sum(dissipated(sim%st%coh%dmax, sim%st%coh%r, &
                                                               sim%st%coh%dc))
    end subroutine run_case
@@ -480,10 +486,36 @@ contains
       end do
    end subroutine agree
 
+   !> The sweep table's column of the count of event kind k (0: none): a core kind's after
+   !> status, another's after e_fracture, each in code order.
+   pure integer function kind_column(k) result(c)
+      integer, intent(in) :: k             !! event kind code
+      c = 0
+      if (len_trim(event_kinds(k)%column) == 0) return
+      if (event_kinds(k)%core) then
+         c = col_status + count(event_kinds(:k)%core .and. event_kinds(:k)%column /= '')
+      else
+         c = col_e_fracture + count(.not. event_kinds(:k)%core .and. event_kinds(:k)%column /= '')
+      end if
+   end function kind_column
+
+   !> The sweep table's columns, in order: its own and the event kinds' counts (kind_column).
+   pure function sweep_table() result(table)
+      type(column_t) :: table(n_columns)
+      integer :: k
+      table(:col_status) = case_columns
+      table(col_e_kin:col_e_fracture) = run_columns
+      table(col_e_cohesive:) = cohesive_columns
+      do k = 1, size(event_kinds)
+         if (kind_column(k) > 0) table(kind_column(k)) = column_t(event_kinds(k)%column, '-', &
+                                                                  .true.)
+      end do
+   end function sweep_table
+
    !> The sweep table's column names, blank-separated (the column line of PREFIX.sweep).
    pure function sweep_columns() result(line)
       character(len=:), allocatable :: line
-      line = column_names(sweep_table)
+      line = column_names(sweep_table())
    end function sweep_columns
 
    !> PREFIX.sweep: header (deck echo with &sweep, columns, units), one row per case, in
@@ -495,6 +527,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=24) :: cell
       character(len=:), allocatable :: line
+      type(column_t) :: table(n_columns)
       integer :: u, ios, c, k
       integer(int64) :: wrote, have
       logical :: ok
@@ -520,10 +553,11 @@ contains
          'of those fragments; max_reaction_bottom over every step'
       write(u, '(a)') '# units: ' // sweep_units
       write(u, '(a)') '# ' // sweep_columns()
+      table = sweep_table()
       do c = 1, size(rows, 2)
          line = ''
          do k = 1, n_columns
-            if (sweep_table(k)%whole) then
+            if (table(k)%whole) then
                write(cell, '(1x,i12)') nint(rows(k, c))
             else
                write(cell, '(1x,es20.12e3)') rows(k, c)
@@ -564,6 +598,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       real(wp) :: col(size(rows, 2))
+      type(column_t) :: table(n_columns)
       integer :: k, nb
       logical :: ok
       call h5_create(h5, prefix // '_sweep.h5.part')
@@ -572,14 +607,15 @@ contains
       call h5_attr(h5, '/cases', 'count', size(rows, 2))
       call h5_attr(h5, '/cases', 'vary', trim(deck%sweep%vary))
       call h5_attr(h5, '/cases', 'units', sweep_units)
+      table = sweep_table()
       do k = 1, n_columns
-         if (sweep_table(k)%whole) then
-            call h5_write(h5, '/cases/' // trim(sweep_table(k)%name), nint(rows(k, :)), &
-                          trim(sweep_table(k)%unit))
+         if (table(k)%whole) then
+            call h5_write(h5, '/cases/' // trim(table(k)%name), nint(rows(k, :)), &
+                          trim(table(k)%unit))
          else
             col = rows(k, :)    ! contiguous
-            call h5_write(h5, '/cases/' // trim(sweep_table(k)%name), col, &
-                          trim(sweep_table(k)%unit))
+            call h5_write(h5, '/cases/' // trim(table(k)%name), col, &
+                          trim(table(k)%unit))
          end if
       end do
       nb = size(hists, 1)
