@@ -22,7 +22,7 @@ module spb_checkpoint
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
-   use spb_ends, only: face_top, face_bottom, define_ends
+   use spb_ends, only: face_top, face_bottom, define_ends, is_striker, striker_fields
    use spb_field_io, only: field_io_t
    use spb_summary, only: run_summary_t, summary_fields, summary_problem
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
@@ -226,6 +226,14 @@ contains
       call later_field(ck, writing, '/state', 'v_end_top', st%ends(face_top)%v_end)
       call later_field(ck, writing, '/state', 'v_end_bot', st%ends(face_bottom)%v_end)
       call later_field(ck, writing, '/state', 'w_support', st%ledger%w_support)
+      ! a striking mass (only a run that has one)
+      if (any(is_striker(st%ends))) then
+         ck%writing = writing
+         call field(ck, writing, '/state', 'e_impactor', st%ledger%e_impactor)
+         if (is_striker(st%ends(face_top))) call striker_fields(st%ends(face_top), face_top, ck)
+         if (is_striker(st%ends(face_bottom))) call striker_fields(st%ends(face_bottom), &
+                                                                face_bottom, ck)
+      end if
       call cohesive_fields(ck, st, writing)
       call array_field(ck, writing, 'ua', st%ua)
       call array_field(ck, writing, 'ub', st%ub)
@@ -570,9 +578,9 @@ contains
          return
       end if
       ! everything else, unused until the checksum is compared
-      call state_fields(cf, ck%st, .false.)
       ! what the ends are is the mesh's (the deck's); the checkpoint holds what they keep
       call define_ends(ck%st%ends, mesh)
+      call state_fields(cf, ck%st, .false.)
       call read_profile_times(cf, times)
       call summary_fields(ck%summary, cf, '/run')
       call read_marks(cf, ck%marks, rec)

@@ -64,7 +64,7 @@ module spb_output
       column_t('shift', 'm', .false., 20, .false.) ]
 
    !> PREFIX.his and /history: the one list of the history columns, in order.
-   integer, parameter :: n_history = 34
+   integer, parameter :: n_history = 37
    type(column_t), parameter :: history_table(n_history) = [ &
       column_t('t', 's', .false.), &
       column_t('reaction_bottom', 'Pa', .false.), &
@@ -99,10 +99,14 @@ module spb_output
       column_t('overlap', '-', .false.), &
       column_t('e_cohesive', 'J/m^2', .false.), &
       column_t('w_cohesive', 'J/m^2', .false.), &
-      column_t('cracks_open', '-', .true.) ]
+      column_t('cracks_open', '-', .true.), &
+      column_t('x_impactor', 'm', .false.), &
+      column_t('v_impactor', 'm/s', .false.), &
+      column_t('f_impactor', 'N/m^2', .false.) ]
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
-      // 'p_shift [kg/(m s)] along +x (down); jordan [-]'
+      // 'p_shift [kg/(m s)] along +x (down); jordan [-]; x_impactor [m], v_impactor [m/s] ' &
+      // 'along +x, f_impactor [N/m^2] (compression > 0)'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node t'
    character(len=*), parameter :: profile_columns = 'x u v stress t'
@@ -434,10 +438,10 @@ contains
       character(len=*), intent(in) :: text   !! units as per unit area
       logical, intent(in) :: per_area        !! every area is 1
       character(len=:), allocatable :: out
-      character(len=10), parameter :: per(5) = [character(len=10) :: 'J/m^2', 'kg/(m s)', &
-         'kg/(m^2 s)', 'kg/m^2', 'Pa/m']
-      character(len=6), parameter :: whole(5) = [character(len=6) :: 'J', 'kg m/s', 'kg/s', &
-         'kg', 'N/m']
+      character(len=10), parameter :: per(6) = [character(len=10) :: 'J/m^2', 'kg/(m s)', &
+         'kg/(m^2 s)', 'kg/m^2', 'Pa/m', 'N/m^2']
+      character(len=6), parameter :: whole(6) = [character(len=6) :: 'J', 'kg m/s', 'kg/s', &
+         'kg', 'N/m', 'N']
       integer :: k, i
       out = text
       if (per_area) return

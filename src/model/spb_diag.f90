@@ -10,6 +10,7 @@ module spb_diag
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t, separates
+   use spb_ends, only: face_top, face_bottom, is_striker, striker_momentum
    implicit none
    private
    public :: energies_t, energies, frag_info_t, fragment_list
@@ -54,8 +55,28 @@ contains
       e%w_ext = st%ledger%w_load + st%ledger%w_transmit + st%ledger%w_support
       e%e_lost = st%ledger%e_fracture + st%ledger%e_join + st%ledger%e_shift + st%ledger%e_contact &
                  + st%ledger%e_traction
+      if (any(is_striker(st%ends))) call add_striker(e)
       e%ledger = e%e_kin + e%e_strain + e%e_pot - e%w_ext + e%e_lost
       e%momentum = sum(mesh%ma * st%dua + mesh%mb * st%dub) / dt
+      if (any(is_striker(st%ends))) e%momentum = e%momentum + &
+         sum(striker_momentum(st%ends, [face_top, face_bottom]))
+   contains
+      !> A striking mass's kinetic, gravity and cushion energy (doc/impactor.md), and what its
+      !> contact removed from the invariant.
+      pure subroutine add_striker(e)
+         type(energies_t), intent(inout) :: e   !! the terms so far
+         integer :: side
+         do side = face_top, face_bottom
+            if (.not. is_striker(st%ends(side))) cycle
+            associate (m => st%ends(side)%striker, mass => st%ends(side)%mass, &
+                       k => st%ends(side)%cushion)
+               e%e_kin = e%e_kin + 0.5_wp * mass * m%v**2
+               e%e_pot = e%e_pot - g * mass * m%x
+               if (m%gap < 0.0_wp) e%e_strain = e%e_strain + 0.5_wp * k * m%gap**2
+            end associate
+         end do
+         e%e_lost = e%e_lost + st%ledger%e_impactor
+      end subroutine add_striker
    end function energies
 
    !> Every fragment, top to bottom, with its mass, mean velocity and vibration energy.

@@ -18,13 +18,16 @@ module spb_ends
    use spb_ledger, only: ledger_t
    use spb_section, only: section_stress_a, section_stress_b
    use spb_impactor, only: mass_state_t, mass_step_t, strike_step, mass_energy
+   use spb_events, only: event_t, event_list_t, push_event, ev_impact, ev_release
+   use spb_field_io, only: field_io_t
    implicit none
    private
    public :: end_t, face_step_t, face_top, face_bottom
-   public :: is_free_face, transmits, is_velocity_end, is_fixed_end, has_base, on_base, &
+   public :: transmits, is_velocity_end, is_fixed_end, has_base, on_base, &
       holds, gives_equation, moves_with_bar, support_du, is_striker, has_free_face
    public :: face_stress, face_load_share, hold_face, book_ends, start_end, place_on_base, &
-      define_ends, strike, striker_energy, striker_momentum, face_integral
+      define_ends, strike, striker_energy, striker_momentum, face_integral, strike_events, &
+      striker_fields
 
    !> One end of the bar: its kind (end_* of spb_problem) and what the kind keeps from step to
    !> step. The fields a kind does not use stay at their defaults.
@@ -79,12 +82,6 @@ module spb_ends
    end type face_step_t
 
 contains
-
-   !> A free face: it moves with the bar and carries the load where it acts.
-   elemental logical function is_free_face(e)
-      type(end_t), intent(in) :: e         !! the end
-      is_free_face = e%kind == end_free
-   end function is_free_face
 
    !> A transmitting end: the bar continues beyond it without end.
    elemental logical function transmits(e)
@@ -295,6 +292,67 @@ contains
       e%q_step = step + 1
    end subroutine strike
 
+   !> The events of a striking mass's last step (strike), in time order: its first impact
+   !> and its first release within the step, at their exact times (dt_bound 0); stress: the
+   !> contact stress Z v an impact starts with (rigid contact; 0 through a cushion).
+   pure subroutine strike_events(e, step, node, x, z, dt, frag, events)
+      type(end_t), intent(in) :: e         !! the end (a striking mass after its step)
+      integer, intent(in) :: step          !! the step index n (the step from t^n)
+      integer, intent(in) :: node          !! the face's node
+      real(wp), intent(in) :: x            !! its reference position [m]
+      real(wp), intent(in) :: z            !! impedance of the end cell [kg/(m^2 s) A]
+      real(wp), intent(in) :: dt           !! time step [s]
+      integer, intent(in) :: frag          !! id of the fragment struck
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      type(event_t) :: ev(2)
+      integer :: k, m
+      if (e%kind /= end_impactor) return
+      m = 0
+      if (e%struck%t_impact >= 0.0_wp) then
+         m = m + 1
+         ev(m)%kind = ev_impact
+         ev(m)%t = e%struck%t_impact
+         if (.not. (e%cushion > 0.0_wp)) ev(m)%stress = z * e%struck%v_impact
+      end if
+      if (e%struck%t_release >= 0.0_wp) then
+         m = m + 1
+         ev(m)%kind = ev_release
+         ev(m)%t = e%struck%t_release
+      end if
+      ! in time order (an impact and a release at the same instant: the impact first)
+      if (m == 2) then
+         if (ev(2)%t < ev(1)%t) ev = ev(2:1:-1)
+      end if
+      do k = 1, m
+         ev(k)%step = step
+         ev(k)%node = node
+         ev(k)%t = real(step, wp) * dt + ev(k)%t
+         ev(k)%x = x
+         ev(k)%frag_above = frag
+         call push_event(events, ev(k))
+      end do
+   end subroutine strike_events
+
+   !> What a striking mass keeps from step to step, as checkpoint fields (the one list, for
+   !> writing and reading back; a run without a striking mass has none of them).
+   subroutine striker_fields(e, side, io)
+      type(end_t), intent(inout) :: e      !! the end (a striking mass)
+      integer, intent(in) :: side          !! face_top | face_bottom
+      class(field_io_t), intent(inout) :: io   !! the checkpoint file
+      character(len=:), allocatable :: at
+      integer :: touching
+      at = merge('striker_top', 'striker_bot', side == face_top) // '_'
+      call io%field('/state', at // 'x', e%striker%x)
+      call io%field('/state', at // 'v', e%striker%v)
+      call io%field('/state', at // 'gap', e%striker%gap)
+      touching = merge(1, 0, e%striker%touching)
+      call io%field('/state', at // 'touching', touching)
+      e%striker%touching = touching == 1
+      call io%field('/state', at // 'q', e%q)
+      call io%field('/state', at // 'q_before', e%q_before)
+      call io%field('/state', at // 'q_step', e%q_step)
+   end subroutine striker_fields
+
    !> Kinetic, gravity and cushion energy of a striking mass (0 for another end) [J/m^2 A].
    elemental real(wp) function striker_energy(e, g) result(en)
       type(end_t), intent(in) :: e         !! the end
@@ -361,11 +419,14 @@ contains
       logical, intent(in) :: full_mass          !! the full-mass model (no section stresses)
       type(ledger_t), intent(inout) :: ledger   !! the run's balances
       real(wp), intent(inout) :: section(2)     !! section stress of each end node [Pa]
-      real(wp) :: w, du_old(2)
+      real(wp) :: w, du_old(2), s_ext(2)
       integer :: side
       ! momentum balance: the end stresses act on the end nodes, supports take what reaches
-      ! them
-      ledger%i_ends = ledger%i_ends + (f(face_top)%s - f(face_bottom)%s) * dt
+      ! them; a striking mass's contact stress is internal (the mass's momentum is counted,
+      ! striker_momentum)
+      s_ext = f%s
+      where (ends%kind == end_impactor) s_ext = 0.0_wp
+      ledger%i_ends = ledger%i_ends + (s_ext(face_top) - s_ext(face_bottom)) * dt
       do side = face_top, face_bottom
          if (f(side)%held) ledger%i_support = ledger%i_support - f(side)%p / dt
       end do
@@ -379,6 +440,10 @@ contains
          end if
          if (ends(side)%kind == end_transmit) then
             ledger%w_transmit = ledger%w_transmit + w
+         else if (ends(side)%kind == end_impactor) then
+            ! a striking mass: no external work; what the mass lost (-de_mass, exact) beyond
+            ! what the bar gained (w, the scheme's product) is removed in the scheme's measure
+            ledger%e_impactor = ledger%e_impactor - (w + ends(side)%de_mass)
          else
             ledger%w_load = ledger%w_load + w
          end if
@@ -416,6 +481,17 @@ contains
             end if
             ledger%w_wave = ledger%w_wave + z(side) * f(side)%du * &
                             (2.0_wp * (ends(side)%w_in + f(side)%rho) - f(side)%du) / dt
+         case (end_impactor)
+            ! the bar's continuum state gains I du / dt from the contact stress (as from a
+            ! load, I = the step's contact integral); the mass lost -de_mass (exact): the
+            ! difference, the contact stress's variance over the step times dt / Z >= 0, is
+            ! what the step's piecewise-constant reading cannot carry (doc/impactor.md)
+            if (side == face_top) then
+               w = ends(side)%q * f(side)%du / dt
+            else
+               w = -ends(side)%q * f(side)%du / dt
+            end if
+            ledger%e_lost_wave = ledger%e_lost_wave - (w + ends(side)%de_mass)
          case default
             ! the other ends take no part here
          end select

@@ -5,12 +5,14 @@ module spb_events
    implicit none
    private
    public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
-   public :: ev_base_collision, ev_crack, event_kind_t, event_kinds, n_event_kinds
+   public :: ev_base_collision, ev_impact, ev_release, ev_crack, event_kind_t, event_kinds, &
+      n_event_kinds
 
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
-   !> A cohesive crack starts (its end, the full opening, is a fracture); codes 5 and 6 are
-   !> kept for the striking mass's impact and release (planned: doc/planned.md)
+   !> A striking mass comes into contact with its face, and leaves it (spb_impactor)
+   integer, parameter :: ev_impact = 5, ev_release = 6
+   !> A cohesive crack starts (its end, the full opening, is a fracture)
    integer, parameter :: ev_crack = 7
 
    !> What the writers need to know of an event kind (entry code of event_kinds).
@@ -28,14 +30,13 @@ module spb_events
 
    !> The event kinds, in code order: the one list the outputs, the run summary, the
    !> checkpoint and the sweep table follow (a new kind is a line here and its physics).
-   !> Codes 5 and 6 are named in the outputs' lists of kinds and no module makes them yet.
    type(event_kind_t), parameter :: event_kinds(7) = [ &
       event_kind_t('fracture', 'fractures', 'fractures', .true.), &
       event_kind_t('collision', 'collisions', 'collisions', .true.), &
       event_kind_t('separation', 'separations', 'separations', .true.), &
       event_kind_t('base-collision', 'base collisions', 'base_collisions', .true.), &
-      event_kind_t('impact', '', '', .false.), &
-      event_kind_t('release', '', '', .false.), &
+      event_kind_t('impact', 'impacts', 'impacts', .false.), &
+      event_kind_t('release', 'releases', '', .false.), &
       event_kind_t('crack', '', 'cracks', .false.)]
    integer, parameter :: n_event_kinds = size(event_kinds)   !! codes 1 .. n_event_kinds
 

@@ -5,7 +5,7 @@
 module spb_fragments
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_top, face_bottom, is_free_face, holds
+   use spb_ends, only: face_top, face_bottom, has_free_face, holds
    use spb_state, only: state_t
    use spb_events, only: event_t, event_list_t, push_event
    use spb_arrays, only: append
@@ -175,8 +175,8 @@ contains
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       f = 0.0_wp
-      if (top == 0 .and. is_free_face(st%ends(face_top))) f = f + st%s(0)
-      if (bot == mesh%n .and. is_free_face(st%ends(face_bottom))) f = f - st%s(mesh%n + 1)
+      if (top == 0 .and. has_free_face(st%ends(face_top))) f = f + st%s(0)
+      if (bot == mesh%n .and. has_free_face(st%ends(face_bottom))) f = f - st%s(mesh%n + 1)
    end function end_force
 
    !> Velocity change w of a region shifted on its path (see shift_late): the real root

@@ -14,7 +14,7 @@
 module spb_gauge
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t, node_area
-   use spb_ends, only: face_top, face_bottom, is_free_face
+   use spb_ends, only: face_top, face_bottom, has_free_face
    use spb_load, only: load_t
    use spb_state, only: state_t
    use spb_step, only: face_load_integrals
@@ -106,12 +106,12 @@ contains
          c = gauges(k)%cell
          if (i == 0) then
             stress(k) = st%section(0)
-            if (is_free_face(st%ends(face_top))) stress(k) = q_top / mesh%dt
+            if (has_free_face(st%ends(face_top))) stress(k) = q_top / mesh%dt
             velocity(k) = st%dub(0) / mesh%dt
             u(k) = st%ub(0)
          else if (i == n) then
             stress(k) = st%section(n)
-            if (is_free_face(st%ends(face_bottom))) stress(k) = q_bot / mesh%dt
+            if (has_free_face(st%ends(face_bottom))) stress(k) = q_bot / mesh%dt
             velocity(k) = st%dua(n) / mesh%dt
             u(k) = st%ua(n)
          else if (i > 0) then

@@ -35,6 +35,10 @@ module spb_ledger
                                               !! in w_wave with the other sign) [J/m^2]
       real(wp) :: e_closing = 0.0_wp          !! of w_cohesive, what closing faces' contact took
                                               !! beyond the law's integral (>= 0) [J/m^2]
+      real(wp) :: e_impactor = 0.0_wp         !! energy a striking mass's contact removed from
+                                              !! the scheme's invariant: what the mass lost
+                                              !! beyond the work F^n (u^{n+1} - u^{n-1})/2 the
+                                              !! face stress did on the bar (spb_ends) [J/m^2]
       real(wp) :: e_traction = 0.0_wp         !! the same work in the scheme's own measure,
                                               !! P^n (delta^{n+1} - delta^{n-1})/2 (in e_lost) [J/m^2]
    end type ledger_t

@@ -9,8 +9,8 @@ module spb_state
    use spb_problem, only: problem_t
    use spb_mesh, only: mesh_t
    use spb_ledger, only: ledger_t
-   use spb_ends, only: end_t, face_top, face_bottom, start_end, is_free_face, is_fixed_end, &
-      define_ends, has_base, moves_with_bar, place_on_base
+   use spb_ends, only: end_t, face_top, face_bottom, start_end, has_free_face, is_fixed_end, &
+      define_ends, has_base, moves_with_bar, place_on_base, is_striker
    use spb_static, only: static_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
    implicit none
@@ -147,6 +147,11 @@ contains
       end if
       call start_end(st%ends(face_top), face_top, v(0), s_top, mesh%z(1), dt)
       call start_end(st%ends(face_bottom), face_bottom, v(n), s_bot, mesh%z(n), dt)
+      ! a striking mass starts at its gap with its velocity
+      where (is_striker(st%ends))
+         st%ends%striker%v = mesh%impactor_velocity
+         st%ends%striker%gap = st%ends%gap0
+      end where
       st%ua = u
       st%ub = u
       st%dua = v * dt
@@ -228,8 +233,10 @@ contains
             ! a free face moves in the first step with the mean velocity of its cell: that is
             ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
             ! (spb_wave); the face's own v(x) would start one that grows linearly
-            if (is_free_face(ends(face_top))) v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
-            if (is_free_face(ends(face_bottom)) .or. has_base(ends(face_bottom))) then
+            if (has_free_face(ends(face_top))) then
+               v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
+            end if
+            if (has_free_face(ends(face_bottom)) .or. has_base(ends(face_bottom))) then
                v(n) = v(n) - prob%strain_rate * 0.5_wp * mesh%dx(n)
             end if
          end associate
@@ -259,8 +266,10 @@ contains
          do i = 1, n - 1
             st%section(i) = s(i) + 0.5_wp * mesh%dm(i) * g
          end do
-         if (.not. is_free_face(st%ends(face_top))) st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
-         if (.not. is_free_face(st%ends(face_bottom))) then
+         if (.not. has_free_face(st%ends(face_top))) then
+            st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
+         end if
+         if (.not. has_free_face(st%ends(face_bottom))) then
             st%section(n) = s(n) + 0.5_wp * mesh%dm(n) * g
          end if
       else

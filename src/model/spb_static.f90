@@ -9,7 +9,7 @@
 module spb_static
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: end_t, face_top, face_bottom, is_free_face, has_base
+   use spb_ends, only: end_t, face_top, face_bottom, has_free_face, has_base
    implicit none
    private
    public :: static_state
@@ -33,8 +33,8 @@ contains
 
       n = mesh%n
       m = mesh%ma + mesh%mb
-      top_held = .not. is_free_face(ends(face_top))
-      bot_held = .not. is_free_face(ends(face_bottom)) .and. &
+      top_held = .not. has_free_face(ends(face_top))
+      bot_held = .not. has_free_face(ends(face_bottom)) .and. &
                  (.not. has_base(ends(face_bottom)) .or. base_holds)
       if (top_held .and. .not. bot_held) then
          ! node equilibrium s_i - s_{i+1} + m_i g = 0 from the free bottom (s_{n+1} = 0)

@@ -6,8 +6,8 @@ module spb_step
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_none, step_load, load_integral
    use spb_state, only: state_t
-   use spb_ends, only: face_step_t, face_top, face_bottom, face_stress, face_load_share, &
-      hold_face, book_ends, transmits, has_base
+   use spb_ends, only: face_step_t, face_top, face_bottom, face_stress, face_integral, &
+      hold_face, book_ends, transmits, has_base, is_striker, strike
    use spb_wave, only: transmit_residuals
    use spb_crack, only: start_cracks, cohesive_step
    implicit none
@@ -55,8 +55,9 @@ contains
    end function end_stress
 
    !> Integrals of the load over the step that ends at t^step, on a free top and a free bottom
-   !> face [Pa s] (0 where the load acts elsewhere or the face is not free): the exact work
-   !> of the load on the continuum state is I du / dt (spb_wave).
+   !> face [Pa s] (0 where the load acts elsewhere or the face is not free), and of a striking
+   !> mass's contact stress on its face: the exact work of the load on the continuum state
+   !> is I du / dt (spb_wave).
    pure subroutine face_load_integrals(mesh, load, step, st, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
@@ -67,10 +68,16 @@ contains
       real(wp) :: q
       i_top = 0.0_wp
       i_bot = 0.0_wp
-      if (load%kind == load_none .or. step < 1) return
-      q = load_integral(load, real(step - 1, wp) * mesh%dt, real(step, wp) * mesh%dt)
-      i_top = face_load_share(st%ends(face_top), q, load%face == face_top)
-      i_bot = face_load_share(st%ends(face_bottom), q, load%face == face_bottom)
+      if (step < 1) return
+      q = 0.0_wp
+      if (load%kind /= load_none) q = load_integral(load, real(step - 1, wp) * mesh%dt, &
+                                                    real(step, wp) * mesh%dt)
+      if (load%kind /= load_none .or. is_striker(st%ends(face_top))) then
+         i_top = face_integral(st%ends(face_top), q, load%face == face_top, step)
+      end if
+      if (load%kind /= load_none .or. is_striker(st%ends(face_bottom))) then
+         i_bot = face_integral(st%ends(face_bottom), q, load%face == face_bottom, step)
+      end if
    end subroutine face_load_integrals
 
    !> Under gravity, the zig-zag content rho (spb_wave, transmit_residuals) at each transmitting
@@ -123,6 +130,11 @@ contains
       n = mesh%n
       dt = mesh%dt
       dt2 = dt * dt
+      ! a striking mass's step comes first: its contact integral makes its face's stress
+      if (is_striker(st%ends(face_top))) call strike(st%ends(face_top), face_top, st%step, &
+         st%ub(0), st%dub(0), st%s(1), mesh%z(1), g, dt)
+      if (is_striker(st%ends(face_bottom))) call strike(st%ends(face_bottom), face_bottom, &
+         st%step, st%ua(n), st%dua(n), st%s(n), mesh%z(n), g, dt)
       call end_stresses(mesh, load, st, r(face_top)%s, r(face_bottom)%s)
       r(face_top)%q = step_load_integral(load, st%step, mesh%dt, face_top)
       r(face_bottom)%q = step_load_integral(load, st%step, mesh%dt, face_bottom)
@@ -262,13 +274,13 @@ contains
 
    !> advance_joined may stand in for nsteps calls of the whole step (advance, contact_step,
    !> fracture_step): every node is joined, none can break (no node, no spring), no rigid
-   !> base to land on or leave, no support is being hit, and no gauge reads a node's section
-   !> stress (mesh%watch: the blocked steps do not keep it).
+   !> base to land on or leave, no striking mass, no support is being hit, and no gauge reads
+   !> a node's section stress (mesh%watch: the blocked steps do not keep it).
    pure logical function joined_only(mesh, st)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       joined_only = st%n_split == 0 .and. st%n_breakable == 0 .and. st%fm%n_cut == 0 .and. &
-                    .not. (has_base(st%ends(face_top)) .or. has_base(st%ends(face_bottom))) .and. &
+                    .not. any(has_base(st%ends) .or. is_striker(st%ends)) .and. &
                     .not. any(st%ends%landing) .and. mesh%n_watch == 0
    end function joined_only
 

@@ -26,7 +26,7 @@
 module spb_wave
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_top, face_bottom, is_free_face, transmits, is_velocity_end, &
+   use spb_ends, only: face_top, face_bottom, has_free_face, transmits, is_velocity_end, &
       has_base, holds, gives_equation
    use spb_state, only: state_t
    implicit none
@@ -806,7 +806,7 @@ contains
          end if
       else
          fc%eq_top = gives_equation(st%ends(face_top))
-         if (is_free_face(st%ends(face_top))) fc%load_top = 0.5_wp * i_top
+         if (has_free_face(st%ends(face_top))) fc%load_top = 0.5_wp * i_top
       end if
       if (bot < mesh%n) then
          fc%eq_bot = .true.
@@ -815,7 +815,7 @@ contains
          end if
       else
          fc%eq_bot = gives_equation(st%ends(face_bottom))
-         if (is_free_face(st%ends(face_bottom))) fc%load_bot = 0.5_wp * i_bot
+         if (has_free_face(st%ends(face_bottom))) fc%load_bot = 0.5_wp * i_bot
       end if
       fc%tr_top = top == 0 .and. transmits(st%ends(face_top)) .and. .not. fc%eq_bot
       fc%tr_bot = bot == mesh%n .and. transmits(st%ends(face_bottom)) .and. .not. fc%eq_top

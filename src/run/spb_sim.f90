@@ -19,7 +19,9 @@ module spb_sim
    use spb_cohesive, only: dissipated
    use spb_state, only: state_t, init_state, fragment_count
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
-   use spb_ends, only: face_bottom, has_base, is_velocity_end
+   use spb_ends, only: face_top, face_bottom, has_base, is_velocity_end, is_striker, &
+      strike_events, striker_energy
+   use spb_fragments, only: fragment_span
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
    use spb_events, only: event_list_t
@@ -136,9 +138,35 @@ contains
       end if
       call face_load_integrals(sim%mesh, sim%load, sim%st%step, sim%st, q_top, q_bot)
       wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
+      ! a striking mass's kinetic and cushion energy (its gravity energy is in e_pot)
+      if (any(is_striker(sim%st%ends))) wv%e_wave = wv%e_wave + &
+         sum(striker_energy(sim%st%ends, 0.0_wp))
       w_wave = sim%st%ledger%w_wave + wv%w_support
       e_lost_w = sim%st%ledger%e_lost_wave
    end subroutine measure
+
+   !> The mass gravity acts on: the bar's and a striking mass's [kg/m^2 A].
+   pure real(wp) function bar_mass(sim) result(m)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      m = sum(sim%mesh%ma) + sum(sim%mesh%mb)
+      if (any(is_striker(sim%st%ends))) m = m + sum(sim%st%ends%mass, is_striker(sim%st%ends))
+   end function bar_mass
+
+   !> x_impactor, v_impactor, f_impactor of PREFIX.his: a striking mass's displacement from
+   !> its start, its velocity, and the contact force's mean over the last step (N, or Pa
+   !> when every area is 1); 0 without one.
+   pure function striker_columns(sim) result(c)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      real(wp) :: c(3)
+      integer :: side
+      c = 0.0_wp
+      do side = face_top, face_bottom
+         if (.not. is_striker(sim%st%ends(side))) cycle
+         c(1) = sim%st%ends(side)%striker%x
+         c(2) = sim%st%ends(side)%striker%v
+         if (sim%st%ends(side)%q_step == sim%st%step) c(3) = sim%st%ends(side)%q / sim%mesh%dt
+      end do
+   end function striker_columns
 
    !> Energy the cohesive cracks have dissipated so far, open and completed (spb_cohesive)
    !> [J/m^2].
@@ -326,6 +354,7 @@ contains
       real(wp) :: i_top, i_bot
       associate (p => sim%prob)
          call advance(sim%mesh, sim%load, p%gravity, sim%st)
+         if (any(is_striker(sim%st%ends))) call striker_events(sim%mesh, sim%st, events)
          call face_load_integrals(sim%mesh, sim%load, sim%st%step, sim%st, i_top, i_bot)
          call contact_step(sim%mesh, sim%st, p%gravity, p%timing, p%shift, events, i_top, &
                            i_bot, p%events, p%eps_rel)
@@ -333,6 +362,20 @@ contains
                             i_bot)
       end associate
    end subroutine sim_step
+
+   !> The impacts and releases of the step just taken (spb_ends strike_events), before the
+   !> events the step's state makes at t^{n+1}.
+   pure subroutine striker_events(mesh, st, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state after the step
+      type(event_list_t), intent(inout) :: events   !! events of this step are appended
+      integer :: top, bot
+      call fragment_span(mesh, st, mesh%n, top, bot)
+      call strike_events(st%ends(face_top), st%step - 1, 0, mesh%x(0), mesh%z(1), mesh%dt, &
+                         st%gen%frag_id(0), events)
+      call strike_events(st%ends(face_bottom), st%step - 1, mesh%n, mesh%x(mesh%n), &
+                         mesh%z(mesh%n), mesh%dt, st%gen%frag_id(top), events)
+   end subroutine striker_events
 
    !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
    !> only the summary, as a sweep's cases do). With resume: go on from a checkpoint, the
@@ -660,10 +703,11 @@ contains
          real(sim%st%step, wp), s_top / sim%mesh%area(1), s_bot / sim%mesh%area(sim%mesh%n), &
          sim%st%ledger%w_load, sim%st%ledger%w_transmit, &
          e%ledger, sim%st%ledger%e_fracture, sim%st%ledger%e_join, sim%st%ledger%e_shift, sim%st%ledger%e_contact, &
-         g * (sum(sim%mesh%ma) + sum(sim%mesh%mb)) * real(sim%st%step, wp) * sim%mesh%dt, &
+         g * bar_mass(sim) * real(sim%st%step, wp) * sim%mesh%dt, &
          sim%st%ledger%i_ends, sim%st%ledger%i_support, sim%st%ledger%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
          w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim), &
-         cohesive_dissipated(sim%st), sim%st%ledger%w_cohesive, real(sim%st%coh%n_active, wp)])
+         cohesive_dissipated(sim%st), sim%st%ledger%w_cohesive, real(sim%st%coh%n_active, wp), &
+         striker_columns(sim)])
       call guard(sim, summary, e, wv, w_w, err)
    end subroutine row
 
