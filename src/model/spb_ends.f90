@@ -52,6 +52,10 @@ module spb_ends
       real(wp) :: mass = 0.0_wp               !! its mass M [kg/m^2 A]
       real(wp) :: cushion = 0.0_wp            !! its cushion's stiffness k (0: rigid) [Pa/m A]
       real(wp) :: gap0 = 0.0_wp               !! its gap to the face at t = 0 [m]
+      real(wp) :: u_face0 = 0.0_wp            !! the face's displacement at t = 0 (a static
+                                              !! start's is not 0) [m]
+      real(wp) :: p_ref = 0.0_wp              !! the largest contact stress at stake so far
+                                              !! (Z |V|, Z |w|, M |g|, the step means) [Pa A]
       type(mass_state_t) :: striker           !! the mass at t^n: displacement, velocity,
                                               !! contact (spb_impactor)
       real(wp) :: q = 0.0_wp                  !! integral of the contact stress over the step
@@ -280,12 +284,16 @@ contains
       real(wp), intent(in) :: dt           !! time step [s]
       real(wp) :: sigma, w, e0
       sigma = merge(1.0_wp, -1.0_wp, side == face_top)
+      ! the gap is measured from where the face is at t = 0, as the first step finds it
+      if (step == 0) e%u_face0 = u_face
       w = (du_face + sigma * (e%q - 2.0_wp * s_cell * dt) / z + g * dt**2) / dt
       if (.not. (e%striker%touching .and. .not. (e%cushion > 0.0_wp))) then
-         e%striker%gap = e%gap0 + sigma * (u_face - e%striker%x)
+         e%striker%gap = e%gap0 + sigma * ((u_face - e%u_face0) - e%striker%x)
       end if
       e0 = mass_energy(e%striker, e%mass, e%cushion, g)
-      call strike_step(e%striker, e%mass, e%cushion, z, g, sigma, w, dt, e%struck)
+      e%p_ref = max(e%p_ref, z * abs(e%striker%v), z * abs(w), e%mass * abs(g))
+      call strike_step(e%striker, e%mass, e%cushion, z, g, sigma, w, dt, e%p_ref, e%struck)
+      e%p_ref = max(e%p_ref, abs(e%struck%q) / dt)
       e%de_mass = mass_energy(e%striker, e%mass, e%cushion, g) - e0
       e%q_before = e%q
       e%q = e%struck%q
@@ -351,6 +359,8 @@ contains
       call io%field('/state', at // 'q', e%q)
       call io%field('/state', at // 'q_before', e%q_before)
       call io%field('/state', at // 'q_step', e%q_step)
+      call io%field('/state', at // 'u_face0', e%u_face0)
+      call io%field('/state', at // 'p_ref', e%p_ref)
    end subroutine striker_fields
 
    !> Kinetic, gravity and cushion energy of a striking mass (0 for another end) [J/m^2 A].

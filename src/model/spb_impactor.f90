@@ -44,6 +44,11 @@ module spb_impactor
    end type mass_step_t
 
    integer, parameter :: max_phases = 64       !! contact changes within one step at most
+   !> Round-off guard of the contact decisions, relative to the largest contact stress at
+   !> stake so far (p_ref): a contact lets go only when it would pull by more than this, a
+   !> mass at the face strikes only when it approaches faster than this over Z
+   !> (doc/method.md, "Tolerances") [-]
+   real(wp), parameter :: contact_tol = 1.0e-9_wp
    integer, parameter :: root_samples = 8      !! subintervals searched for a cushion's release
 
 contains
@@ -59,7 +64,7 @@ contains
    end function mass_energy
 
    !> One step of length dt from st: the face moves at w where no contact stress acts.
-   pure subroutine strike_step(st, m, k, z, g, sigma, w, dt, r)
+   pure subroutine strike_step(st, m, k, z, g, sigma, w, dt, p_ref, r)
       type(mass_state_t), intent(inout) :: st  !! the mass at t^n, then at t^{n+1}
       real(wp), intent(in) :: m               !! the mass [kg/m^2 A]
       real(wp), intent(in) :: k               !! cushion stiffness (0: rigid contact) [Pa/m A]
@@ -69,6 +74,8 @@ contains
                                               !! the bottom face
       real(wp), intent(in) :: w               !! the face's velocity without contact [m/s]
       real(wp), intent(in) :: dt              !! time step [s]
+      real(wp), intent(in) :: p_ref           !! the scale of the contact stresses: the
+                                              !! largest so far, Z |V|, M |g| [Pa A]
       type(mass_step_t), intent(out) :: r     !! the step's contact impulse and events
       real(wp) :: t, s, dq
       integer :: phase
@@ -77,9 +84,11 @@ contains
          if (.not. (t < dt)) exit
          if (st%touching) then
             if (k > 0.0_wp) then
-               call cushion_phase(st, m, k, z, g, sigma, w, dt - t, s, dq, r%p_end)
+               call cushion_phase(st, m, k, z, g, sigma, w, dt - t, contact_tol * p_ref / z, &
+                                  s, dq, r%p_end)
             else
-               call rigid_phase(st, m, z, g, sigma, w, dt - t, s, dq, r%p_end)
+               call rigid_phase(st, m, z, g, sigma, w, dt - t, contact_tol * p_ref, s, dq, &
+                                r%p_end)
             end if
             r%q = r%q + dq
             if (.not. st%touching) then
@@ -87,7 +96,7 @@ contains
                if (r%t_release < 0.0_wp) r%t_release = t + s
             end if
          else
-            call free_phase(st, g, sigma, w, dt - t, s)
+            call free_phase(st, g, sigma, w, dt - t, contact_tol * p_ref / z, s)
             r%p_end = 0.0_wp
             if (st%touching) then
                r%impacts = r%impacts + 1
@@ -105,18 +114,21 @@ contains
 
    !> Flight: the mass under gravity, the face at w, until the gap closes (the mass is
    !> moving onto the face; time s into the rest of the step) or the rest ends.
-   pure subroutine free_phase(st, g, sigma, w, rest, s)
+   pure subroutine free_phase(st, g, sigma, w, rest, v_tol, s)
       type(mass_state_t), intent(inout) :: st  !! the mass
       real(wp), intent(in) :: g                !! gravity along +x [m/s^2]
       real(wp), intent(in) :: sigma            !! side (+1 top, -1 bottom)
       real(wp), intent(in) :: w                !! the face's velocity [m/s]
       real(wp), intent(in) :: rest             !! what is left of the step [s]
+      real(wp), intent(in) :: v_tol            !! an approach slower than this is none [m/s]
       real(wp), intent(out) :: s               !! the phase's length [s]
       real(wp) :: a2, a1, a0
       ! gap(s) = gap + sigma ((w - V) s - g s^2 / 2)
       a2 = -0.5_wp * sigma * g
       a1 = sigma * (w - st%v)
       a0 = max(st%gap, 0.0_wp)
+      ! at the face: an approach within round-off of none is none
+      if (.not. (a0 > 0.0_wp) .and. abs(a1) <= v_tol) a1 = 0.0_wp
       s = first_closing(a2, a1, a0, rest)
       st%x = st%x + st%v * s + 0.5_wp * g * s**2
       st%v = st%v + g * s
@@ -160,7 +172,7 @@ contains
 
    !> Rigid contact: V relaxes to w + M g / Z at beta = Z / M, p = sigma Z (V - w), until p
    !> would become tensile (released) or the rest ends.
-   pure subroutine rigid_phase(st, m, z, g, sigma, w, rest, s, dq, p_end)
+   pure subroutine rigid_phase(st, m, z, g, sigma, w, rest, p_tol, s, dq, p_end)
       type(mass_state_t), intent(inout) :: st  !! the mass
       real(wp), intent(in) :: m                !! its mass [kg/m^2 A]
       real(wp), intent(in) :: z                !! impedance of the end cell [kg/(m^2 s) A]
@@ -168,6 +180,7 @@ contains
       real(wp), intent(in) :: sigma            !! side (+1 top, -1 bottom)
       real(wp), intent(in) :: w                !! the face's velocity without contact [m/s]
       real(wp), intent(in) :: rest             !! what is left of the step [s]
+      real(wp), intent(in) :: p_tol            !! a pull within this is none [Pa A]
       real(wp), intent(out) :: s               !! the phase's length [s]
       real(wp), intent(out) :: dq              !! integral of p over it [Pa s A]
       real(wp), intent(out) :: p_end           !! p at its end [Pa A]
@@ -177,10 +190,10 @@ contains
       d0 = st%v - w - m * g / z
       p0 = sigma * (m * g + z * d0)
       s = rest
-      if (p0 < 0.0_wp .or. (.not. (p0 > 0.0_wp) .and. .not. (sigma * d0 < 0.0_wp))) then
-         ! it pulls, or is about to (p = 0 and not rising): released before p acts
+      if (p0 < -p_tol) then
+         ! it pulls: released before p acts
          s = 0.0_wp
-      else if (sigma * (m * g + z * d0 * exp(-beta * rest)) < 0.0_wp) then
+      else if (sigma * (m * g + z * d0 * exp(-beta * rest)) < -p_tol) then
          ! released within the rest: e^{-beta s} = -M g / (Z d0), in (e^{-beta rest}, 1)
          ratio = -m * g / (z * d0)
          s = min(rest, max(0.0_wp, -log(ratio) / beta))
@@ -215,7 +228,7 @@ contains
 
    !> Cushion: c' = u - a c, u' = h - b c (a = k/Z, b = k/M, h = sigma g, u = sigma (V - w))
    !> from c = -gap, until c returns to 0 (released) or the rest ends.
-   pure subroutine cushion_phase(st, m, k, z, g, sigma, w, rest, s, dq, p_end)
+   pure subroutine cushion_phase(st, m, k, z, g, sigma, w, rest, v_tol, s, dq, p_end)
       type(mass_state_t), intent(inout) :: st  !! the mass
       real(wp), intent(in) :: m                !! its mass [kg/m^2 A]
       real(wp), intent(in) :: k                !! cushion stiffness [Pa/m A]
@@ -224,6 +237,7 @@ contains
       real(wp), intent(in) :: sigma            !! side (+1 top, -1 bottom)
       real(wp), intent(in) :: w                !! the face's velocity without contact [m/s]
       real(wp), intent(in) :: rest             !! what is left of the step [s]
+      real(wp), intent(in) :: v_tol            !! a speed within this of 0 is none [m/s]
       real(wp), intent(out) :: s               !! the phase's length [s]
       real(wp), intent(out) :: dq              !! integral of p over it [Pa s A]
       real(wp), intent(out) :: p_end           !! p at its end [Pa A]
@@ -237,8 +251,8 @@ contains
       y = [max(-st%gap, 0.0_wp) - cs, sigma * (st%v - w) - us]
       ! released at once: no compression, and the mass moving away or at rest with gravity
       ! not pressing it into the cushion
-      if (.not. (y(1) + cs > 0.0_wp) .and. (y(2) + us < 0.0_wp .or. &
-          (.not. (y(2) + us > 0.0_wp) .and. .not. (sigma * g > 0.0_wp)))) then
+      if (.not. (y(1) + cs > 0.0_wp) .and. (y(2) + us < -v_tol .or. &
+          (.not. (y(2) + us > v_tol) .and. .not. (sigma * g > 0.0_wp)))) then
          s = 0.0_wp
          dq = 0.0_wp
          p_end = 0.0_wp
