@@ -8,6 +8,7 @@
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make event-study  the event layer's energy, momentum, invariance table (bench/event_study.py)
+#   make blows     the striking mass's worked examples: doc/figures/{drop_hammer,striker}_blows.png
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): brittle Weibull bar
 #                  and the cohesive ZMR benchmark (plots/zmr_study.py): figures, tables
 #   make golden REF=REV  every output of the Release program against revision REV's (scripts/golden.py)
@@ -37,12 +38,12 @@ CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran $(CMAKE_FLAGS)
 
 PREFIX ?= /usr/local
 
-.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study fragmentation golden archive-check rebaseline clean help
+.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study blows fragmentation golden archive-check rebaseline clean help
 
 all: build
 
 help:
-	@sed -n '1,17p' Makefile
+	@sed -n '1,18p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -88,6 +89,14 @@ event-study: build
 	$(PYTHON) bench/event_study.py --exe $(BUILD_RELEASE)/bin/spallbar --work $(BUILD_RELEASE)/event-study \
 	  --energy-column e_wave --json $(BUILD_RELEASE)/event-study/results.json \
 	  --label "$$(git describe --always --dirty 2>/dev/null || echo build), wave measure"
+
+# doc/impactor.md: the worked examples' blows (input/drop_hammer.nml, input/striker_spall.nml)
+blows: build
+	mkdir -p $(BUILD_RELEASE)/blows
+	cd input && for d in drop_hammer striker_spall; do \
+	  ../$(BUILD_RELEASE)/bin/spallbar $$d.nml --quiet --output ../$(BUILD_RELEASE)/blows/$$d || exit 1; done
+	$(PYTHON) plots/blows.py $(BUILD_RELEASE)/blows/drop_hammer -o doc/figures/drop_hammer_blows.png
+	$(PYTHON) plots/blows.py $(BUILD_RELEASE)/blows/striker_spall -o doc/figures/striker_blows.png
 
 fragmentation: build
 	$(PYTHON) plots/fragmentation_study.py --exe $(BUILD_RELEASE)/bin/spallbar --realizations 16 \

@@ -114,6 +114,9 @@ def main():
     deck = open(os.path.join(indir, "example3_case1_accelerate.nml")).read()
     deck = re.sub(r"profile_times\s*=.*", "profile_times = 0.05", deck)
     ex3 = spallbar("ex3", deck.replace("t_end         = 1.0", "t_end         = 0.1"))
+    # a striking mass on the bar of EMPTY: two blows' worth of contact
+    struck = spallbar("struck", EMPTY.format(extra="") +
+                      "&impactor\n  mass = 500.0\n  velocity = 2.0\n/\n")
 
     def out(name):
         return os.path.join(work, name + ".png")
@@ -127,6 +130,7 @@ def main():
         "gauges": ([("h5", [empty], "g0"), ("text", [empty_text], "g1")], ([ex2], "g2")),
         "xt": ([("h5", [empty], "x0"), ("text", [empty_text], "x1")], ([ex2], "x2")),
         "reaction": ([("h5", [empty], "r0"), ("text", [empty_text], "r1")], ([ex3], "r2")),
+        "blows": ([("h5", [empty], "b0"), ("text", [empty_text], "b1")], ([struck], "b2")),
         # the paper's Fig. 10 from decks whose bar never touches a base
         "figures": ([("no base reaction", ["--exe", exe, "--input", hanging, "--out",
                                            os.path.join(work, "fig_none"), "--only", "fig10"],
@@ -150,7 +154,7 @@ def main():
              "z1")),
     }
     scripts = plot_scripts(plots)
-    check(len(scripts) >= 7, f"plot scripts found in {plots}: {scripts}")
+    check(len(scripts) >= 8, f"plot scripts found in {plots}: {scripts}")
     for s in scripts:
         check(s in cases, f"plots/{s}.py has no case in {os.path.basename(__file__)}")
     for s in cases:
