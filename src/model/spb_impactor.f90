@@ -85,7 +85,7 @@ contains
          if (st%touching) then
             if (k > 0.0_wp) then
                call cushion_phase(st, m, k, z, g, sigma, w, dt - t, contact_tol * p_ref / z, &
-                                  s, dq, r%p_end)
+                                  contact_tol * p_ref / k, s, dq, r%p_end)
             else
                call rigid_phase(st, m, z, g, sigma, w, dt - t, contact_tol * p_ref, s, dq, &
                                 r%p_end)
@@ -228,7 +228,7 @@ contains
 
    !> Cushion: c' = u - a c, u' = h - b c (a = k/Z, b = k/M, h = sigma g, u = sigma (V - w))
    !> from c = -gap, until c returns to 0 (released) or the rest ends.
-   pure subroutine cushion_phase(st, m, k, z, g, sigma, w, rest, v_tol, s, dq, p_end)
+   pure subroutine cushion_phase(st, m, k, z, g, sigma, w, rest, v_tol, c_tol, s, dq, p_end)
       type(mass_state_t), intent(inout) :: st  !! the mass
       real(wp), intent(in) :: m                !! its mass [kg/m^2 A]
       real(wp), intent(in) :: k                !! cushion stiffness [Pa/m A]
@@ -238,6 +238,9 @@ contains
       real(wp), intent(in) :: w                !! the face's velocity without contact [m/s]
       real(wp), intent(in) :: rest             !! what is left of the step [s]
       real(wp), intent(in) :: v_tol            !! a speed within this of 0 is none [m/s]
+      real(wp), intent(in) :: c_tol            !! the cushion lets go when its compression
+                                               !! falls below -c_tol: a force within round-off
+                                               !! of the contact stresses is none [m]
       real(wp), intent(out) :: s               !! the phase's length [s]
       real(wp), intent(out) :: dq              !! integral of p over it [Pa s A]
       real(wp), intent(out) :: p_end           !! p at its end [Pa A]
@@ -271,7 +274,7 @@ contains
       do j = 1, samples
          hi = ds * real(j, wp)
          c_hi = cs + propagate(y, a, b, hi, 1)
-         if (c_hi < 0.0_wp .and. hi > 0.0_wp) then
+         if (c_hi < -c_tol .and. hi > 0.0_wp) then
             found = .true.
             exit
          end if
