@@ -184,15 +184,16 @@ contains
       type(param_pass_t), intent(inout) :: p  !! what this pass does
       call param(p, 'impactor', 'face', '', 'the end of the bar the mass strikes', t=m%face, &
                  choices=face_words)
+      ! a sweep varies them as impactor_mass, ... (&segments has a velocity and a gap too)
       call param(p, 'impactor', 'mass', 'kg', 'the striking mass (per m^2 when every area ' &
-                 // 'is 1; required)', r=m%mass, sweep=.true.)
+                 // 'is 1; required)', r=m%mass, sweep=.true., sweep_as='impactor_mass')
       call param(p, 'impactor', 'velocity', 'm/s', 'its velocity along +x (down) at t = 0', &
-                 r=m%velocity, sweep=.true.)
+                 r=m%velocity, sweep=.true., sweep_as='impactor_velocity')
       call param(p, 'impactor', 'gap', 'm', 'distance between the mass and the face at t = 0', &
-                 r=m%gap, sweep=.true.)
+                 r=m%gap, sweep=.true., sweep_as='impactor_gap')
       call param(p, 'impactor', 'cushion', 'N/m', 'stiffness of a linear spring between the ' &
                  // 'mass and the face (per m^2 when every area is 1; 0: rigid contact)', &
-                 r=m%cushion, sweep=.true.)
+                 r=m%cushion, sweep=.true., sweep_as='impactor_cushion')
    end subroutine impactor_params
 
    !> &gauges' variables (optional group: PREFIX.gau).
@@ -225,7 +226,7 @@ contains
    !> One deck variable: the one call that reads, echoes, sets (a sweep) and documents it.
    !> Exactly one of r, i, l, t, ra, ta is given: its component of deck_t.
    subroutine param(p, group, name, unit, doc, r, i, l, t, ra, ta, count, choices, sweep, &
-                    empty)
+                    empty, sweep_as)
       type(param_pass_t), intent(inout) :: p   !! what this pass does
       character(len=*), intent(in) :: group    !! group name
       character(len=*), intent(in) :: name     !! variable name
@@ -243,6 +244,8 @@ contains
       character(len=*), intent(in), optional :: choices(:)   !! a keyword's values
       logical, intent(in), optional :: sweep   !! a sweep may vary it (r, or ra by element)
       character(len=*), intent(in), optional :: empty   !! echoed for count = 0 (else '')
+      !> the name a sweep varies it by (default name): one apart from another group's name
+      character(len=*), intent(in), optional :: sweep_as
       logical :: sweepable
       select case (p%mode)
       case (pass_read)
@@ -253,7 +256,11 @@ contains
          sweepable = .false.
          if (present(sweep)) sweepable = sweep
          if (.not. sweepable) return
-         if (present(r)) call sweep_target(p, name, .false., r)
+         if (present(r) .and. present(sweep_as)) then
+            call sweep_target(p, sweep_as, .false., r)
+         else if (present(r)) then
+            call sweep_target(p, name, .false., r)
+         end if
          if (present(ra)) call sweep_target(p, name, .true., ra(max(1, p%index)))
       case default
          call add_item(p, group, name, echo_text(r, i, l, t, ra, ta, count, empty), unit, &

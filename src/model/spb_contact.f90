@@ -134,8 +134,9 @@ contains
       call touch_base(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
    end subroutine contact_step
 
-   !> The correction (5.2) that closes the gap at t^n, u_A^n - u_B^n, where an overlap at t^n within the contact tolerance counts as touching:
-   !> the faces met then (to round-off), and moving a side by that much would only lift it.
+   !> The correction (5.2) that closes the gap at t^n, u_A^n - u_B^n, where an overlap at t^n
+   !> within the contact tolerance counts as touching: the faces met then (to round-off), and
+   !> moving a side by that much would only lift it.
    pure real(wp) function gap_at_n(st, i, tol) result(d_acc)
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: i             !! split node

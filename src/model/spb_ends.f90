@@ -429,7 +429,7 @@ contains
       logical, intent(in) :: full_mass          !! the full-mass model (no section stresses)
       type(ledger_t), intent(inout) :: ledger   !! the run's balances
       real(wp), intent(inout) :: section(2)     !! section stress of each end node [Pa]
-      real(wp) :: w, du_old(2), s_ext(2)
+      real(wp) :: w, s_ext(2)
       integer :: side
       ! momentum balance: the end stresses act on the end nodes, supports take what reaches
       ! them; a striking mass's contact stress is internal (the mass's momentum is counted,
@@ -506,8 +506,23 @@ contains
             ! the other ends take no part here
          end select
       end do
-      ! section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}; a support
-      ! just hit by a moving half starts from that half's velocity
+      call support_sections(ends, f, z, dm, m_in, g, dt, full_mass, section)
+   end subroutine book_ends
+
+   !> Section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}: the end of
+   !> book_ends. A support just hit by a moving half starts from that half's velocity.
+   pure subroutine support_sections(ends, f, z, dm, m_in, g, dt, full_mass, section)
+      type(end_t), intent(inout) :: ends(2)     !! the two ends
+      type(face_step_t), intent(in) :: f(2)     !! what the step did at each end node
+      real(wp), intent(in) :: z(2)              !! impedance of each end cell [kg/(m^2 s) A]
+      real(wp), intent(in) :: dm(2)             !! mass of each end cell [kg/m^2 A]
+      real(wp), intent(in) :: m_in(2)           !! the end node's half mass inside [kg/m^2 A]
+      real(wp), intent(in) :: g                 !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: dt                !! time step [s]
+      logical, intent(in) :: full_mass          !! the full-mass model (no section stresses)
+      real(wp), intent(inout) :: section(2)     !! section stress of each end node [Pa]
+      real(wp) :: du_old(2)
+      integer :: side
       do side = face_top, face_bottom
          du_old(side) = f(side)%du_old
          if (ends(side)%landing) du_old(side) = ends(side)%v_land * dt
@@ -541,7 +556,7 @@ contains
             ! the other ends take no part here
          end select
       end do
-   end subroutine book_ends
+   end subroutine support_sections
 
    !> The section stress (3.1)-(3.2) at an end node from its end cell: the B form (the cell
    !> below) at the top, the A form (the cell above) at the bottom.
