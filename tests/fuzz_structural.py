@@ -73,6 +73,8 @@ KINDS = {
     ("sweep", "realizations"): "int", ("sweep", "seed"): "int", ("sweep", "vary"): "text",
     ("sweep", "values"): "real", ("sweep", "distribution"): "word", ("sweep", "bins"): "int",
     ("gauges", "x"): "real", ("gauges", "every"): "int",
+    ("impactor", "face"): "word", ("impactor", "mass"): "real", ("impactor", "velocity"): "real",
+    ("impactor", "gap"): "real", ("impactor", "cushion"): "real",
 }
 ARRAYS = {("run", "profile_times"): 100, ("segments", "length"): 100,
           ("segments", "young"): 100, ("segments", "density"): 100, ("segments", "area"): 100,
@@ -138,6 +140,18 @@ BASES = [
                       ("strength", "1.0"), ("velocity", "0.2")]),
         ("ends", [("top", "'fixed'"), ("bottom", "'fixed'")]),
         ("load", [("kind", "'none'")]),
+    ], {}, []),
+    # a striking mass (issue 33): a cushioned mass falling onto the top of a bar on the base
+    ("impactor_cushion", [
+        ("run", [("title", "'structural impactor'"), ("t_end", "0.4"), ("gravity", "9.81"),
+                 ("history_every", "1")]),
+        ("mesh", [("cells", "20")]),
+        ("segments", [("length", "1.0"), ("young", "250.0"), ("density", "1000.0"),
+                      ("strength", "5.0")]),
+        ("ends", [("top", "'free'"), ("bottom", "'base'")]),
+        ("initial", [("state", "'static'")]),
+        ("impactor", [("face", "'top'"), ("mass", "200.0"), ("velocity", "1.0"),
+                      ("gap", "0.01"), ("cushion", "1.0e4")]),
     ], {}, []),
     ("sweep", [
         ("run", [("title", "'structural sweep'"), ("t_end", "0.3")]),
