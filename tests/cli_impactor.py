@@ -11,7 +11,8 @@ sigma0 = Z V0 is the stress a rigid face moving at V0 sends into the bar at rest
       equal Transmitting's to round-off; no release;
    2. the same under gravity from the static state: mass on top (g > 0), the mirrored bar (mass
       below, g < 0) and a mass striking a hanging bar from below (g > 0 pulls it back: it
-      releases inside a step, at Transmitting.release_time());
+      releases inside a step, at Transmitting.release_time()); a gap closed under gravity
+      inside a step (gap_closing), then Transmitting from the impact;
    3. a cushion on a transmitting bar, zeta = 0.3, 1, 2.5: step means, the separation time;
    4. Saint-Venant (fixed far end), alpha = 1, 0.5, 0.25, 50/100/200 cells: round-off before
       T, second-order convergence after it, the release within one step, the fixed end's
@@ -217,6 +218,39 @@ def transmitting_gravity(check, exe, work):
             check(np.all(h["f_impactor"][k + 2:] == 0.0), f"{name}: no contact after the release")
         else:
             check(len(released) == 0, f"{name}: no release ({released})")
+
+
+def transmitting_gap(check, exe, work):
+    """2 (continued): the mass starts a gap d above the face with V0 under gravity, the bar in
+    its static state. It strikes at gap_closing(d, V0, g) inside a step (the gap's quadratic
+    solved in the step), then the contact is Transmitting's from that instant with the
+    impact speed: every step mean, the impact step's partial one included, and the
+    velocity (ballistic before) are round-off. Two cases: the impact in step 11, and with
+    V0 = 1 mm/s (sigma_g = 0.37 sigma0) in step 2."""
+    g = 9.81
+    for name, v0, gap in (("gap_gravity", 0.5, 1e-5), ("gap_gravity_slow", 1e-3, 3.3e-9)):
+        o = spallbar(check, exe, work, name,
+                     deck(100 * DT_TR, N_TR, "free", "transmit", striker("top", M_TR, v0, gap),
+                          gravity=g, static=True))
+        if o is None:
+            continue
+        h, dt, t = o.h, o.dt, o.h["t"]
+        t_hit, v_hit = cf.gap_closing(gap, v0, g)
+        impacts = o.times(KIND_IMPACT)
+        check(len(impacts) == 1 and len(o.times(KIND_RELEASE)) == 0,
+              f"{name}: one impact, no release ({list(zip(o.t_ev, o.kind))})")
+        if len(impacts) != 1:
+            continue
+        within(check, name, f"impact at {t_hit / dt:.4f} dt vs gap_closing, relative",
+               abs(impacts[0] - t_hit) / t_hit, ROUND)
+        tr = cf.Transmitting(SEMI, M_TR, v_hit, g)
+        means = [tr.stress_integral(max(0.0, a - t_hit), b - t_hit) / dt if b > t_hit else 0.0
+                 for a, b in zip(t[:-1], t[1:])]
+        within(check, name, "f_impactor step means vs Transmitting from the impact, of sigma0",
+               dev(h["f_impactor"][1:], means, tr.sigma0), ROUND)
+        v = np.where(t >= t_hit, tr.velocity(np.maximum(t - t_hit, 0.0)), v0 + g * t)
+        within(check, name, "v_impactor, of the impact speed", dev(h["v_impactor"], v, v_hit),
+               ROUND)
 
 
 # ----------------------------------------------------------------------------------------
@@ -760,8 +794,9 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     check = Checks()
-    for test in (transmitting, transmitting_gravity, cushion, saint_venant, free_far_end,
-                 infinite_mass, galilean, mirror, scaling, drop_hammer, restart, bad_input):
+    for test in (transmitting, transmitting_gravity, transmitting_gap, cushion, saint_venant,
+                 free_far_end, infinite_mass, galilean, mirror, scaling, drop_hammer, restart,
+                 bad_input):
         test(check, exe, work)
     return check.finish()
 
