@@ -93,16 +93,20 @@ contains
                                  abs(e%e_pot), abs(e%w_ext))
    end subroutine summary_row
 
-   !> The energy guard's running values: its scale (the largest |work| in the wave measure)
-   !> and the largest relative excess; excess, the mechanical energy's excess over the
-   !> initial energy plus the work, is what the guard compares with its limit.
-   pure subroutine summary_guard(summary, e, wv, w_w, excess)
+   !> The energy guard's running values: its scale (the largest |work| in the wave measure,
+   !> and a striking mass's energy at stake) and the largest relative excess; excess, the
+   !> mechanical energy's excess over the initial energy plus the work, is what the guard
+   !> compares with its limit.
+   pure subroutine summary_guard(summary, e, wv, w_w, excess, striker_scale)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
       type(energies_t), intent(in) :: e    !! the scheme's energies (e_pot is used)
       type(wave_t), intent(in) :: wv       !! the wave measure
       real(wp), intent(in) :: w_w          !! work in that measure [J/m^2]
       real(wp), intent(out) :: excess      !! (E - E0) - w_w [J/m^2]
-      summary%guard_scale = max(summary%guard_scale, abs(w_w))
+      real(wp), intent(in) :: striker_scale   !! a striking mass's energy at stake: its kinetic
+                                              !! energy and its weight over its gap (0
+                                              !! without one) [J/m^2]
+      summary%guard_scale = max(summary%guard_scale, abs(w_w), striker_scale)
       excess = (wv%e_wave + e%e_pot + wv%e_gravity - summary%e_mech0) - w_w
       if (summary%guard_scale > 0.0_wp) summary%max_excess = max(summary%max_excess, &
          excess / summary%guard_scale)

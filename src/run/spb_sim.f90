@@ -152,6 +152,20 @@ contains
       if (any(is_striker(sim%st%ends))) m = m + sum(sim%st%ends%mass, is_striker(sim%st%ends))
    end function bar_mass
 
+   !> A striking mass's energy at stake, for the energy guard's scale: its kinetic energy
+   !> and its weight over its gap to the face, M |g| gap (0 without one) [J/m^2 A].
+   pure real(wp) function striker_scale(sim) result(e)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      integer :: side
+      e = 0.0_wp
+      do side = face_top, face_bottom
+         if (.not. is_striker(sim%st%ends(side))) cycle
+         associate (m => sim%st%ends(side))
+            e = e + 0.5_wp * m%mass * m%striker%v**2 + m%mass * abs(sim%prob%gravity) * m%gap0
+         end associate
+      end do
+   end function striker_scale
+
    !> x_impactor, v_impactor, f_impactor of PREFIX.his: a striking mass's displacement from
    !> its start, its velocity, and the contact force's mean over the last step (N, or Pa
    !> when every area is 1); 0 without one.
@@ -724,7 +738,7 @@ contains
       real(wp) :: excess
       character(len=16) :: b1, b2
       if (allocated(err)) return
-      call summary_guard(summary, e, wv, w_w, excess)
+      call summary_guard(summary, e, wv, w_w, excess, striker_scale(sim))
       associate (limit => sim%opt%energy_guard)
          if (limit > 0.0_wp .and. excess > limit * summary%guard_scale .and. &
              summary%guard_scale > 0.0_wp) then
