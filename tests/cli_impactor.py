@@ -649,9 +649,10 @@ def drop_hammer(check, exe, work):
       * ledger_w within 1e-11 M g d: measured 3.0e-12, gathered while the pile flies off the
         base with a wave in it (about 1.7e-16 of M g d per step: the lattice's round-off on
         a 3.5 kJ vibrating free body; the hammer's own books stay at 1e-16);
-      * the summary's excess (wave measure, relative to the guard's scale, the pile's initial
-        wave energy 0.28 J) rebuilt from the columns, and as a share of M g d within 1e-11
-        (measured 1.9e-13: round-off);
+      * the summary's excess (wave measure, relative to the guard's scale: the largest of the
+        pile's initial wave energy 0.28 J, |w_wave| and the hammer's energy at stake
+        1/2 M v^2 + M g d, doc/deck.md energy_guard) rebuilt from the columns, and as a
+        share of M g d within 1e-11 (measured 1.9e-13: round-off);
       * momentum - momentum(0) = i_gravity + i_ends + i_support + p_shift within 1e-12 of
         M sqrt(2 g d) (measured 2.1e-13);
       * no penetration: gap0 + (u_face(t) - u_face(0)) - x_impactor(t) >= -1e-9 gap0 at every
@@ -677,7 +678,9 @@ def drop_hammer(check, exe, work):
            1e-11)
     mech = h["e_wave"] + h["e_pot"] + h["e_wave_g"]
     excess = (mech - mech[0]) - h["w_wave"]
-    guard = np.maximum.accumulate(np.maximum(h["e_wave"][0], np.abs(h["w_wave"])))
+    at_stake = 0.5 * DROP_M * h["v_impactor"] ** 2 + DROP_M * DROP_G * DROP_GAP
+    guard = np.maximum.accumulate(np.maximum(np.maximum(h["e_wave"][0], np.abs(h["w_wave"])),
+                                             at_stake))
     m = re.search(r"largest excess of mechanical energy \(wave measure\) over initial \+ "
                   r"work:\s*(\S+) of the energy scale", o.stdout)
     told = float(m.group(1)) if m else math.nan
