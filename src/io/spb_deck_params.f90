@@ -244,8 +244,8 @@ contains
       character(len=*), intent(in), optional :: choices(:)   !! a keyword's values
       logical, intent(in), optional :: sweep   !! a sweep may vary it (r, or ra by element)
       character(len=*), intent(in), optional :: empty   !! echoed for count = 0 (else '')
-      !> the name a sweep varies it by (default name): one apart from another group's name
-      character(len=*), intent(in), optional :: sweep_as
+      character(len=*), intent(in), optional :: sweep_as   !! the name a sweep varies it by
+                                                            !! (default name)
       logical :: sweepable
       select case (p%mode)
       case (pass_read)
