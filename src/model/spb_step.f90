@@ -28,11 +28,14 @@ contains
       real(wp), intent(out) :: s_top          !! top face stress, as a cell above node 0 [Pa]
       real(wp), intent(out) :: s_bot          !! bottom face stress, as a cell below node n [Pa]
       integer, intent(in), optional :: step   !! the step index n (default st%step)
+      real(wp) :: p
       integer :: m
       m = st%step
       if (present(step)) m = step
-      s_top = end_stress(mesh, load, st, face_top, m)
-      s_bot = end_stress(mesh, load, st, face_bottom, m)
+      ! the load is evaluated once for both faces
+      p = stepwise_load(mesh, load, m)
+      s_top = side_stress(mesh, load, st, face_top, p)
+      s_bot = side_stress(mesh, load, st, face_bottom, p)
    end subroutine end_stresses
 
    !> The stress on one end face at t^step (spb_ends face_stress) [Pa].
@@ -42,9 +45,25 @@ contains
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: side          !! face_top | face_bottom
       integer, intent(in) :: step          !! the step index n
-      real(wp) :: p
+      s = side_stress(mesh, load, st, side, stepwise_load(mesh, load, step))
+   end function end_stress
+
+   !> The stepwise load P^step (0 without a load) [Pa].
+   pure real(wp) function stepwise_load(mesh, load, step) result(p)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      integer, intent(in) :: step          !! the step index n
       p = 0.0_wp
       if (load%kind /= load_none) p = step_load(load, step, mesh%dt)
+   end function stepwise_load
+
+   !> The stress on one end face under the stepwise load p (spb_ends face_stress) [Pa].
+   pure real(wp) function side_stress(mesh, load, st, side, p) result(s)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: side          !! face_top | face_bottom
+      real(wp), intent(in) :: p            !! the stepwise load P^n [Pa]
       if (side == face_top) then
          s = face_stress(st%ends(side), side, p, load%face == side, mesh%stiff(1), st%dub(0), &
                          mesh%dt)
@@ -52,7 +71,7 @@ contains
          s = face_stress(st%ends(side), side, p, load%face == side, mesh%stiff(mesh%n), &
                          st%dua(mesh%n), mesh%dt)
       end if
-   end function end_stress
+   end function side_stress
 
    !> Integrals of the load over the step that ends at t^step, on a free top and a free bottom
    !> face [Pa s] (0 where the load acts elsewhere or the face is not free), and of a striking
