@@ -22,7 +22,8 @@ module spb_checkpoint
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_table
    use spb_state, only: state_t
-   use spb_ends, only: face_top, face_bottom, define_ends, is_striker, striker_fields
+   use spb_ends, only: face_top, face_bottom, define_ends, is_striker, striker_fields, &
+      has_base
    use spb_field_io, only: field_io_t
    use spb_summary, only: run_summary_t, summary_fields, summary_problem
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
@@ -83,8 +84,8 @@ module spb_checkpoint
 
    !> Deck variables added after checkpoints existed ('group:name'): not given, they keep the
    !> behaviour of before, and a checkpoint that predates them fits a deck that leaves them out.
-   character(len=*), parameter :: later_variables(2) = [character(len=24) :: 'segments:area', &
-      'segments:fracture_energy']
+   character(len=*), parameter :: later_variables(3) = [character(len=24) :: 'segments:area', &
+      'segments:fracture_energy', 'ends:base_gap_top']
 
 contains
 
@@ -233,6 +234,11 @@ contains
          if (is_striker(st%ends(face_top))) call striker_fields(st%ends(face_top), face_top, ck)
          if (is_striker(st%ends(face_bottom))) call striker_fields(st%ends(face_bottom), &
                                                                 face_bottom, ck)
+      end if
+      ! a base above the bar (only a run that has one)
+      if (has_base(st%ends(face_top))) then
+         call field(ck, writing, '/state', 'u_base_top', st%ends(face_top)%u_contact)
+         call field(ck, writing, '/state', 'base_contact_top', st%ends(face_top)%contact)
       end if
       call cohesive_fields(ck, st, writing)
       call array_field(ck, writing, 'ua', st%ua)

@@ -71,10 +71,11 @@ contains
       prob%stretch = deck%mesh%fit == 'stretch'
       prob%t_end = deck%run%t_end
       prob%top = code_of(top_words, deck%ends%top, [end_free, end_fixed, end_transmit, &
-                         end_velocity])
+                         end_velocity, end_base])
       prob%bottom = code_of(bottom_words, deck%ends%bottom, [end_free, end_fixed, end_base, &
                             end_transmit, end_velocity])
       prob%base_gap = deck%ends%base_gap
+      prob%base_gap_top = deck%ends%base_gap_top
       if (deck%impactor%on) then
          prob%impactor_face = code_of(face_words, deck%impactor%face, [face_top, face_bottom])
          prob%impactor_mass = deck%impactor%mass
@@ -746,11 +747,16 @@ contains
       call need_choice(err, 'ends', 'top', ends%top, top_words)
       call need_choice(err, 'ends', 'bottom', ends%bottom, bottom_words)
       call need_finite(err, 'ends', 'base_gap', ends%base_gap)
+      call need_finite(err, 'ends', 'base_gap_top', ends%base_gap_top)
       if (allocated(err)) return
       if (ends%base_gap < 0.0_wp) then
          call make_error(err, '&ends: base_gap must be >= 0, got ' // rtoa(ends%base_gap))
       else if (ends%base_gap > 0.0_wp .and. ends%bottom /= 'base') then
          call make_error(err, '&ends: base_gap is given but bottom = ''' // trim(ends%bottom) // '''')
+      else if (ends%base_gap_top < 0.0_wp) then
+         call make_error(err, '&ends: base_gap_top must be >= 0, got ' // rtoa(ends%base_gap_top))
+      else if (ends%base_gap_top > 0.0_wp .and. ends%top /= 'base') then
+         call make_error(err, '&ends: base_gap_top is given but top = ''' // trim(ends%top) // '''')
       end if
    end subroutine validate_ends
 
@@ -918,7 +924,8 @@ contains
       call need_finite(err, 'initial', 'strain_rate', deck%init%strain_rate)
       if (allocated(err)) return
       if (abs(deck%init%strain_rate) > 0.0_wp .and. (deck%ends%top == 'fixed' .or. &
-          deck%ends%bottom == 'fixed' .or. deck%ends%bottom == 'base')) then
+          deck%ends%bottom == 'fixed' .or. deck%ends%bottom == 'base' .or. &
+          deck%ends%top == 'base')) then
          call make_error(err, '&initial: strain_rate = ' // rtoa(deck%init%strain_rate) // &
             ' needs ends that let the bar stretch about its centre of mass (&ends top, ' // &
             'bottom = ''free'', ''transmit'' or ''velocity'')')
@@ -928,6 +935,11 @@ contains
          if (any(deck%seg%gap(1:deck%seg%n - 1) > 0.0_wp)) then
             call make_error(err, '&initial: state = ''static'' with a gap in &segments gap: ' &
                             // 'separated pieces are not in equilibrium')
+            return
+         end if
+         if (deck%ends%top == 'base' .and. deck%ends%base_gap_top > 0.0_wp) then
+            call make_error(err, '&initial: state = ''static'' with &ends base_gap_top > 0: a ' &
+                            // 'bar off the base is not in equilibrium')
             return
          end if
          if (deck%ends%bottom == 'base' .and. deck%ends%base_gap > 0.0_wp) then

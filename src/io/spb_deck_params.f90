@@ -142,6 +142,11 @@ contains
          call param(p, 'ends', 'bottom', '', 'the bottom end', t=e%bottom, choices=bottom_words)
          call param(p, 'ends', 'base_gap', 'm', 'gap between the bottom and the rigid base', &
                     r=e%base_gap, sweep=.true.)
+         ! echoed where the top is a base (a deck of before has none: its echo stays as it was)
+         if (p%mode /= pass_echo .or. e%top == 'base' .or. abs(e%base_gap_top) > 0.0_wp) then
+            call param(p, 'ends', 'base_gap_top', 'm', 'gap between the top and a rigid base ' &
+                       // 'above it', r=e%base_gap_top, sweep=.true.)
+         end if
       end associate
       associate (p => pass, l => deck%load)
          call param(p, 'load', 'kind', '', 'pressure history on the loaded face', t=l%kind, &

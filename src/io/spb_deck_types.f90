@@ -27,8 +27,8 @@ module spb_deck_types
    character(len=*), parameter :: events_words(2) = [character(len=10) :: 'admissible', 'paper']
    character(len=*), parameter :: model_words(2) = [character(len=9) :: 'half-mass', 'full-mass']
    character(len=*), parameter :: fit_words(2) = [character(len=7) :: 'strict', 'stretch']
-   character(len=*), parameter :: top_words(4) = [character(len=8) :: 'free', 'fixed', 'transmit', &
-      'velocity']
+   character(len=*), parameter :: top_words(5) = [character(len=8) :: 'free', 'fixed', 'transmit', &
+      'velocity', 'base']
    character(len=*), parameter :: bottom_words(5) = [character(len=8) :: 'free', 'fixed', &
       'base', 'transmit', 'velocity']
    character(len=*), parameter :: interface_words(2) = [character(len=6) :: 'bonded', 'dry']
@@ -100,9 +100,12 @@ module spb_deck_types
 
    type :: ends_cfg
       character(len=name_len) :: top = 'free'          !! 'free' | 'fixed' | 'transmit' | 'velocity'
+                                                       !! | 'base'
       character(len=name_len) :: bottom = 'free'       !! 'free' | 'fixed' | 'base' | 'transmit' |
                                                        !! 'velocity'
-      real(wp) :: base_gap = 0.0_wp                    !! gap to the base [m]
+      real(wp) :: base_gap = 0.0_wp                    !! gap between bottom face and base [m]
+      real(wp) :: base_gap_top = 0.0_wp                !! gap between top face and a base above
+                                                       !! it [m]
    end type ends_cfg
 
    type :: load_cfg

@@ -1,28 +1,140 @@
-!> The rigid base (doc/method.md, "Rigid base and dry interfaces"): the bottom face lands on
-!> it and lifts off it again. Landing is a collision with a partner of infinite impedance
-!> (alpha -> oo in (5.6)) put on the grid by the timing rule; lift-off is a break of the
-!> face's section against the base. Both are here, called where the collisions (spb_contact) and the
-!> breaks (spb_fracture) of the step are made, so the events keep their order.
+!> The rigid base (doc/method.md, "Rigid base and dry interfaces"): an end face lands on
+!> it and lifts off it again, at the bottom (a bar standing on the ground) or at the top (its
+!> mirror: a bar pressed up against a ceiling). Landing is a collision with a partner of
+!> infinite impedance (alpha -> oo in (5.6)) put on the grid by the timing rule; lift-off is a
+!> break of the face's section against the base. Both are here, called where the collisions
+!> (spb_contact) and the breaks (spb_fracture) of the step are made, so the events keep their
+!> order.
+!>
+!> One code serves both sides, written in the side's own numbers (base_face_t): the end node
+!> e (0 or n), its end cell c (1 or n), the face half (B_0 or A_n) and the sense sgn of the
+!> base's side (+1: below, along +x; -1: above). A face penetrates the base by
+!> sgn (u_face - u_contact); the bar side of a landing moves by -sgn corr; the face half's
+!> stop changes the end cell's stress by sgn (E/dx) du. The region an event moves is the
+!> fragment on the base and what it takes along away from it (nodes a..b).
 module spb_base
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_bottom, has_base
+   use spb_ends, only: face_top, face_bottom, has_base, on_base
    use spb_state, only: state_t
-   use spb_section, only: section_stress_a
+   use spb_section, only: section_stress_a, section_stress_b
    use spb_events, only: event_t, event_list_t, push_event, ev_base_collision, ev_separation
    use spb_wave, only: fragment_characteristics, region_wave, held_odd, vertex_offset
    use spb_fragments, only: node_energy, anchored, fragment_span, span_mass, shift_span, &
-      choose_time, du_before_a, path_speed, shift_late, shift_part, extend_up, finish_event, &
-      book_shift_work, skip_next, keep_credit
+      choose_time, du_before_a, du_before_b, path_speed, shift_late, shift_part, extend_up, &
+      extend_down, finish_event, book_shift_work, skip_next, keep_credit
    use spb_problem, only: events_admissible, shift_above
    implicit none
    private
    public :: touch_base, lift_off
 
+   !> A base end in its own numbers: what lets one code serve the top and the bottom.
+   type :: base_face_t
+      integer :: side = face_bottom        !! face_top | face_bottom
+      integer :: e = 0                     !! the end node (0 or n)
+      integer :: c = 1                     !! the end cell (1 or n)
+      real(wp) :: sgn = 1.0_wp             !! +1: the base below the face; -1: above it
+   end type base_face_t
+
 contains
 
-   !> After the trial step: a bottom face off the base that has passed it lands (land), its
-   !> region's wave measure before and after booked in e_lost_wave.
+   !> The base end of side `side` in its own numbers.
+   pure type(base_face_t) function base_face(mesh, side) result(bf)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      integer, intent(in) :: side          !! face_top | face_bottom
+      bf%side = side
+      if (side == face_top) then
+         bf%e = 0
+         bf%c = 1
+         bf%sgn = -1.0_wp
+      else
+         bf%e = mesh%n
+         bf%c = mesh%n
+         bf%sgn = 1.0_wp
+      end if
+   end function base_face
+
+   !> The face half's displacement (B_0 at the top, A_n at the bottom) [m].
+   pure real(wp) function face_u(st, bf)
+      type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      face_u = merge(st%ub(bf%e), st%ua(bf%e), bf%side == face_top)
+   end function face_u
+
+   !> The face half's increment over the step [m].
+   pure real(wp) function face_du(st, bf)
+      type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      face_du = merge(st%dub(bf%e), st%dua(bf%e), bf%side == face_top)
+   end function face_du
+
+   !> The face half's mass [kg/m^2 A].
+   pure real(wp) function face_mass(mesh, bf)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(base_face_t), intent(in) :: bf  !! the base end
+      face_mass = merge(mesh%mb(bf%e), mesh%ma(bf%e), bf%side == face_top)
+   end function face_mass
+
+   !> Move the face half by -d_u and change its increment by -d_du; the other half of the end
+   !> node (massless at a base end) follows it.
+   pure subroutine move_face(st, bf, d_u, d_du)
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: d_u          !! taken from the displacement [m]
+      real(wp), intent(in) :: d_du         !! taken from the increment [m]
+      if (bf%side == face_top) then
+         st%ub(bf%e) = st%ub(bf%e) - d_u
+         st%dub(bf%e) = st%dub(bf%e) - d_du
+         st%ua(bf%e) = st%ub(bf%e)
+         st%dua(bf%e) = st%dub(bf%e)
+      else
+         st%ua(bf%e) = st%ua(bf%e) - d_u
+         st%dua(bf%e) = st%dua(bf%e) - d_du
+         st%ub(bf%e) = st%ua(bf%e)
+         st%dub(bf%e) = st%dua(bf%e)
+      end if
+   end subroutine move_face
+
+   !> The nodes a..b of the fragment resting against the base (all of the bar for 'above').
+   pure subroutine base_fragment(mesh, st, bf, policy, a, b)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      integer, intent(in) :: policy        !! shift policy (shift_*); -1: the fragment alone
+      integer, intent(out) :: a            !! top node of the region (0 or a split node)
+      integer, intent(out) :: b            !! bottom node of the region (n or a split node)
+      integer :: j, k
+      call fragment_span(mesh, st, bf%e, j, k)
+      if (bf%side == face_top) then
+         a = 0
+         b = k
+         if (policy == shift_above) b = mesh%n
+      else
+         a = j
+         b = mesh%n
+         if (policy == shift_above) a = 0
+      end if
+   end subroutine base_fragment
+
+   !> The fragment id of the piece on the base, for the event's frag_above (a base below) or
+   !> frag_below (a base above).
+   pure subroutine base_ids(st, bf, a, above, below)
+      type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      integer, intent(in) :: a             !! top node of the region the event moved
+      integer, intent(out) :: above        !! frag_above
+      integer, intent(out) :: below        !! frag_below
+      if (bf%side == face_top) then
+         above = 0
+         below = st%gen%frag_id(0)
+      else
+         above = st%gen%frag_id(a)
+         below = 0
+      end if
+   end subroutine base_ids
+
+   !> After the trial step: a face off its base that has passed it lands (land), its region's
+   !> wave measure before and after booked in e_lost_wave; the bottom first, then the top.
    pure subroutine touch_base(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -36,191 +148,253 @@ contains
       real(wp), intent(in) :: eps_rel          !! admissible: the face lands when it overlaps
                                                !! the base by more than eps_rel dx [-]
       real(wp) :: e_wave0, tol
-      integer :: r_top, r_bot
-      if (has_base(st%ends(face_bottom)) .and. .not. st%ends(face_bottom)%contact) then
+      integer :: r_top, r_bot, side
+      type(base_face_t) :: bf
+      do side = face_bottom, face_top, -1
+         if (.not. has_base(st%ends(side)) .or. st%ends(side)%contact) cycle
+         bf = base_face(mesh, side)
          tol = 0.0_wp
-         if (rules == events_admissible) tol = eps_rel * mesh%dx(mesh%n)
-         if (st%ua(mesh%n) - st%ends(face_bottom)%u_contact > tol) then
-            if (rules == events_admissible) then
-               call fragment_span(mesh, st, mesh%n, r_top, r_bot)
-               r_bot = mesh%n
-            else
-               call landing_region(mesh, st, policy, r_top, r_bot)
-            end if
-            e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-            call land(mesh, st, g, timing, policy, events, rules, i_top, tol)
-            if (rules == events_admissible) call keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
-            st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
-                             region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+         if (rules == events_admissible) tol = eps_rel * mesh%dx(bf%c)
+         if (.not. bf%sgn * (face_u(st, bf) - st%ends(side)%u_contact) > tol) cycle
+         if (rules == events_admissible) then
+            call base_fragment(mesh, st, bf, -1, r_top, r_bot)
+         else
+            call landing_region(mesh, st, bf, policy, r_top, r_bot)
          end if
-      end if
+         e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+         call land(mesh, st, bf, g, timing, policy, events, rules, i_top, i_bot, tol)
+         if (rules == events_admissible) call keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
+         st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
+                          region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+      end do
    end subroutine touch_base
 
    !> Fragment boundaries around everything a landing can change under the paper's rules:
    !> the fragment on the base and whatever either correction (5.2) shifts; the whole bar
    !> for 'above'.
-   pure subroutine landing_region(mesh, st, policy, r_top, r_bot)
+   pure subroutine landing_region(mesh, st, bf, policy, r_top, r_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(out) :: r_top        !! top node of the region the event can change
       integer, intent(out) :: r_bot        !! bottom node of that region
-      real(wp) :: d_acc, d_del, amount
-      integer :: j, k, top, bot
+      real(wp) :: d_acc, d_del, amount, u_c
+      integer :: a(3), b(3)
       r_top = 0
       r_bot = mesh%n
       if (policy == shift_above) return
-      call fragment_span(mesh, st, mesh%n, j, k)
-      d_acc = (st%ua(mesh%n) - st%dua(mesh%n)) - st%ends(face_bottom)%u_contact
-      d_del = st%ua(mesh%n) - st%ends(face_bottom)%u_contact
-      call land_side(mesh, st, policy, d_acc, top, amount)
-      call land_side(mesh, st, policy, d_del, bot, amount)
-      r_top = min(j, top, bot)
+      call base_fragment(mesh, st, bf, -1, a(1), b(1))
+      u_c = st%ends(bf%side)%u_contact
+      d_acc = bf%sgn * ((face_u(st, bf) - face_du(st, bf)) - u_c)
+      d_del = bf%sgn * (face_u(st, bf) - u_c)
+      call land_side(mesh, st, bf, policy, d_acc, a(2), b(2), amount)
+      call land_side(mesh, st, bf, policy, d_del, a(3), b(3), amount)
+      r_top = minval(a)
+      r_bot = maxval(b)
    end subroutine landing_region
 
-   !> The correction (5.2) that closes the gap to the base at t^n, u_A^n - u_base, where an
-   !> overlap at t^n within the contact tolerance counts as touching: the face met it then
-   !> (to round-off), and moving the bar by that much would only lift it.
-   pure real(wp) function gap_at_n(st, n, tol) result(d_acc)
+   !> The correction (5.2) that closes the gap to the base at t^n, sgn (u_face^n - u_base),
+   !> where an overlap at t^n within the contact tolerance counts as touching: the face met
+   !> it then (to round-off), and moving the bar by that much would only lift it.
+   pure real(wp) function gap_at_n(st, bf, tol) result(d_acc)
       type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: n             !! the bottom node
+      type(base_face_t), intent(in) :: bf  !! the base end
       real(wp), intent(in) :: tol          !! contact tolerance [m] (0: the paper's rules)
-      d_acc = (st%ua(n) - st%dua(n)) - st%ends(face_bottom)%u_contact
+      d_acc = bf%sgn * ((face_u(st, bf) - face_du(st, bf)) - st%ends(bf%side)%u_contact)
       if (d_acc > 0.0_wp .and. d_acc <= tol) d_acc = 0.0_wp
    end function gap_at_n
 
    !> The region a landing's correction moves: the fragment on the base's side (all of the
-   !> bar for 'above'), unless it is anchored; top node j.
-   pure subroutine land_side(mesh, st, policy, corr, j, shift_amount)
+   !> bar for 'above'), unless it is anchored, with what it is pushed into; nodes a..b.
+   pure subroutine land_side(mesh, st, bf, policy, corr, a, b, shift_amount)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
       integer, intent(in) :: policy        !! shift policy (shift_*)
       real(wp), intent(in) :: corr         !! the chosen correction (5.2) [m]
-      integer, intent(out) :: j            !! top node of the region
+      integer, intent(out) :: a            !! top node of the region
+      integer, intent(out) :: b            !! bottom node of the region
       real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
-      integer :: k
-      call fragment_span(mesh, st, mesh%n, j, k)
-      if (policy == shift_above) j = 0
+      call base_fragment(mesh, st, bf, policy, a, b)
       shift_amount = 0.0_wp
-      if (.not. anchored(mesh, st, j, mesh%n)) then
-         shift_amount = -corr
-         call extend_up(mesh, st, j, shift_amount)
-         ! taking along what it is pushed into can reach a held top: then nothing moves
-         if (anchored(mesh, st, j, mesh%n)) shift_amount = 0.0_wp
+      if (.not. anchored(mesh, st, a, b)) then
+         shift_amount = -bf%sgn * corr
+         if (bf%side == face_top) then
+            call extend_down(mesh, st, b, shift_amount)
+         else
+            call extend_up(mesh, st, a, shift_amount)
+         end if
+         ! taking along what it is pushed into can reach a held end: then nothing moves
+         if (anchored(mesh, st, a, b)) shift_amount = 0.0_wp
       end if
    end subroutine land_side
 
-   !> The bottom face meets the rigid base (alpha -> infinity: the bottom half stops).
-   pure subroutine land(mesh, st, g, timing, policy, events, rules, i_top, tol)
+   !> The face meets the rigid base (alpha -> infinity: the face half stops).
+   pure subroutine land(mesh, st, bf, g, timing, policy, events, rules, i_top, i_bot, tol)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
       integer, intent(in) :: rules         !! event rules (events_*)
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      real(wp) :: d_acc, d_del, corr, e0, de, du_trial, dua0, shift_amount, w, bias, other
-      integer :: n, j, j_near, k
-      logical :: at_n, ok
+      real(wp) :: d_acc, d_del, corr, e0, du_trial, du0, shift_amount
+      integer :: a, b, above, below
+      logical :: at_n
       type(event_t) :: ev
-      n = mesh%n
-      dua0 = du_before_a(mesh, st, g, n)
-      d_acc = gap_at_n(st, n, tol)
-      d_del = st%ua(n) - st%ends(face_bottom)%u_contact
-      call choose_time(timing, d_acc, d_del, at_n, corr)
-      call land_side(mesh, st, policy, corr, j, shift_amount)
-      if (rules == events_admissible) then
-         ! the base does not move: the bar's side takes the whole correction, rigidly; where
-         ! that would move it against gravity and a load on its top face the other time is
-         ! taken (closing the gap at t^n moves it down, removing the overlap at t^{n+1} up)
-         bias = g * span_mass(mesh, j, n) * mesh%dt
-         if (j == 0) bias = bias + i_top
-         ! the bar side moves by -corr: against the bias, take the other time's correction
-         ! if it moves along it, or the smaller one where both go against
-         other = merge(d_del, d_acc, at_n)
-         if (-bias * corr < 0.0_wp .and. (.not. -bias * other < 0.0_wp .or. &
-                                          abs(other) < abs(corr))) then
-            at_n = .not. at_n
-            corr = other
-            call land_side(mesh, st, policy, corr, j, shift_amount)
-         end if
-         ! a bar side that cannot move (held by a fixed top) lands at t^n: the face keeps the
-         ! small gap it had then, never an overlap
-         if (.not. abs(shift_amount) > 0.0_wp .and. .not. at_n) then
-            at_n = .true.
-            corr = d_acc
-         end if
-         if (abs(shift_amount) > 0.0_wp) then
-            call fragment_span(mesh, st, n, j_near, k)
-            if (j < j_near) call shift_part(mesh, st, g, j, j_near, shift_amount, .true.)
-            call shift_part(mesh, st, g, max(j, j_near), n, shift_amount, .false.)
-            if (j == 0) call book_shift_work(st, i_top / mesh%dt * shift_amount)
-         end if
-      else if (.not. at_n) then
-         ! as for a collision: on its path, and never creating energy, else at t^n
-         call path_speed(mesh, st, g, j, n, shift_amount, w, ok)
-         du_trial = st%dua(n) + w * mesh%dt
-         if (.not. ok .or. -0.5_wp * mesh%ma(n) * ((du_trial / mesh%dt)**2 + g * du_trial) &
-             - 0.5_wp * st%s(n) * du_trial > 0.0_wp) then
-            at_n = .true.
-            corr = d_acc
-            call land_side(mesh, st, policy, corr, j, shift_amount)
-         end if
+      if (bf%side == face_top) then
+         du0 = du_before_b(mesh, st, g, bf%e)
+      else
+         du0 = du_before_a(mesh, st, g, bf%e)
       end if
-      if (abs(shift_amount) > 0.0_wp .and. rules /= events_admissible) then
-         if (at_n) then
-            call shift_span(mesh, st, g, j, n, shift_amount, de)
-            st%ledger%e_shift = st%ledger%e_shift - de
-         else
-            call shift_late(mesh, st, g, j, n, shift_amount, w)
-         end if
+      d_acc = gap_at_n(st, bf, tol)
+      d_del = bf%sgn * (face_u(st, bf) - st%ends(bf%side)%u_contact)
+      call choose_time(timing, d_acc, d_del, at_n, corr)
+      call land_side(mesh, st, bf, policy, corr, a, b, shift_amount)
+      if (rules == events_admissible) then
+         call land_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, corr, &
+                              a, b, shift_amount)
+      else
+         call land_paper(mesh, st, bf, g, policy, d_acc, at_n, corr, a, b, shift_amount)
       end if
       ev%kind = ev_base_collision
+      ! the collision stress (5.6), alpha -> infinity, with the face's velocity into the base
       if (at_n) then
-         ev%stress = 2.0_wp * st%s_old(n) + mesh%z(n) * dua0 / mesh%dt
+         ev%stress = 2.0_wp * st%s_old(bf%c) + bf%sgn * mesh%z(bf%c) * du0 / mesh%dt
       else
-         ev%stress = 2.0_wp * st%s(n) + mesh%z(n) * st%dua(n) / mesh%dt
+         ev%stress = 2.0_wp * st%s(bf%c) + bf%sgn * mesh%z(bf%c) * face_du(st, bf) / mesh%dt
       end if
-      ev%stress_bound = abs(2.0_wp * st%s(n))                      ! (6.3), alpha -> infinity
-      e0 = node_energy(mesh, st, g, n)
-      du_trial = st%dua(n)
-      st%ends(face_bottom)%contact = .true.
-      st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * du_trial / mesh%dt
-      st%dua(n) = 0.0_wp
-      st%dub(n) = 0.0_wp
+      ev%stress_bound = abs(2.0_wp * st%s(bf%c))                   ! (6.3), alpha -> infinity
+      e0 = node_energy(mesh, st, g, bf%e)
+      du_trial = face_du(st, bf)
+      st%ends(bf%side)%contact = .true.
+      st%ledger%i_support = st%ledger%i_support - face_mass(mesh, bf) * du_trial / mesh%dt
+      st%dua(bf%e) = 0.0_wp
+      st%dub(bf%e) = 0.0_wp
       if (at_n) then
-         st%ua(n) = st%ua(n) - du_trial
-         st%ub(n) = st%ua(n)
-         st%s(n) = st%s(n) + mesh%stiff(n) * du_trial
-         st%section(n) = section_stress_a(st%s_old(n), 0.0_wp, dua0 / mesh%dt, 0.0_wp, mesh%z(n), &
-                                      mesh%dm(n), g)
+         call move_face(st, bf, du_trial, 0.0_wp)
+         st%s(bf%c) = st%s(bf%c) + bf%sgn * mesh%stiff(bf%c) * du_trial
+         if (bf%side == face_top) then
+            st%section(bf%e) = section_stress_b(st%s_old(bf%c), 0.0_wp, du0 / mesh%dt, 0.0_wp, &
+                                                mesh%z(bf%c), mesh%dm(bf%c), g)
+         else
+            st%section(bf%e) = section_stress_a(st%s_old(bf%c), 0.0_wp, du0 / mesh%dt, 0.0_wp, &
+                                                mesh%z(bf%c), mesh%dm(bf%c), g)
+         end if
       else
          ! joined at t^{n+1}: as for a collision between fragments, s_old follows the
          ! increment so that the ledger's telescoping stays exact; the next step's base
-         ! section stress starts from the bottom half's own velocity with S^{n+1/2} = 0, the
+         ! section stress starts from the face half's own velocity with S^{n+1/2} = 0, the
          ! collision stress (5.6), alpha -> infinity
-         st%s_old(n) = st%s_old(n) - mesh%stiff(n) * du_trial
-         st%section(n) = 0.0_wp
-         st%ends(face_bottom)%landing = .true.
-         st%ends(face_bottom)%v_land = du_trial / mesh%dt
-         call skip_next(st, n)
+         st%s_old(bf%c) = st%s_old(bf%c) - bf%sgn * mesh%stiff(bf%c) * du_trial
+         st%section(bf%e) = 0.0_wp
+         st%ends(bf%side)%landing = .true.
+         st%ends(bf%side)%v_land = du_trial / mesh%dt
+         call skip_next(st, bf%e)
       end if
-      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, n))
-      call finish_event(mesh, st, ev, n, at_n, corr, shift_amount, st%gen%frag_id(j), 0, events)
+      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, bf%e))
+      call base_ids(st, bf, a, above, below)
+      call finish_event(mesh, st, ev, bf%e, at_n, corr, shift_amount, above, below, events)
    end subroutine land
 
-   !> The bar leaves the rigid base when the base section stress falls below -eps (the
-   !> base has no tensile strength): 'paper', stage 1 and 2 on the bar side only;
-   !> 'admissible', as a break: the bar left at t^n, and its bottom face moves over the step
-   !> by 2 f_n of the continuum state at t^n (the base's impulse of the step is given back).
-   !> A bar held by a fixed top with an odd cell count, under gravity: its bottom face moves
-   !> by 2 f_n + d*/2 (d* = g dt^2 / (Z_n C)), where the free bar's measure has its vertex,
-   !> K lower (vertex_offset), which pays the credit of its landing (K - credit >= 0 is
-   !> removed); it leaves only where that step is still off the base, 2 f_n + d*/2 < 0: for
-   !> g > 0 the base holds a pull of up to Z_n d* / (2 dt) (doc/method.md, "A landing
-   !> credit").
+   !> The admissible rules' landing correction: the base does not move, so the bar's side
+   !> takes the whole correction, rigidly; where that would move it against gravity and a
+   !> load on its far face the other time is taken (closing the gap at t^n moves it into the
+   !> base's direction, removing the overlap at t^{n+1} away from it).
+   pure subroutine land_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, &
+                                   corr, a, b, shift_amount)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), intent(in) :: d_acc        !! correction (5.2) for a landing at t^n [m]
+      real(wp), intent(in) :: d_del        !! correction (5.2) for a landing at t^{n+1} [m]
+      logical, intent(inout) :: at_n       !! land at t^n (else t^{n+1}); updated
+      real(wp), intent(inout) :: corr      !! the chosen correction; updated [m]
+      integer, intent(inout) :: a          !! top node of the region moved
+      integer, intent(inout) :: b          !! bottom node of the region moved
+      real(wp), intent(inout) :: shift_amount   !! its shift along x [m]; updated
+      real(wp) :: bias, other
+      integer :: j_near, k_near
+      ! bias: the push of gravity and the far face's load along +x; the bar side moves by
+      ! -sgn corr: against the bias, take the other time's correction if it moves along it,
+      ! or the smaller one where both go against
+      bias = g * span_mass(mesh, a, b) * mesh%dt
+      if (bf%side == face_bottom .and. a == 0) bias = bias + i_top
+      if (bf%side == face_top .and. b == mesh%n) bias = bias - i_bot
+      other = merge(d_del, d_acc, at_n)
+      if (bias * (-bf%sgn * corr) < 0.0_wp .and. (.not. bias * (-bf%sgn * other) < 0.0_wp .or. &
+                                                 abs(other) < abs(corr))) then
+         at_n = .not. at_n
+         corr = other
+         call land_side(mesh, st, bf, policy, corr, a, b, shift_amount)
+      end if
+      ! a bar side that cannot move (held at its other end) lands at t^n: the face keeps the
+      ! small gap it had then, never an overlap
+      if (.not. abs(shift_amount) > 0.0_wp .and. .not. at_n) then
+         at_n = .true.
+         corr = d_acc
+      end if
+      if (.not. abs(shift_amount) > 0.0_wp) return
+      if (bf%side == face_top) then
+         call fragment_span(mesh, st, 0, j_near, k_near)
+         call shift_part(mesh, st, g, 0, min(b, k_near), shift_amount, .false.)
+         if (b > k_near) call shift_part(mesh, st, g, k_near, b, shift_amount, .true.)
+         if (b == mesh%n) call book_shift_work(st, -i_bot / mesh%dt * shift_amount)
+      else
+         call fragment_span(mesh, st, mesh%n, j_near, k_near)
+         if (a < j_near) call shift_part(mesh, st, g, a, j_near, shift_amount, .true.)
+         call shift_part(mesh, st, g, max(a, j_near), mesh%n, shift_amount, .false.)
+         if (a == 0) call book_shift_work(st, i_top / mesh%dt * shift_amount)
+      end if
+   end subroutine land_admissible
+
+   !> The paper's rules' landing correction: the region shifted rigidly at t^n; at t^{n+1} on
+   !> its path (shift_late), and where no path leads there or the landing would create energy,
+   !> at t^n.
+   pure subroutine land_paper(mesh, st, bf, g, policy, d_acc, at_n, corr, a, b, shift_amount)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      real(wp), intent(in) :: d_acc        !! correction (5.2) for a landing at t^n [m]
+      logical, intent(inout) :: at_n       !! land at t^n (else t^{n+1}); updated
+      real(wp), intent(inout) :: corr      !! the chosen correction; updated [m]
+      integer, intent(inout) :: a          !! top node of the region moved
+      integer, intent(inout) :: b          !! bottom node of the region moved
+      real(wp), intent(inout) :: shift_amount   !! its shift along x [m]; updated
+      real(wp) :: w, du_trial, de
+      logical :: ok
+      if (.not. at_n) then
+         call path_speed(mesh, st, g, a, b, shift_amount, w, ok)
+         du_trial = face_du(st, bf) + w * mesh%dt
+         if (.not. ok .or. -0.5_wp * face_mass(mesh, bf) * ((du_trial / mesh%dt)**2 + &
+             g * du_trial) - bf%sgn * 0.5_wp * st%s(bf%c) * du_trial > 0.0_wp) then
+            at_n = .true.
+            corr = d_acc
+            call land_side(mesh, st, bf, policy, corr, a, b, shift_amount)
+         end if
+      end if
+      if (.not. abs(shift_amount) > 0.0_wp) return
+      if (at_n) then
+         call shift_span(mesh, st, g, a, b, shift_amount, de)
+         st%ledger%e_shift = st%ledger%e_shift - de
+      else
+         call shift_late(mesh, st, g, a, b, shift_amount, w)
+      end if
+   end subroutine land_paper
+
+   !> Each face resting on its base leaves it when the base section stress falls below -eps
+   !> (the base has no tensile strength); the bottom first, then the top (lift_face).
    pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -230,66 +404,91 @@ contains
       integer, intent(in) :: rules         !! event rules (events_*)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      real(wp) :: s_base, d_a, e0, de, e_wave0, vertex
+      integer :: side
+      do side = face_bottom, face_top, -1
+         if (on_base(st%ends(side))) call lift_face(mesh, st, base_face(mesh, side), g, eps, &
+                                                    events, rules, i_top, i_bot)
+      end do
+   end subroutine lift_off
+
+   !> The face leaves its base: 'paper', stage 1 and 2 on the bar side only; 'admissible', as
+   !> a break: the bar left at t^n, and its face moves over the step by twice the incoming
+   !> characteristic interval of the continuum state at t^n (2 f_n at the bottom, 2 g_1 at the
+   !> top; the base's impulse of the step is given back). A bar held at its other end with an
+   !> odd cell count, under gravity: its face moves by that plus d*/2 (d* = g dt^2 / (Z C)),
+   !> where the free bar's measure has its vertex, K lower (vertex_offset), which pays the
+   !> credit of its landing (K - credit >= 0 is removed); it leaves only where that step is
+   !> still off the base: the base holds a pull of up to Z d* / (2 dt) when gravity presses
+   !> the bar onto it (doc/method.md, "A landing credit").
+   pure subroutine lift_face(mesh, st, bf, g, eps, events, rules, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: eps          !! round-off guard [Pa]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      integer, intent(in) :: rules         !! event rules (events_*)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp) :: s_base, d_a, e0, de, e_wave0, vertex, w_in
       real(wp), allocatable :: f(:), gw(:)
-      integer :: n, j, k
+      integer :: a, b
       type(event_t) :: ev
-      n = mesh%n
-      if (any(st%skip_test(1:st%n_skip) == n)) return
-      if (.not. (st%section(n) < -eps)) return
-      s_base = st%section(n)
-      call fragment_span(mesh, st, n, j, k)
-      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, j, n)
+      if (any(st%skip_test(1:st%n_skip) == bf%e)) return
+      if (.not. (st%section(bf%e) < -eps)) return
+      s_base = st%section(bf%e)
+      call base_fragment(mesh, st, bf, -1, a, b)
+      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, a, b)
       if (rules == events_admissible .and. .not. mesh%full_mass) then
-         allocate(f(j+1:n), gw(j+1:n))
-         call fragment_characteristics(mesh, st, g, j, n, i_top, i_bot, .true., f, gw)
+         allocate(f(a+1:b), gw(a+1:b))
+         call fragment_characteristics(mesh, st, g, a, b, i_top, i_bot, .true., f, gw)
          vertex = 0.0_wp
-         if (held_odd(mesh, st, j, n)) vertex = vertex_offset(mesh, g, j, n, n)
+         if (held_odd(mesh, st, a, b)) vertex = vertex_offset(mesh, g, a, b, bf%c)
+         ! the interval coming in to the face (f_n down at the bottom, g_1 up at the top)
+         w_in = merge(gw(a+1), f(b), bf%side == face_top)
          ! the base lets go where the continuum reading's base stress pulls too (as breaks),
          ! beyond the pull it holds for the held bar's vertex
-         if (.not. (mesh%z(n) / mesh%dt * (2.0_wp * f(n) + vertex) < -eps)) then
-            st%section(n) = 2.0_wp * mesh%z(n) / mesh%dt * f(n)
+         if (.not. bf%sgn * (mesh%z(bf%c) / mesh%dt * (2.0_wp * w_in + vertex)) < -eps) then
+            st%section(bf%e) = bf%sgn * (2.0_wp * mesh%z(bf%c) / mesh%dt * w_in)
             return
          end if
-         ! the step redone from t^n for the bottom face: it moves by 2 f_n (+ the vertex's
-         ! offset)
-         d_a = st%dua(n) - (2.0_wp * f(n) + vertex)
+         ! the step redone from t^n for the face: it moves by 2 w_in (+ the vertex's offset)
+         d_a = face_du(st, bf) - (2.0_wp * w_in + vertex)
       else
          ! stage 1 on the bar side; the full-mass model lets go without corrections (it has
          ! no section stresses)
-         d_a = merge(0.0_wp, -s_base * mesh%dt**2 / mesh%dm(n), mesh%full_mass)
+         d_a = merge(0.0_wp, -bf%sgn * s_base * mesh%dt**2 / mesh%dm(bf%c), mesh%full_mass)
       end if
-      e0 = node_energy(mesh, st, g, n)
-      st%ua(n) = st%ua(n) - d_a
-      st%dua(n) = st%dua(n) - d_a
-      st%ledger%i_support = st%ledger%i_support - mesh%ma(n) * d_a / mesh%dt
-      st%ub(n) = st%ua(n)
-      st%dub(n) = st%dua(n)
+      e0 = node_energy(mesh, st, g, bf%e)
+      call move_face(st, bf, d_a, d_a)
+      st%ledger%i_support = st%ledger%i_support - face_mass(mesh, bf) * d_a / mesh%dt
       if (rules == events_admissible) then
-         st%s(n) = st%s(n) + mesh%stiff(n) * d_a    ! the cell above follows the redone step
+         ! the end cell follows the redone step
+         st%s(bf%c) = st%s(bf%c) + bf%sgn * mesh%stiff(bf%c) * d_a
       else if (.not. mesh%full_mass) then
-         st%s(n) = st%s(n) - s_base                 ! stage 1 releases the base stress
+         st%s(bf%c) = st%s(bf%c) - s_base           ! stage 1 releases the base stress
       end if
-      st%ends(face_bottom)%contact = .false.
+      st%ends(bf%side)%contact = .false.
       st%u_credit = 0.0_wp
-      st%section(n) = 0.0_wp
-      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, n))
-      if (rules /= events_admissible .and. .not. anchored(mesh, st, j, n)) then
+      st%section(bf%e) = 0.0_wp
+      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, bf%e))
+      if (rules /= events_admissible .and. .not. anchored(mesh, st, a, b)) then
          ! stage 2
-         call shift_span(mesh, st, g, j, n, 0.5_wp * d_a, de)
+         call shift_span(mesh, st, g, a, b, 0.5_wp * d_a, de)
          st%ledger%e_fracture = st%ledger%e_fracture - de
       end if
       ev%kind = ev_separation
       ev%step = st%step
-      ev%node = n
+      ev%node = bf%e
       ev%t = real(st%step, wp) * mesh%dt
-      ev%x = mesh%x(n)
+      ev%x = mesh%x(bf%e)
       ev%stress = s_base
       ev%dt_bound = mesh%dt
       ev%dx_bound = 0.0_wp
-      ev%opening = st%ends(face_bottom)%u_contact - st%ua(n)
-      ev%frag_above = st%gen%frag_id(j)
+      ev%opening = bf%sgn * (st%ends(bf%side)%u_contact - face_u(st, bf))
+      call base_ids(st, bf, a, ev%frag_above, ev%frag_below)
       call push_event(events, ev)
-      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, i_bot, j, n)
-   end subroutine lift_off
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, &
+                                                                            i_bot, a, b)
+   end subroutine lift_face
 end module spb_base

@@ -15,7 +15,7 @@
 module spb_contact
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_bottom, has_base
+   use spb_ends, only: face_top, face_bottom, has_base
    use spb_state, only: state_t, close_node
    use spb_section, only: section_stress_a
    use spb_events, only: event_t, event_list_t, ev_collision
@@ -387,7 +387,7 @@ contains
       real(wp), intent(out) :: y           !! the lower side moves by +y [m]
       integer :: j, k, pass
       real(wp) :: m_u, m_l, bias, other
-      logical :: anch_u, anch_l, blocked, lift
+      logical :: anch_u, anch_l, blocked, blocked_u, lift
       call fragment_span(mesh, st, i, j, k)
       if (policy == shift_above) then
          j = 0
@@ -398,9 +398,10 @@ contains
       x = 0.0_wp
       y = 0.0_wp
       blocked = .false.
+      blocked_u = .false.
       ! until the sides take along nothing more (each pass adds at least a fragment)
       do pass = 1, mesh%n + 1
-         anch_u = anchored(mesh, st, top, i)
+         anch_u = anchored(mesh, st, top, i) .or. blocked_u
          anch_l = anchored(mesh, st, i, bot) .or. blocked
          ! a side that a load pushes towards the other moves only along it (moved back against
          ! it, the load would do its work again): the faces meet at t^n, closing the gap
@@ -446,6 +447,14 @@ contains
              y > 0.0_wp) then
             if (st%ua(mesh%n) + y - st%ends(face_bottom)%u_contact > 0.0_wp) then
                blocked = .true.
+               cycle
+            end if
+         end if
+         ! the same for an upper side that reaches a base above the bar (moved up by x > 0)
+         if (.not. anch_u .and. top == 0 .and. has_base(st%ends(face_top)) .and. &
+             x > 0.0_wp) then
+            if (st%ends(face_top)%u_contact - (st%ub(0) - x) > 0.0_wp) then
+               blocked_u = .true.
                cycle
             end if
          end if

@@ -199,15 +199,17 @@ contains
       end if
    end subroutine start_end
 
-   !> The base below the bottom face at t = 0, gap below it: touching and at rest, the face
-   !> rests on it; moving onto it, the first step lands by the timing rule (and logs the
-   !> event); moving away from it, not in contact. A face at rest on it has no increment.
-   pure subroutine place_on_base(e, u_face, gap, du_face)
+   !> The base beyond an end face at t = 0 (below the bottom, above the top), gap away from
+   !> it: touching and at rest, the face rests on it; moving onto it, the first step lands by
+   !> the timing rule (and logs the event); moving away from it, not in contact. A face at
+   !> rest on it has no increment.
+   pure subroutine place_on_base(e, side, u_face, gap, du_face)
       type(end_t), intent(inout) :: e      !! the end (a base)
+      integer, intent(in) :: side          !! face_top | face_bottom
       real(wp), intent(in) :: u_face       !! the face half's displacement at t = 0 [m]
       real(wp), intent(in) :: gap          !! the gap between the face and the base [m]
       real(wp), intent(inout) :: du_face   !! the face half's increment du^0 [m]
-      e%u_contact = u_face + gap
+      e%u_contact = u_face + merge(-gap, gap, side == face_top)
       e%contact = gap <= 0.0_wp .and. .not. (abs(du_face) > 0.0_wp)
       if (e%contact) du_face = 0.0_wp
    end subroutine place_on_base

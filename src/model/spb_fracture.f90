@@ -10,7 +10,7 @@
 module spb_fracture
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
-   use spb_ends, only: face_bottom, holds, on_base
+   use spb_ends, only: face_top, face_bottom, holds, on_base
    use spb_state, only: state_t, open_node, separates
    use spb_events, only: event_t, event_list_t, push_event, ev_fracture, ev_separation, ev_crack
    use spb_arrays, only: append
@@ -42,10 +42,11 @@ contains
 
       if (st%coh%n_pending > 0) call crack_events(mesh, st, events)
       if (st%coh%n_active > 0) call complete_cracks(mesh, st, events)
-      if (st%n_breakable == 0 .and. .not. on_base(st%ends(face_bottom))) return
+      if (st%n_breakable == 0 .and. .not. any(on_base(st%ends))) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
+      if (on_base(st%ends(face_top))) st%s_scale = max(st%s_scale, abs(st%section(0)))
       eps = eps_rel * st%s_scale
-      if (on_base(st%ends(face_bottom))) call lift_off(mesh, st, g, eps, events, &
+      if (any(on_base(st%ends))) call lift_off(mesh, st, g, eps, events, &
                                                                        rules, i_top, i_bot)
       if (st%n_breakable == 0) return
       if (mesh%full_mass) then

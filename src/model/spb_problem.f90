@@ -57,7 +57,8 @@ module spb_problem
       real(wp) :: impactor_velocity = 0.0_wp       !! along +x at t = 0 [m/s]
       real(wp) :: impactor_gap = 0.0_wp            !! between the mass and the face at t = 0 [m]
       real(wp) :: impactor_cushion = 0.0_wp        !! spring stiffness (0: rigid) [Pa/m A]
-      real(wp) :: base_gap = 0.0_wp                !! gap to the base [m]
+      real(wp) :: base_gap = 0.0_wp                !! gap between bottom face and base [m]
+      real(wp) :: base_gap_top = 0.0_wp            !! gap between top face and a base above [m]
       ! the end load
       integer :: load_kind = load_none             !! load_* code
       integer :: load_face = face_top              !! face_* code

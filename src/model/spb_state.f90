@@ -137,10 +137,11 @@ contains
       s_top = 0.0_wp
       s_bot = 0.0_wp
       if (prob%static_start) then
-         ! the base carries weight only where the bar starts resting on it (in contact below);
-         ! a bottom face moving at t = 0 is not touched by it (issue 17)
-         call static_state(mesh, st%ends, g, prob%base_gap <= 0.0_wp .and. &
-                           .not. (abs(v(n) * dt) > 0.0_wp), u, s, s_top, s_bot)
+         ! the base carries weight only where the bar starts resting on it (in contact); a
+         ! face moving at t = 0 is not touched by it (issue 17)
+         call static_state(mesh, st%ends, g, [prob%base_gap_top <= 0.0_wp .and. &
+                           .not. (abs(v(0) * dt) > 0.0_wp), prob%base_gap <= 0.0_wp .and. &
+                           .not. (abs(v(n) * dt) > 0.0_wp)], u, s, s_top, s_bot)
       else
          u = 0.0_wp
          s = 0.0_wp
@@ -190,8 +191,10 @@ contains
          st%split(st%n_split) = i
       end do
       if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
-      if (has_base(st%ends(face_bottom))) call place_on_base(st%ends(face_bottom), st%ua(n), &
-                                                            prob%base_gap, st%dua(n))
+      if (has_base(st%ends(face_bottom))) call place_on_base(st%ends(face_bottom), face_bottom, &
+                                                            st%ua(n), prob%base_gap, st%dua(n))
+      if (has_base(st%ends(face_top))) call place_on_base(st%ends(face_top), face_top, st%ub(0), &
+                                                         prob%base_gap_top, st%dub(0))
       st%s = 0.0_wp
       st%s(1:n) = s
       ! s^{-1} = s^0 - E (du_{k-1} - du_k)/dx, for the strain-energy product at the first row
@@ -233,7 +236,7 @@ contains
             ! a free face moves in the first step with the mean velocity of its cell: that is
             ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
             ! (spb_wave); the face's own v(x) would start one that grows linearly
-            if (has_free_face(ends(face_top))) then
+            if (has_free_face(ends(face_top)) .or. has_base(ends(face_top))) then
                v(0) = v(0) + prob%strain_rate * 0.5_wp * mesh%dx(1)
             end if
             if (has_free_face(ends(face_bottom)) .or. has_base(ends(face_bottom))) then
@@ -292,6 +295,7 @@ contains
       if (has_base(st%ends(face_bottom)) .and. .not. st%ends(face_bottom)%contact) then
          st%section(n) = 0.0_wp
       end if
+      if (has_base(st%ends(face_top)) .and. .not. st%ends(face_top)%contact) st%section(0) = 0.0_wp
       do i = 1, n - 1
          if (.not. st%joined(i)) st%section(i) = 0.0_wp
       end do

@@ -3,7 +3,7 @@
 !> Supported ends are 'fixed', 'velocity' (a support that moves: the equilibrium is the
 !> same in its frame), 'transmit' (a transmitting end continues the bar, so
 !> it carries the weight like a support) and the base where the bar starts on it (not where
-!> its bottom face moves at t = 0: the base does not touch it then). With one support the cell stresses follow from
+!> its face moves at t = 0: the base does not touch it then), at either end. With one support the cell stresses follow from
 !> the weight carried and the displacements by summing strains from the support; with two
 !> the tridiagonal stiffness system is solved.
 module spb_static
@@ -22,7 +22,8 @@ contains
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(end_t), intent(in) :: ends(2)   !! the ends (their kinds)
       real(wp), intent(in) :: g                   !! gravity [m/s^2]
-      logical, intent(in) :: base_holds           !! a base bottom holds the bar at t = 0
+      logical, intent(in) :: base_holds(2)        !! a base end holds the bar at t = 0
+                                                  !! (face_top, face_bottom)
       real(wp), intent(out) :: u(0:mesh%n)        !! [m]
       real(wp), intent(out) :: s(1:mesh%n)        !! [Pa], compression positive
       real(wp), intent(out) :: s_top              !! top end stress, as a cell above node 0 [Pa]
@@ -33,9 +34,10 @@ contains
 
       n = mesh%n
       m = mesh%ma + mesh%mb
-      top_held = .not. has_free_face(ends(face_top))
+      top_held = .not. has_free_face(ends(face_top)) .and. &
+                 (.not. has_base(ends(face_top)) .or. base_holds(face_top))
       bot_held = .not. has_free_face(ends(face_bottom)) .and. &
-                 (.not. has_base(ends(face_bottom)) .or. base_holds)
+                 (.not. has_base(ends(face_bottom)) .or. base_holds(face_bottom))
       if (top_held .and. .not. bot_held) then
          ! node equilibrium s_i - s_{i+1} + m_i g = 0 from the free bottom (s_{n+1} = 0)
          s(n) = -m(n) * g

@@ -27,7 +27,7 @@ module spb_wave
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
    use spb_ends, only: face_top, face_bottom, has_free_face, transmits, is_velocity_end, &
-      has_base, holds, gives_equation
+      has_base, on_base, holds, gives_equation
    use spb_state, only: state_t
    implicit none
    private
@@ -487,6 +487,9 @@ contains
             st%s_old(i) = st%s_old(i) - ds
          end if
       end do
+      if (top == 0 .and. has_base(st%ends(face_top)) .and. .not. st%ends(face_top)%contact) then
+         st%ends(face_top)%u_contact = st%ends(face_top)%u_contact + amp
+      end if
       if (bot == mesh%n .and. has_base(st%ends(face_bottom)) .and. &
           .not. st%ends(face_bottom)%contact) then
          st%ends(face_bottom)%u_contact = st%ends(face_bottom)%u_contact + &
@@ -710,6 +713,11 @@ contains
       end do
       jp = 4.0_wp / mesh%dt * jp + (u_el - 0.5_wp * st%dua(bot) - ref_bot + st%u_credit) / &
            c_total
+      ! a bar resting against a base above it: the top node's position where its landing
+      ! left it, the mirror of the bottom's term (the positions are summed from the top, so
+      ! the bottom's term of the mirrored bar is this one)
+      if (top == 0 .and. on_base(st%ends(face_top))) jp = jp + &
+         (st%ub(top) - 0.5_wp * st%dub(top)) / c_total
    end function held_weights
 
    !> Whether the fragment top..bot is held at both ends (a fixed or velocity top, and a fixed

@@ -215,6 +215,8 @@ contains
       end do
       if (has_base(sim%st%ends(face_bottom))) ov = max(ov, (sim%st%ua(sim%mesh%n) - &
          sim%st%ends(face_bottom)%u_contact) / sim%mesh%dx(sim%mesh%n))
+      if (has_base(sim%st%ends(face_top))) ov = max(ov, (sim%st%ends(face_top)%u_contact - &
+         sim%st%ub(0)) / sim%mesh%dx(1))
       ov = max(ov, -1.0_wp)
    end function largest_overlap
 
