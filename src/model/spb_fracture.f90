@@ -5,21 +5,22 @@
 !> is the rule set's, chosen here once per step: the paper's two-stage correction
 !> (spb_rules_paper) or the admissible break from the continuum state at t^n
 !> (spb_rules_admissible); every energy change is booked in e_fracture, so the ledger stays
-!> closed. The full-mass comparison model breaks springs instead (cut_springs). Before the
-!> breaks: the events of the cohesive cracks and the lift-off from the base (spb_base).
+!> closed. The full-mass comparison model breaks springs instead (spb_full_mass), also
+!> chosen here. Before the breaks: the events of the cohesive cracks and the lift-off from
+!> the base (spb_base).
 module spb_fracture
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
    use spb_ends, only: face_bottom, on_base
    use spb_state, only: state_t, separates
-   use spb_events, only: event_t, event_list_t, push_event, ev_crack, ev_fracture
-   use spb_arrays, only: append
+   use spb_events, only: event_t, event_list_t, push_event, ev_crack
    use spb_wave, only: region_wave
    use spb_problem, only: events_admissible, events_paper
-   use spb_fragments, only: fragment_span, record_break, new_fragment_id
+   use spb_fragments, only: fragment_span, record_break
    use spb_base, only: lift_off
    use spb_rules_paper, only: paper_breaks
    use spb_rules_admissible, only: admissible_breaks
+   use spb_full_mass, only: full_mass_fracture
    implicit none
    private
    public :: fracture_step, events_admissible, events_paper, first_overlap
@@ -45,13 +46,14 @@ contains
       if (st%n_breakable == 0 .and. .not. on_base(st%ends(face_bottom))) return
       st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
       eps = eps_rel * st%s_scale
+      if (mesh%full_mass) then
+         ! the full-mass model: its own lift-off, springs instead of sections
+         call full_mass_fracture(mesh, st, g, eps, events, i_top, i_bot)
+         return
+      end if
       if (on_base(st%ends(face_bottom))) call lift_off(mesh, st, g, eps, events, &
                                                                        rules, i_top, i_bot)
       if (st%n_breakable == 0) return
-      if (mesh%full_mass) then
-         call cut_springs(mesh, st, eps, events)
-         return
-      end if
       call break_nodes(mesh, st, g, eps, events, rules, i_top, i_bot)
    end subroutine fracture_step
 
@@ -152,49 +154,6 @@ contains
          call record_break(mesh, st, i, j, -st%coh%r(i), events)
       end do
    end subroutine complete_cracks
-
-   !> The naive full-mass model (the paper's Fig. 12 comparison): a spring whose own stress
-   !> falls below -R - eps is cut; from then on it carries compression only. No half masses,
-   !> no corrections; the strain energy it held is booked in e_fracture.
-   pure subroutine cut_springs(mesh, st, eps, events)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(inout) :: st   !! the state
-      real(wp), intent(in) :: eps          !! round-off guard [Pa]
-      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      integer :: k, j, parent
-      type(event_t) :: ev
-      do k = 1, mesh%n
-         if (st%fm%is_cut(k) .or. st%cell_strength(k) < 0.0_wp) cycle
-         if (.not. (st%s(k) < -st%cell_strength(k) - eps)) cycle
-         ev%stress = st%s(k)
-         st%ledger%e_fracture = st%ledger%e_fracture + 0.5_wp * st%s_old(k) * st%s(k) / mesh%stiff(k)
-         st%s(k) = 0.0_wp
-         st%fm%is_cut(k) = .true.
-         st%cell_strength(k) = 0.0_wp
-         st%n_breakable = st%n_breakable - 1
-         call append(st%fm%cut, st%fm%n_cut, k)
-         ! the fragment that held cell k starts at node j (0 or just below a cut cell)
-         j = k - 1
-         do while (j > 0)
-            if (st%fm%is_cut(j)) exit
-            j = j - 1
-         end do
-         parent = st%gen%frag_id(j)
-         call new_fragment_id(st, parent, j)
-         call new_fragment_id(st, parent, k)
-         ev%kind = ev_fracture
-         ev%step = st%step
-         ev%node = k - 1
-         ev%t = real(st%step, wp) * mesh%dt
-         ev%x = mesh%x(k) - 0.5_wp * mesh%dx(k)
-         ev%dt_bound = mesh%dt
-         ev%dx_bound = mesh%dx(k)
-         ev%opening = 0.0_wp
-         ev%frag_above = st%gen%frag_id(j)
-         ev%frag_below = st%gen%frag_id(k)
-         call push_event(events, ev)
-      end do
-   end subroutine cut_springs
 
    !> First split node whose faces have passed each other, u(A_i) - u(B_i) > tol (0: none).
    pure integer function first_overlap(mesh, st) result(node)

@@ -1,5 +1,6 @@
 !> Fragments and the moves events make of them, what both rule sets (spb_rules_paper,
-!> spb_rules_admissible) and the rigid base (spb_base) share: a fragment's span, mass, momentum and node energies; the rigid shifts of the
+!> spb_rules_admissible), the rigid base (spb_base) and the full-mass model (spb_full_mass)
+!> share: a fragment's span, mass, momentum and node energies; the rigid shifts of the
 !> corrections (5.2) and their booking; the timing rule (5.2)-(5.3); the start and the join
 !> of a collision (5.4)-(5.6); the opening of a section and the record of a break; fragment
 !> ids; an event's time, place and correction; the landing credit of a bar held at both ends.
@@ -20,7 +21,8 @@ module spb_fragments
    public :: choose_time, du_before_a, du_before_b, span_momentum, end_force, path_speed, &
       shift_late, shift_part, extend_up, extend_down, finish_event, book_shift_work, skip_next, &
       keep_credit
-   public :: cohesive_open, gap_at_n, start_collision, join_node, open_section, record_break
+   public :: cohesive_open, gap_at_n, start_collision, join_node, open_section, record_break, &
+      lift_off_event
 
 contains
 
@@ -558,4 +560,26 @@ contains
       ev%frag_below = st%gen%frag_id(i)
       call push_event(events, ev)
    end subroutine record_break
+
+   !> The event of the bottom face leaving the rigid base at t^{n+1} (a separation at node n)
+   !> of the fragment whose top node is j, the base section stress stress before it.
+   pure subroutine lift_off_event(mesh, st, j, stress, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state after the lift-off
+      integer, intent(in) :: j             !! top node of the fragment that left the base
+      real(wp), intent(in) :: stress       !! the base section stress that let it go [Pa]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      type(event_t) :: ev
+      ev%kind = ev_separation
+      ev%step = st%step
+      ev%node = mesh%n
+      ev%t = real(st%step, wp) * mesh%dt
+      ev%x = mesh%x(mesh%n)
+      ev%stress = stress
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = 0.0_wp
+      ev%opening = st%ends(face_bottom)%u_contact - st%ua(mesh%n)
+      ev%frag_above = st%gen%frag_id(j)
+      call push_event(events, ev)
+   end subroutine lift_off_event
 end module spb_fragments
