@@ -184,7 +184,7 @@ class Lattice:
         return s.work(rho)
 
     def brk(s, i):
-        """the admissible break of joined node i (spb_fracture.break_admissible)"""
+        """the admissible break of joined node i (spb_rules_admissible.admissible_breaks)"""
         t, b = [fb for fb in s.fragments() if fb[0] < i < fb[1]][0]
         h, sdt, _ = s.reading(t, b, at_n=True)
         da, db = 2 * (h[i] + sdt[i]) / s.Z[i - 1], 2 * h[i + 1] / s.Z[i]

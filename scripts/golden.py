@@ -2,7 +2,7 @@
 """Golden comparison: every observable output of two spallbar programs, byte for byte.
 
     golden.py --exe NEW (--ref-exe OLD | --ref-rev GIT_REV) [--work DIR] [--long]
-              [--fuzz N] [--ranks 1,3] [--added]
+              [--fuzz N] [--ranks 1,3] [--added] [--variants]
 
 A refactoring that claims "no change in behaviour" (issue 18) runs this against the program
 it started from. For each case both programs run in the same directory with the same
@@ -23,6 +23,11 @@ text outputs are compared without their '#' header lines, a table with a column-
 by the old program's columns only (the new one may have more, anywhere), each value's text
 exactly; HDF5 files by every dataset and attribute of the old file, to the bit, in the new
 one (h5py). Exit status, stdout and stderr as always.
+
+--variants: every deck of input/ also under the paper's event rules (events = 'paper'), in
+the full-mass comparison model (model = 'full-mass') and in both: the decks of input/ use the
+default rules and, but for one, the half-mass model, so a change to the rule sets
+(src/model/spb_rules_*.f90) or to the full-mass model (spb_full_mass.f90) wants these too.
 
 Cases: every deck under input/ (input/long/ with --long), HDF5 and x-t field variants of
 four of them, a checkpointed run and each program's restart from its own checkpoint, a run the energy guard stops, the sweeps of input/sweeps/ on each rank count
@@ -288,6 +293,21 @@ def add_to_run(text, extra):
     return text[:m.end()] + "\n  " + extra + "\n" + text[m.end():]
 
 
+def set_in_run(text, var, value):
+    """The deck with var = value in its &run group: an assignment it has is replaced (a second
+    one would be refused), else one is added at the group's start."""
+    pat = re.compile(r"(\b" + var + r"\s*=\s*)('[^']*'|\"[^\"]*\")", re.IGNORECASE)
+    if pat.search(text):
+        return pat.sub(lambda m: m.group(1) + value, text, count=1)
+    return add_to_run(text, f"{var} = {value}")
+
+
+# --variants: the assignments each variant of a deck gets
+VARIANTS = (("paper", (("events", "'paper'"),)),
+            ("full_mass", (("model", "'full-mass'"),)),
+            ("paper_full_mass", (("events", "'paper'"), ("model", "'full-mass'"))))
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--exe", required=True)
@@ -297,6 +317,9 @@ def main(argv):
     ap.add_argument("--long", action="store_true")
     ap.add_argument("--fuzz", type=int, default=200)
     ap.add_argument("--ranks", default="1,3")
+    ap.add_argument("--variants", action="store_true",
+                    help="every deck of input/ also with events = 'paper', model = 'full-mass' "
+                         "and both (see above)")
     ap.add_argument("--added", action="store_true",
                     help="the new program adds columns, variables, kinds: compare the old "
                          "outputs' data within the new ones (see above)")
@@ -322,6 +345,16 @@ def main(argv):
         d, f = os.path.split(deck)
         g.run_both(f"deck {deck}", copy_input, ["EXE", f, "--output", "out_" + f[:-4]],
                    cwd_rel=os.path.join("input", d))
+        for tag, assignments in (VARIANTS if a.variants else ()):
+            def var_setup(folder, deck=deck, assignments=assignments):
+                copy_input(folder)
+                path = os.path.join(folder, "input", deck)
+                text = open(path).read()
+                for var, value in assignments:
+                    text = set_in_run(text, var, value)
+                open(path, "w").write(text)
+            g.run_both(f"deck {deck} ({tag})", var_setup,
+                       ["EXE", f, "--output", f"{tag}_" + f[:-4]], cwd_rel=os.path.join("input", d))
 
     # HDF5, x-t fields
     for deck in ("example2.nml", "example3_case1_delay.nml", "expanding_bar.nml",

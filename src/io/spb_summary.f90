@@ -54,17 +54,18 @@ contains
 
    !> The references of t = 0 (a run that does not resume): the energy guard's reference
    !> and scale, the wave ledger's start and the first bottom reaction.
-   pure subroutine summary_start(summary, e0, w0, w_w, e_l, full_mass, reaction)
+   pure subroutine summary_start(summary, e0, w0, w_w, e_l, scale, reaction)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
       type(energies_t), intent(in) :: e0   !! the scheme's energies at t = 0
       type(wave_t), intent(in) :: w0       !! the wave measure at t = 0
       real(wp), intent(in) :: w_w          !! work in that measure [J/m^2]
       real(wp), intent(in) :: e_l          !! energy events removed, in that measure [J/m^2]
-      logical, intent(in) :: full_mass     !! the full-mass model (its own guard scale)
+      real(wp), intent(in) :: scale        !! the guard's scale at t = 0: the measure's energy
+                                           !! (the full-mass model's: e_kin + |e_strain|)
+                                           !! [J/m^2]
       real(wp), intent(in) :: reaction     !! section stress at the bottom node [Pa]
       summary%e_mech0 = w0%e_wave + e0%e_pot + w0%e_gravity
-      summary%guard_scale = w0%e_wave
-      if (full_mass) summary%guard_scale = e0%e_kin + abs(e0%e_strain)
+      summary%guard_scale = scale
       summary%ledger_w0 = summary%e_mech0 - w_w + e_l
       summary%max_reaction_bottom = reaction
    end subroutine summary_start

@@ -4,137 +4,39 @@
 !> infinite impedance (alpha -> oo in (5.6)) put on the grid by the timing rule; lift-off is a
 !> break of the face's section against the base. Both are here, called where the collisions
 !> (spb_contact) and the breaks (spb_fracture) of the step are made, so the events keep their
-!> order.
+!> order; the full-mass model's lift-off is its own (spb_full_mass).
 !>
-!> One code serves both sides, written in the side's own numbers (base_face_t): the end node
-!> e (0 or n), its end cell c (1 or n), the face half (B_0 or A_n) and the sense sgn of the
-!> base's side (+1: below, along +x; -1: above). A face penetrates the base by
-!> sgn (u_face - u_contact); the bar side of a landing moves by -sgn corr; the face half's
-!> stop changes the end cell's stress by sgn (E/dx) du. The region an event moves is the
-!> fragment on the base and what it takes along away from it (nodes a..b).
+!> One code serves both ends, written in the end's own numbers (spb_base_face): a face
+!> penetrates the base by sgn (u_face - u_contact); the bar side of a landing moves by
+!> -sgn corr; the face half's stop changes the end cell's stress by sgn (E/dx) du.
+!>
+!> The two rule sets (&run events) differ in how a landing is corrected and how a lift-off
+!> redoes the step: each has its own procedures here (land_admissible, lift_admissible;
+!> land_paper, lift_paper), chosen once at each entry (touch_base, lift_off); what both do
+!> (the join with the base, the release from it) is shared (join_base, leave_base).
 module spb_base
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
    use spb_ends, only: face_top, face_bottom, has_base, on_base
    use spb_state, only: state_t
    use spb_section, only: section_stress_a, section_stress_b
-   use spb_events, only: event_t, event_list_t, push_event, ev_base_collision, ev_separation
+   use spb_events, only: event_t, event_list_t, ev_base_collision
    use spb_wave, only: fragment_characteristics, region_wave, held_odd, vertex_offset
    use spb_fragments, only: node_energy, anchored, fragment_span, span_mass, shift_span, &
       choose_time, du_before_a, du_before_b, path_speed, shift_late, shift_part, extend_up, &
       extend_down, finish_event, book_shift_work, skip_next, keep_credit
-   use spb_problem, only: events_admissible, shift_above
+   use spb_base_face, only: base_face_t, base_face, face_u, face_du, face_mass, move_base_face, &
+      base_fragment, base_ids, lift_off_event
+   use spb_problem, only: events_paper, shift_above
    implicit none
    private
    public :: touch_base, lift_off
 
-   !> A base end in its own numbers: what lets one code serve the top and the bottom.
-   type :: base_face_t
-      integer :: side = face_bottom        !! face_top | face_bottom
-      integer :: e = 0                     !! the end node (0 or n)
-      integer :: c = 1                     !! the end cell (1 or n)
-      real(wp) :: sgn = 1.0_wp             !! +1: the base below the face; -1: above it
-   end type base_face_t
-
 contains
 
-   !> The base end of side `side` in its own numbers.
-   pure type(base_face_t) function base_face(mesh, side) result(bf)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      integer, intent(in) :: side          !! face_top | face_bottom
-      bf%side = side
-      if (side == face_top) then
-         bf%e = 0
-         bf%c = 1
-         bf%sgn = -1.0_wp
-      else
-         bf%e = mesh%n
-         bf%c = mesh%n
-         bf%sgn = 1.0_wp
-      end if
-   end function base_face
-
-   !> The face half's displacement (B_0 at the top, A_n at the bottom) [m].
-   pure real(wp) function face_u(st, bf)
-      type(state_t), intent(in) :: st      !! the state
-      type(base_face_t), intent(in) :: bf  !! the base end
-      face_u = merge(st%ub(bf%e), st%ua(bf%e), bf%side == face_top)
-   end function face_u
-
-   !> The face half's increment over the step [m].
-   pure real(wp) function face_du(st, bf)
-      type(state_t), intent(in) :: st      !! the state
-      type(base_face_t), intent(in) :: bf  !! the base end
-      face_du = merge(st%dub(bf%e), st%dua(bf%e), bf%side == face_top)
-   end function face_du
-
-   !> The face half's mass [kg/m^2 A].
-   pure real(wp) function face_mass(mesh, bf)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(base_face_t), intent(in) :: bf  !! the base end
-      face_mass = merge(mesh%mb(bf%e), mesh%ma(bf%e), bf%side == face_top)
-   end function face_mass
-
-   !> Move the face half by -d_u and change its increment by -d_du; the other half of the end
-   !> node (massless at a base end) follows it.
-   pure subroutine move_face(st, bf, d_u, d_du)
-      type(state_t), intent(inout) :: st   !! the state
-      type(base_face_t), intent(in) :: bf  !! the base end
-      real(wp), intent(in) :: d_u          !! taken from the displacement [m]
-      real(wp), intent(in) :: d_du         !! taken from the increment [m]
-      if (bf%side == face_top) then
-         st%ub(bf%e) = st%ub(bf%e) - d_u
-         st%dub(bf%e) = st%dub(bf%e) - d_du
-         st%ua(bf%e) = st%ub(bf%e)
-         st%dua(bf%e) = st%dub(bf%e)
-      else
-         st%ua(bf%e) = st%ua(bf%e) - d_u
-         st%dua(bf%e) = st%dua(bf%e) - d_du
-         st%ub(bf%e) = st%ua(bf%e)
-         st%dub(bf%e) = st%dua(bf%e)
-      end if
-   end subroutine move_face
-
-   !> The nodes a..b of the fragment resting against the base (all of the bar for 'above').
-   pure subroutine base_fragment(mesh, st, bf, policy, a, b)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      type(base_face_t), intent(in) :: bf  !! the base end
-      integer, intent(in) :: policy        !! shift policy (shift_*); -1: the fragment alone
-      integer, intent(out) :: a            !! top node of the region (0 or a split node)
-      integer, intent(out) :: b            !! bottom node of the region (n or a split node)
-      integer :: j, k
-      call fragment_span(mesh, st, bf%e, j, k)
-      if (bf%side == face_top) then
-         a = 0
-         b = k
-         if (policy == shift_above) b = mesh%n
-      else
-         a = j
-         b = mesh%n
-         if (policy == shift_above) a = 0
-      end if
-   end subroutine base_fragment
-
-   !> The fragment id of the piece on the base, for the event's frag_above (a base below) or
-   !> frag_below (a base above).
-   pure subroutine base_ids(st, bf, a, above, below)
-      type(state_t), intent(in) :: st      !! the state
-      type(base_face_t), intent(in) :: bf  !! the base end
-      integer, intent(in) :: a             !! top node of the region the event moved
-      integer, intent(out) :: above        !! frag_above
-      integer, intent(out) :: below        !! frag_below
-      if (bf%side == face_top) then
-         above = 0
-         below = st%gen%frag_id(0)
-      else
-         above = st%gen%frag_id(a)
-         below = 0
-      end if
-   end subroutine base_ids
-
-   !> After the trial step: a face off its base that has passed it lands (land), its region's
-   !> wave measure before and after booked in e_lost_wave; the bottom first, then the top.
+   !> After the trial step: a face off its base that has passed it lands, by the rule set's
+   !> landing (land_admissible, land_paper: chosen here), the region's wave measure before and
+   !> after booked in e_lost_wave; the bottom first, then the top.
    pure subroutine touch_base(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -147,25 +49,17 @@ contains
       integer, intent(in) :: rules             !! events_admissible | events_paper
       real(wp), intent(in) :: eps_rel          !! admissible: the face lands when it overlaps
                                                !! the base by more than eps_rel dx [-]
-      real(wp) :: e_wave0, tol
-      integer :: r_top, r_bot, side
+      integer :: side
       type(base_face_t) :: bf
       do side = face_bottom, face_top, -1
          if (.not. has_base(st%ends(side)) .or. st%ends(side)%contact) cycle
          bf = base_face(mesh, side)
-         tol = 0.0_wp
-         if (rules == events_admissible) tol = eps_rel * mesh%dx(bf%c)
-         if (.not. bf%sgn * (face_u(st, bf) - st%ends(side)%u_contact) > tol) cycle
-         if (rules == events_admissible) then
-            call base_fragment(mesh, st, bf, -1, r_top, r_bot)
-         else
-            call landing_region(mesh, st, bf, policy, r_top, r_bot)
-         end if
-         e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
-         call land(mesh, st, bf, g, timing, policy, events, rules, i_top, i_bot, tol)
-         if (rules == events_admissible) call keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
-         st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
-                          region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+         select case (rules)
+         case (events_paper)
+            call land_paper(mesh, st, bf, g, timing, policy, events, i_top, i_bot)
+         case default
+            call land_admissible(mesh, st, bf, g, timing, policy, events, i_top, i_bot, eps_rel)
+         end select
       end do
    end subroutine touch_base
 
@@ -230,23 +124,83 @@ contains
       end if
    end subroutine land_side
 
-   !> The face meets the rigid base (alpha -> infinity: the face half stops).
-   pure subroutine land(mesh, st, bf, g, timing, policy, events, rules, i_top, i_bot, tol)
+   !> The admissible rules' landing: the face lands when it overlaps the base by more than
+   !> eps_rel dx; the base does not move, so the bar's side takes the whole correction,
+   !> rigidly (correct_admissible); a gain of the held bar's measure is kept as its credit.
+   pure subroutine land_admissible(mesh, st, bf, g, timing, policy, events, i_top, i_bot, eps_rel)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       type(base_face_t), intent(in) :: bf  !! the base end
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
-      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       integer, intent(in) :: policy        !! shift policy (shift_*)
-      integer, intent(in) :: rules         !! event rules (events_*)
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      real(wp) :: d_acc, d_del, corr, e0, du_trial, du0, shift_amount
-      integer :: a, b, above, below
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), intent(in) :: eps_rel      !! the contact tolerance, of a cell [-]
+      real(wp) :: e_wave0, tol, du0, d_acc, d_del, corr, shift_amount
+      integer :: r_top, r_bot, a, b
       logical :: at_n
-      type(event_t) :: ev
+      tol = eps_rel * mesh%dx(bf%c)
+      if (.not. bf%sgn * (face_u(st, bf) - st%ends(bf%side)%u_contact) > tol) return
+      call base_fragment(mesh, st, bf, -1, r_top, r_bot)
+      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+      call landing_start(mesh, st, bf, g, timing, policy, tol, du0, d_acc, d_del, at_n, corr, &
+                         a, b, shift_amount)
+      call correct_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, corr, &
+                              a, b, shift_amount)
+      call join_base(mesh, st, bf, g, at_n, corr, a, shift_amount, du0, events)
+      call keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
+                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+   end subroutine land_admissible
+
+   !> The paper's landing: the face lands when it overlaps the base at all; the region is
+   !> shifted rigidly at t^n, or on its path at t^{n+1} (correct_paper).
+   pure subroutine land_paper(mesh, st, bf, g, timing, policy, events, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp), parameter :: tol = 0.0_wp
+      real(wp) :: e_wave0, du0, d_acc, d_del, corr, shift_amount
+      integer :: r_top, r_bot, a, b
+      logical :: at_n
+      if (.not. bf%sgn * (face_u(st, bf) - st%ends(bf%side)%u_contact) > tol) return
+      call landing_region(mesh, st, bf, policy, r_top, r_bot)
+      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+      call landing_start(mesh, st, bf, g, timing, policy, tol, du0, d_acc, d_del, at_n, corr, &
+                         a, b, shift_amount)
+      call correct_paper(mesh, st, bf, g, policy, d_acc, at_n, corr, a, b, shift_amount)
+      call join_base(mesh, st, bf, g, at_n, corr, a, shift_amount, du0, events)
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
+                              region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+   end subroutine land_paper
+
+   !> What a landing starts from: the face half's increment of the step before, the
+   !> corrections (5.2) at t^n and t^{n+1}, the timing rule's choice and the region it moves.
+   pure subroutine landing_start(mesh, st, bf, g, timing, policy, tol, du0, d_acc, d_del, at_n, &
+                                 corr, a, b, shift_amount)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: policy        !! shift policy (shift_*)
+      real(wp), intent(in) :: tol          !! contact tolerance [m] (0: the paper's rules)
+      real(wp), intent(out) :: du0         !! the face half's increment over the step before [m]
+      real(wp), intent(out) :: d_acc       !! correction (5.2) for a landing at t^n [m]
+      real(wp), intent(out) :: d_del       !! correction (5.2) for a landing at t^{n+1} [m]
+      logical, intent(out) :: at_n         !! land at t^n (else t^{n+1})
+      real(wp), intent(out) :: corr        !! the chosen correction [m]
+      integer, intent(out) :: a            !! top node of the region moved
+      integer, intent(out) :: b            !! bottom node of the region moved
+      real(wp), intent(out) :: shift_amount   !! its shift along x [m]
       if (bf%side == face_top) then
          du0 = du_before_b(mesh, st, g, bf%e)
       else
@@ -256,12 +210,24 @@ contains
       d_del = bf%sgn * (face_u(st, bf) - st%ends(bf%side)%u_contact)
       call choose_time(timing, d_acc, d_del, at_n, corr)
       call land_side(mesh, st, bf, policy, corr, a, b, shift_amount)
-      if (rules == events_admissible) then
-         call land_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, corr, &
-                              a, b, shift_amount)
-      else
-         call land_paper(mesh, st, bf, g, policy, d_acc, at_n, corr, a, b, shift_amount)
-      end if
+   end subroutine landing_start
+
+   !> The face meets the rigid base (alpha -> infinity: the face half stops) at the time and
+   !> with the correction the rule set settled on: the event, the node's join with the base.
+   pure subroutine join_base(mesh, st, bf, g, at_n, corr, a, shift_amount, du0, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      logical, intent(in) :: at_n          !! it landed at t^n (else t^{n+1})
+      real(wp), intent(in) :: corr         !! the correction (5.2) of that time [m]
+      integer, intent(in) :: a             !! top node of the region moved
+      real(wp), intent(in) :: shift_amount !! its shift along x [m]
+      real(wp), intent(in) :: du0          !! the face half's increment over the step before [m]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      real(wp) :: e0, du_trial
+      integer :: above, below
+      type(event_t) :: ev
       ev%kind = ev_base_collision
       ! the collision stress (5.6), alpha -> infinity, with the face's velocity into the base
       if (at_n) then
@@ -277,7 +243,7 @@ contains
       st%dua(bf%e) = 0.0_wp
       st%dub(bf%e) = 0.0_wp
       if (at_n) then
-         call move_face(st, bf, du_trial, 0.0_wp)
+         call move_base_face(st, bf, du_trial, 0.0_wp)
          st%s(bf%c) = st%s(bf%c) + bf%sgn * mesh%stiff(bf%c) * du_trial
          if (bf%side == face_top) then
             st%section(bf%e) = section_stress_b(st%s_old(bf%c), 0.0_wp, du0 / mesh%dt, 0.0_wp, &
@@ -300,13 +266,13 @@ contains
       st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, bf%e))
       call base_ids(st, bf, a, above, below)
       call finish_event(mesh, st, ev, bf%e, at_n, corr, shift_amount, above, below, events)
-   end subroutine land
+   end subroutine join_base
 
    !> The admissible rules' landing correction: the base does not move, so the bar's side
    !> takes the whole correction, rigidly; where that would move it against gravity and a
    !> load on its far face the other time is taken (closing the gap at t^n moves it into the
    !> base's direction, removing the overlap at t^{n+1} away from it).
-   pure subroutine land_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, &
+   pure subroutine correct_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, &
                                    corr, a, b, shift_amount)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -355,12 +321,12 @@ contains
          call shift_part(mesh, st, g, max(a, j_near), mesh%n, shift_amount, .false.)
          if (a == 0) call book_shift_work(st, i_top / mesh%dt * shift_amount)
       end if
-   end subroutine land_admissible
+   end subroutine correct_admissible
 
    !> The paper's rules' landing correction: the region shifted rigidly at t^n; at t^{n+1} on
    !> its path (shift_late), and where no path leads there or the landing would create energy,
    !> at t^n.
-   pure subroutine land_paper(mesh, st, bf, g, policy, d_acc, at_n, corr, a, b, shift_amount)
+   pure subroutine correct_paper(mesh, st, bf, g, policy, d_acc, at_n, corr, a, b, shift_amount)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       type(base_face_t), intent(in) :: bf  !! the base end
@@ -391,10 +357,11 @@ contains
       else
          call shift_late(mesh, st, g, a, b, shift_amount, w)
       end if
-   end subroutine land_paper
+   end subroutine correct_paper
 
    !> Each face resting on its base leaves it when the base section stress falls below -eps
-   !> (the base has no tensile strength); the bottom first, then the top (lift_face).
+   !> (the base has no tensile strength), by the rule set's lift-off (lift_admissible,
+   !> lift_paper: chosen here); the bottom first, then the top.
    pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -405,90 +372,110 @@ contains
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       integer :: side
+      type(base_face_t) :: bf
       do side = face_bottom, face_top, -1
-         if (on_base(st%ends(side))) call lift_face(mesh, st, base_face(mesh, side), g, eps, &
-                                                    events, rules, i_top, i_bot)
+         if (.not. on_base(st%ends(side))) cycle
+         bf = base_face(mesh, side)
+         if (any(st%skip_test(1:st%n_skip) == bf%e)) cycle
+         if (.not. (st%section(bf%e) < -eps)) cycle
+         select case (rules)
+         case (events_paper)
+            call lift_paper(mesh, st, bf, g, events, i_top, i_bot)
+         case default
+            call lift_admissible(mesh, st, bf, g, eps, events, i_top, i_bot)
+         end select
       end do
    end subroutine lift_off
 
-   !> The face leaves its base: 'paper', stage 1 and 2 on the bar side only; 'admissible', as
-   !> a break: the bar left at t^n, and its face moves over the step by twice the incoming
-   !> characteristic interval of the continuum state at t^n (2 f_n at the bottom, 2 g_1 at the
-   !> top; the base's impulse of the step is given back). A bar held at its other end with an
-   !> odd cell count, under gravity: its face moves by that plus d*/2 (d* = g dt^2 / (Z C)),
-   !> where the free bar's measure has its vertex, K lower (vertex_offset), which pays the
-   !> credit of its landing (K - credit >= 0 is removed); it leaves only where that step is
-   !> still off the base: the base holds a pull of up to Z d* / (2 dt) when gravity presses
-   !> the bar onto it (doc/method.md, "A landing credit").
-   pure subroutine lift_face(mesh, st, bf, g, eps, events, rules, i_top, i_bot)
+   !> The admissible lift-off, as a break: the bar left at t^n, and its face moves over the
+   !> step by twice the characteristic interval coming in to it at t^n (2 f_n at the bottom,
+   !> 2 g_1 at the top; the base's impulse of the step is given back). A bar held at its other
+   !> end with an odd cell count, under gravity: its face moves by that plus d*/2
+   !> (d* = g dt^2 / (Z C)), where the free bar's measure has its vertex, K lower
+   !> (vertex_offset), which pays the credit of its landing (K - credit >= 0 is removed); it
+   !> leaves only where that step is still off the base: the base holds a pull of up to
+   !> Z d* / (2 dt) when gravity presses the bar onto it (doc/method.md, "A landing credit").
+   pure subroutine lift_admissible(mesh, st, bf, g, eps, events, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
       type(base_face_t), intent(in) :: bf  !! the base end
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       real(wp), intent(in) :: eps          !! round-off guard [Pa]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      integer, intent(in) :: rules         !! event rules (events_*)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      real(wp) :: s_base, d_a, e0, de, e_wave0, vertex, w_in
+      real(wp) :: s_base, d_a, e_wave0, vertex, w_in
       real(wp), allocatable :: f(:), gw(:)
       integer :: a, b
-      type(event_t) :: ev
-      if (any(st%skip_test(1:st%n_skip) == bf%e)) return
-      if (.not. (st%section(bf%e) < -eps)) return
       s_base = st%section(bf%e)
       call base_fragment(mesh, st, bf, -1, a, b)
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, a, b)
-      if (rules == events_admissible .and. .not. mesh%full_mass) then
-         allocate(f(a+1:b), gw(a+1:b))
-         call fragment_characteristics(mesh, st, g, a, b, i_top, i_bot, .true., f, gw)
-         vertex = 0.0_wp
-         if (held_odd(mesh, st, a, b)) vertex = vertex_offset(mesh, g, a, b, bf%c)
-         ! the interval coming in to the face (f_n down at the bottom, g_1 up at the top)
-         w_in = merge(gw(a+1), f(b), bf%side == face_top)
-         ! the base lets go where the continuum reading's base stress pulls too (as breaks),
-         ! beyond the pull it holds for the held bar's vertex
-         if (.not. bf%sgn * (mesh%z(bf%c) / mesh%dt * (2.0_wp * w_in + vertex)) < -eps) then
-            st%section(bf%e) = bf%sgn * (2.0_wp * mesh%z(bf%c) / mesh%dt * w_in)
-            return
-         end if
-         ! the step redone from t^n for the face: it moves by 2 w_in (+ the vertex's offset)
-         d_a = face_du(st, bf) - (2.0_wp * w_in + vertex)
-      else
-         ! stage 1 on the bar side; the full-mass model lets go without corrections (it has
-         ! no section stresses)
-         d_a = merge(0.0_wp, -bf%sgn * s_base * mesh%dt**2 / mesh%dm(bf%c), mesh%full_mass)
+      allocate(f(a+1:b), gw(a+1:b))
+      call fragment_characteristics(mesh, st, g, a, b, i_top, i_bot, .true., f, gw)
+      vertex = 0.0_wp
+      if (held_odd(mesh, st, a, b)) vertex = vertex_offset(mesh, g, a, b, bf%c)
+      ! the interval coming in to the face (f_n down at the bottom, g_1 up at the top)
+      w_in = merge(gw(a+1), f(b), bf%side == face_top)
+      ! the base lets go where the continuum reading's base stress pulls too (as breaks),
+      ! beyond the pull it holds for the held bar's vertex
+      if (.not. bf%sgn * (mesh%z(bf%c) / mesh%dt * (2.0_wp * w_in + vertex)) < -eps) then
+         st%section(bf%e) = bf%sgn * (2.0_wp * mesh%z(bf%c) / mesh%dt * w_in)
+         return
       end if
+      ! the step redone from t^n for the face: it moves by 2 w_in (+ the vertex's offset), the
+      ! end cell follows
+      d_a = face_du(st, bf) - (2.0_wp * w_in + vertex)
+      call leave_base(mesh, st, bf, g, d_a, bf%sgn * mesh%stiff(bf%c) * d_a)
+      call lift_off_event(mesh, st, bf, a, s_base, events)
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
+                              region_wave(mesh, st, g, i_top, i_bot, a, b)
+   end subroutine lift_admissible
+
+   !> The paper's lift-off: stage 1 on the bar side only (the face moves back by the base
+   !> stress's step, the end cell's stress releases it), stage 2 (the fragment shifted by
+   !> half of that) where it is not anchored.
+   pure subroutine lift_paper(mesh, st, bf, g, events, i_top, i_bot)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
+      real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
+      real(wp) :: s_base, d_a, de, e_wave0
+      integer :: a, b
+      s_base = st%section(bf%e)
+      call base_fragment(mesh, st, bf, -1, a, b)
+      e_wave0 = region_wave(mesh, st, g, i_top, i_bot, a, b)
+      d_a = -bf%sgn * s_base * mesh%dt**2 / mesh%dm(bf%c)
+      call leave_base(mesh, st, bf, g, d_a, -s_base)
+      if (.not. anchored(mesh, st, a, b)) then
+         call shift_span(mesh, st, g, a, b, 0.5_wp * d_a, de)
+         st%ledger%e_fracture = st%ledger%e_fracture - de
+      end if
+      call lift_off_event(mesh, st, bf, a, s_base, events)
+      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
+                              region_wave(mesh, st, g, i_top, i_bot, a, b)
+   end subroutine lift_paper
+
+   !> The face leaves its base: its step redone by -d_a (the base's impulse of it given back),
+   !> the end cell's stress changed by ds, the contact and the landing credit ended, the change
+   !> of the scheme's measure booked in e_fracture.
+   pure subroutine leave_base(mesh, st, bf, g, d_a, ds)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: d_a          !! taken from the face half's u and du [m]
+      real(wp), intent(in) :: ds           !! stress change of the end cell [Pa]
+      real(wp) :: e0
       e0 = node_energy(mesh, st, g, bf%e)
-      call move_face(st, bf, d_a, d_a)
+      call move_base_face(st, bf, d_a, d_a)
       st%ledger%i_support = st%ledger%i_support - face_mass(mesh, bf) * d_a / mesh%dt
-      if (rules == events_admissible) then
-         ! the end cell follows the redone step
-         st%s(bf%c) = st%s(bf%c) + bf%sgn * mesh%stiff(bf%c) * d_a
-      else if (.not. mesh%full_mass) then
-         st%s(bf%c) = st%s(bf%c) - s_base           ! stage 1 releases the base stress
-      end if
+      st%s(bf%c) = st%s(bf%c) + ds
       st%ends(bf%side)%contact = .false.
       st%u_credit = 0.0_wp
       st%section(bf%e) = 0.0_wp
       st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, bf%e))
-      if (rules /= events_admissible .and. .not. anchored(mesh, st, a, b)) then
-         ! stage 2
-         call shift_span(mesh, st, g, a, b, 0.5_wp * d_a, de)
-         st%ledger%e_fracture = st%ledger%e_fracture - de
-      end if
-      ev%kind = ev_separation
-      ev%step = st%step
-      ev%node = bf%e
-      ev%t = real(st%step, wp) * mesh%dt
-      ev%x = mesh%x(bf%e)
-      ev%stress = s_base
-      ev%dt_bound = mesh%dt
-      ev%dx_bound = 0.0_wp
-      ev%opening = bf%sgn * (st%ends(bf%side)%u_contact - face_u(st, bf))
-      call base_ids(st, bf, a, ev%frag_above, ev%frag_below)
-      call push_event(events, ev)
-      st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - region_wave(mesh, st, g, i_top, &
-                                                                            i_bot, a, b)
-   end subroutine lift_face
+   end subroutine leave_base
 end module spb_base

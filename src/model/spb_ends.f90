@@ -419,16 +419,14 @@ contains
    !> The end nodes' part of one step, in the order the step makes it: impulse of the end
    !> stresses and of the supports, work of the end stresses (on the scheme's and on the
    !> continuum state), section stresses at the supports. z, dm: the end cells' impedance
-   !> and mass; m_in: the end node's half mass on the bar's side (mb(0), ma(n)).
-   pure subroutine book_ends(ends, f, z, dm, m_in, g, dt, full_mass, ledger, section)
+   !> and mass.
+   pure subroutine book_ends(ends, f, z, dm, g, dt, ledger, section)
       type(end_t), intent(inout) :: ends(2)     !! the two ends
       type(face_step_t), intent(in) :: f(2)     !! what the step did at each end node
       real(wp), intent(in) :: z(2)              !! impedance of each end cell [kg/(m^2 s) A]
       real(wp), intent(in) :: dm(2)             !! mass of each end cell [kg/m^2 A]
-      real(wp), intent(in) :: m_in(2)           !! the end node's half mass inside [kg/m^2 A]
       real(wp), intent(in) :: g                 !! gravity along +x [m/s^2]
       real(wp), intent(in) :: dt                !! time step [s]
-      logical, intent(in) :: full_mass          !! the full-mass model (no section stresses)
       type(ledger_t), intent(inout) :: ledger   !! the run's balances
       real(wp), intent(inout) :: section(2)     !! section stress of each end node [Pa]
       real(wp) :: w, s_ext(2)
@@ -508,20 +506,19 @@ contains
             ! the other ends take no part here
          end select
       end do
-      call support_sections(ends, f, z, dm, m_in, g, dt, full_mass, section)
+      call support_sections(ends, f, z, dm, g, dt, section)
    end subroutine book_ends
 
    !> Section stresses at the supports, (3.1)-(3.2) with s^n and v^n, v^{n+1}: the end of
-   !> book_ends. A support just hit by a moving half starts from that half's velocity.
-   pure subroutine support_sections(ends, f, z, dm, m_in, g, dt, full_mass, section)
+   !> book_ends. A support just hit by a moving half starts from that half's velocity. (The
+   !> full-mass model has no section stresses: spb_full_mass full_mass_supports.)
+   pure subroutine support_sections(ends, f, z, dm, g, dt, section)
       type(end_t), intent(inout) :: ends(2)     !! the two ends
       type(face_step_t), intent(in) :: f(2)     !! what the step did at each end node
       real(wp), intent(in) :: z(2)              !! impedance of each end cell [kg/(m^2 s) A]
       real(wp), intent(in) :: dm(2)             !! mass of each end cell [kg/m^2 A]
-      real(wp), intent(in) :: m_in(2)           !! the end node's half mass inside [kg/m^2 A]
       real(wp), intent(in) :: g                 !! gravity along +x [m/s^2]
       real(wp), intent(in) :: dt                !! time step [s]
-      logical, intent(in) :: full_mass          !! the full-mass model (no section stresses)
       real(wp), intent(inout) :: section(2)     !! section stress of each end node [Pa]
       real(wp) :: du_old(2)
       integer :: side
@@ -541,14 +538,7 @@ contains
          case (end_base)
             ! resting on the rigid base: the base side does not move; v^n is the face half's
             ! velocity before the step (0 while it rests)
-            if (ends(side)%contact .and. full_mass) then
-               ! full-mass model: no section stresses; the base takes the force on the node
-               if (side == face_top) then
-                  section(side) = f(side)%s_cell - m_in(side) * g
-               else
-                  section(side) = f(side)%s_cell + m_in(side) * g
-               end if
-            else if (ends(side)%contact) then
+            if (ends(side)%contact) then
                section(side) = support_form(side, f(side)%s_cell, section(side), &
                                             du_old(side) / dt, 0.0_wp, z(side), dm(side), g)
             else

@@ -1,13 +1,17 @@
-!> Fragments and the moves events make of them (used by spb_contact, spb_fracture and
-!> spb_base): a fragment's span, mass, momentum and node energies; the rigid shifts of the
-!> corrections (5.2) and their booking; the timing rule (5.2)-(5.3); fragment ids; an
-!> event's time, place and correction; the landing credit of a bar held at both ends.
+!> Fragments and the moves events make of them, what both rule sets (spb_rules_paper,
+!> spb_rules_admissible), the rigid base (spb_base) and the full-mass model (spb_full_mass)
+!> share: a fragment's span, mass, momentum and node energies; the rigid shifts of the
+!> corrections (5.2) and their booking; the timing rule (5.2)-(5.3); the start and the join
+!> of a collision (5.4)-(5.6); the opening of a section and the record of a break; fragment
+!> ids; an event's time, place and correction; the landing credit of a bar held at both ends.
 module spb_fragments
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
    use spb_ends, only: face_top, face_bottom, has_free_face, holds
-   use spb_state, only: state_t
-   use spb_events, only: event_t, event_list_t, push_event
+   use spb_state, only: state_t, close_node, open_node
+   use spb_section, only: section_stress_a
+   use spb_events, only: event_t, event_list_t, push_event, ev_collision, ev_fracture, &
+      ev_separation
    use spb_arrays, only: append
    use spb_wave, only: region_wave, held_odd, credit_bound, credit_position
    use spb_problem, only: timing_accelerate, timing_delay
@@ -17,6 +21,7 @@ module spb_fragments
    public :: choose_time, du_before_a, du_before_b, span_momentum, end_force, path_speed, &
       shift_late, shift_part, extend_up, extend_down, finish_event, book_shift_work, skip_next, &
       keep_credit
+   public :: cohesive_open, gap_at_n, start_collision, join_node, open_section, record_break
 
 contains
 
@@ -362,4 +367,197 @@ contains
       st%u_credit = st%u_credit + &
                          credit_position(mesh, g, min(gain, credit_bound(mesh, g, 0, mesh%n)))
    end subroutine keep_credit
+
+   !> Whether split node i is a cohesive crack that still carries traction (its faces'
+   !> contact is the crack's own, spb_cohesive).
+   pure logical function cohesive_open(st, i)
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! split node
+      cohesive_open = .false.
+      if (st%coh%on) cohesive_open = st%coh%active(i)
+   end function cohesive_open
+
+   !> (5.6): stress in the section of a collision between halves moving at v_a (above)
+   !> and v_b (below), with alpha = Z_below / Z_above.
+   pure real(wp) function collision_stress(s_above, s_below, v_a, v_b, z_above, z_below) result(sz)
+      real(wp), intent(in) :: s_above      !! stress of the cell above the node [Pa]
+      real(wp), intent(in) :: s_below      !! stress of the cell below the node [Pa]
+      real(wp), intent(in) :: v_a          !! velocity of the upper half along +x [m/s]
+      real(wp), intent(in) :: v_b          !! velocity of the lower half along +x [m/s]
+      real(wp), intent(in) :: z_above      !! impedance of the cell above [kg/(m^2 s)]
+      real(wp), intent(in) :: z_below      !! impedance of the cell below [kg/(m^2 s)]
+      real(wp) :: alpha
+      alpha = z_below / z_above
+      sz = (2.0_wp * (alpha * s_above + s_below) + (v_a - v_b) * z_below) / (alpha + 1.0_wp)
+   end function collision_stress
+
+   !> The correction (5.2) that closes the gap at t^n, u_A^n - u_B^n, where an overlap at t^n
+   !> within the contact tolerance counts as touching: the faces met then (to round-off), and
+   !> moving a side by that much would only lift it.
+   pure real(wp) function gap_at_n(st, i, tol) result(d_acc)
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! split node
+      real(wp), intent(in) :: tol              !! contact tolerance [m] (0: the paper's rules)
+      d_acc = (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i))
+      if (d_acc > 0.0_wp .and. d_acc <= tol) d_acc = 0.0_wp
+   end function gap_at_n
+
+   !> The start of a collision at split node i, before either rule set's correction: the
+   !> halves' increments of the step before (for the collision stress of a join at t^n), the
+   !> corrections (5.2) that close the gap at t^n (gap_at_n) or remove the overlap at
+   !> t^{n+1}, and the timing rule's choice between them.
+   pure subroutine start_collision(mesh, st, g, timing, i, tol, du0, d_acc, d_del, at_n, corr)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: timing        !! collision timing rule (timing_*)
+      integer, intent(in) :: i             !! split node
+      real(wp), intent(in) :: tol          !! contact tolerance [m] (0: the paper's rules)
+      real(wp), intent(out) :: du0(2)      !! the upper and the lower half's increment of the
+                                           !! step before (du_before_a, du_before_b) [m]
+      real(wp), intent(out) :: d_acc       !! correction for a join at t^n (< 0: a gap) [m]
+      real(wp), intent(out) :: d_del       !! correction for a join at t^{n+1} (> 0) [m]
+      logical, intent(out) :: at_n         !! the rule joins at t^n (else at t^{n+1})
+      real(wp), intent(out) :: corr        !! the correction of the chosen time [m]
+      du0(1) = du_before_a(mesh, st, g, i)
+      du0(2) = du_before_b(mesh, st, g, i)
+      ! (5.2): corrections that close the gap at t^n or remove the overlap at t^{n+1}
+      d_acc = gap_at_n(st, i, tol)                          ! u_A^n - u_B^n (< 0: a gap)
+      d_del = st%ua(i) - st%ub(i)                                 ! u_A^{n+1} - u_B^{n+1} > 0
+      call choose_time(timing, d_acc, d_del, at_n, corr)
+   end subroutine start_collision
+
+   !> The join of a collision at split node i once a rule set has corrected the positions
+   !> (moved by shift, at the time at_n with the correction corr): the collision stress (5.6)
+   !> at the joining time and its error bound (6.2), the join with conserved momentum (5.4),
+   !> the genealogy (the merged fragment is new, its parent the upper one) and the event.
+   pure subroutine join_node(mesh, st, g, i, at_n, corr, shift, du0, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! split node
+      logical, intent(in) :: at_n          !! joined at t^n (else t^{n+1})
+      real(wp), intent(in) :: corr         !! the correction (5.2) used [m]
+      real(wp), intent(in) :: shift        !! the shift applied (event's shift) [m]
+      real(wp), intent(in) :: du0(2)       !! the halves' increments of the step before [m]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      real(wp) :: mass_a, mass_b, du_join, e0, sz, v_a, v_b, du_a_trial, du_b_trial
+      integer :: j, k, parent_up, parent_dn
+      type(event_t) :: ev
+      ! collision stress (5.6) at the joining time, and its error bound (6.2)
+      if (at_n) then
+         v_a = du0(1) / mesh%dt
+         v_b = du0(2) / mesh%dt
+         sz = collision_stress(st%s_old(i), st%s_old(i + 1), v_a, v_b, mesh%z(i), mesh%z(i + 1))
+      else
+         v_a = st%dua(i) / mesh%dt
+         v_b = st%dub(i) / mesh%dt
+         sz = collision_stress(st%s(i), st%s(i + 1), v_a, v_b, mesh%z(i), mesh%z(i + 1))
+      end if
+      ev%kind = ev_collision
+      ev%stress = sz
+      ev%stress_bound = abs(2.0_wp * (mesh%z(i + 1) / mesh%z(i) * st%s(i) + st%s(i + 1)) / &
+                            (mesh%z(i + 1) / mesh%z(i) + 1.0_wp))
+      ! (5.4): join with conserved momentum
+      e0 = node_energy(mesh, st, g, i)
+      mass_a = mesh%ma(i)
+      mass_b = mesh%mb(i)
+      du_a_trial = st%dua(i)
+      du_b_trial = st%dub(i)
+      du_join = (mass_a * du_a_trial + mass_b * du_b_trial) / (mass_a + mass_b)
+      call close_node(st, i)
+      st%dua(i) = du_join
+      st%dub(i) = du_join
+      if (at_n) then
+         ! joined at t^n: the step just taken is the joined node's; its cells see the mean
+         ! increment, its section the collision stress S^{n+1/2} ((3.2) with S^{n-1/2} = 0)
+         st%ua(i) = st%ua(i) - du_a_trial + du_join
+         st%ub(i) = st%ub(i) - du_b_trial + du_join
+         st%s(i) = st%s(i) + mesh%stiff(i) * (du_a_trial - du_join)
+         st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * (du_join - du_b_trial)
+         st%section(i) = section_stress_a(st%s_old(i), 0.0_wp, v_a, du_join / mesh%dt, mesh%z(i), &
+                                      mesh%dm(i), g)
+      else
+         ! joined at t^{n+1}: positions and stresses at t^{n+1} stay, the increment becomes
+         ! the mean, so the step in effect ended from other u^n, s^n: s_old follows (it only
+         ! enters the energy measure), which keeps s^{n+1} - s^n = E/dx (du_{k-1} - du_k) and
+         ! with it the ledger's telescoping exact.
+         st%s_old(i) = st%s_old(i) + mesh%stiff(i) * (du_join - du_a_trial)
+         st%s_old(i + 1) = st%s_old(i + 1) - mesh%stiff(i + 1) * (du_join - du_b_trial)
+         ! the next step computes the collision stress; this S^{n-1/2} makes (3.1) start
+         ! from the upper half's own velocity with zero section stress
+         st%section(i) = mesh%z(i) * (du_join - du_a_trial) / mesh%dt
+         call skip_next(st, i)
+      end if
+      ! the halves now share one position (a shift closed the gap; if both sides were
+      ! anchored a length defect of |corr| stays in the displacements, not the stresses)
+      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, i))
+      st%n_breakable = st%n_breakable + 1
+      ! genealogy: the merged fragment is new, its parent the upper one
+      call fragment_span(mesh, st, i, j, k)
+      parent_up = st%gen%frag_id(j)
+      parent_dn = st%gen%frag_id(i)
+      st%gen%frag_id(i) = 0
+      call new_fragment_id(st, parent_up, j)
+      call finish_event(mesh, st, ev, i, at_n, corr, shift, st%gen%frag_id(j), parent_dn, events)
+   end subroutine join_node
+
+   !> Open the joined section i: its halves' u and du change by dd_a (upper) and dd_b
+   !> (lower), the cells above and below by ds_a and ds_b; the section has no strength from
+   !> now on, and the change of the scheme's measure is booked in e_fracture.
+   pure subroutine open_section(mesh, st, g, i, dd_a, dd_b, ds_a, ds_b)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! node
+      real(wp), intent(in) :: dd_a         !! change of the upper half's u and du [m]
+      real(wp), intent(in) :: dd_b         !! change of the lower half's u and du [m]
+      real(wp), intent(in) :: ds_a         !! stress change of the cell above [Pa]
+      real(wp), intent(in) :: ds_b         !! stress change of the cell below [Pa]
+      real(wp) :: e0
+      e0 = node_energy(mesh, st, g, i)
+      st%ua(i) = st%ua(i) + dd_a
+      st%dua(i) = st%dua(i) + dd_a
+      st%ub(i) = st%ub(i) + dd_b
+      st%dub(i) = st%dub(i) + dd_b
+      st%s(i) = st%s(i) + ds_a
+      st%s(i + 1) = st%s(i + 1) + ds_b
+      call open_node(st, i)
+      st%strength(i) = 0.0_wp
+      st%section(i) = 0.0_wp
+      st%n_breakable = st%n_breakable - 1
+      st%ledger%e_fracture = st%ledger%e_fracture + (e0 - node_energy(mesh, st, g, i))
+   end subroutine open_section
+
+   !> The genealogy and the event of a break at node i, now split, of the fragment whose top
+   !> node was j: both pieces are new fragments born of the one that broke; a section that had
+   !> been open before (a crack, a dry contact) separates rather than fractures.
+   pure subroutine record_break(mesh, st, i, j, stress, events)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      integer, intent(in) :: i             !! node
+      integer, intent(in) :: j             !! top node of the fragment that broke
+      real(wp), intent(in) :: stress          !! the section stress that broke it [Pa]
+      type(event_list_t), intent(inout) :: events   !! events of the step (appended)
+      type(event_t) :: ev
+      integer :: parent
+      parent = st%gen%frag_id(j)
+      call new_fragment_id(st, parent, j)
+      call new_fragment_id(st, parent, i)
+      ev%kind = ev_fracture
+      if (st%cracked(i)) ev%kind = ev_separation
+      st%cracked(i) = .true.
+      ev%step = st%step
+      ev%node = i
+      ev%t = real(st%step, wp) * mesh%dt
+      ev%x = mesh%x(i)
+      ev%stress = stress
+      ev%dt_bound = mesh%dt
+      ev%dx_bound = max(mesh%dx(i), mesh%dx(i + 1))
+      ev%opening = st%ub(i) - st%ua(i)
+      ev%frag_above = st%gen%frag_id(j)
+      ev%frag_below = st%gen%frag_id(i)
+      call push_event(events, ev)
+   end subroutine record_break
+
 end module spb_fragments

@@ -42,7 +42,8 @@ module spb_mesh
       real(wp) :: impactor_cushion = 0.0_wp  !! its cushion's stiffness (0: rigid) [Pa/m A]
       real(wp) :: impactor_gap = 0.0_wp      !! its gap to the face at t = 0 [m]
       real(wp) :: impactor_velocity = 0.0_wp !! its velocity at t = 0 [m/s]
-      logical :: full_mass = .false.         !! the paper's naive comparison model (Fig. 12)
+      logical :: full_mass = .false.         !! the paper's naive comparison model (Fig. 12),
+                                             !! set with its masses by spb_full_mass
       ! per segment
       integer, allocatable :: first(:), last(:)        !! cell range of each segment
       real(wp), allocatable :: length_req(:)           !! length asked for [m]
@@ -244,10 +245,6 @@ contains
          ! virtual cell beyond, so that it moves like an interior node
          if (prob%top == end_transmit) mesh%ma(0) = 0.5_wp * mesh%dm(1)
          if (prob%bottom == end_transmit) mesh%mb(n) = 0.5_wp * mesh%dm(n)
-         ! the naive model has no half masses at free faces: a free end node is a full mass
-         mesh%full_mass = prob%full_mass
-         if (mesh%full_mass .and. prob%top == end_free) mesh%ma(0) = 0.5_wp * mesh%dm(1)
-         if (mesh%full_mass .and. prob%bottom == end_free) mesh%mb(n) = 0.5_wp * mesh%dm(n)
          mesh%inv_m = 1.0_wp / (mesh%ma + mesh%mb)
          allocate(mesh%m_above(0:n))
          mesh%m_above(0) = 0.0_wp

@@ -28,8 +28,8 @@ module spb_state
       integer :: n_frag_ids = 0               !! fragment ids issued
    end type genealogy_t
 
-   !> The full-mass (naive) model: springs break instead of nodes; a cut spring carries
-   !> compression only.
+   !> The full-mass (naive) model's cut springs (spb_full_mass): springs break instead of
+   !> nodes; a cut spring carries compression only.
    type :: full_mass_t
       integer, allocatable :: cut(:)          !! indices of cut cells, first n_cut used
       logical, allocatable :: is_cut(:)       !! (1:n)
@@ -121,11 +121,6 @@ contains
       call init_cohesive(prob, mesh, st)
       allocate(st%fm%cut(16), source=0)
       st%fm%is_cut = .false.
-      if (mesh%full_mass) then
-         ! breaking happens in springs: no node ever splits
-         st%n_breakable = count(st%cell_strength >= 0.0_wp)
-         st%strength = -1.0_wp
-      end if
       allocate(st%gen%frag_id(0:n), st%gen%frag_parent(0:n), st%gen%frag_birth(0:n))
       st%gen%frag_parent = 0
       st%gen%frag_birth = 0
@@ -190,7 +185,6 @@ contains
          st%n_split = st%n_split + 1
          st%split(st%n_split) = i
       end do
-      if (mesh%full_mass) st%n_breakable = count(st%cell_strength >= 0.0_wp)
       if (has_base(st%ends(face_bottom))) call place_on_base(st%ends(face_bottom), face_bottom, &
                                                             st%ua(n), prob%base_gap, st%dua(n))
       if (has_base(st%ends(face_top))) call place_on_base(st%ends(face_top), face_top, st%ub(0), &
@@ -337,7 +331,7 @@ contains
       n = mesh%n
       st%coh%on = .false.
       if (.not. allocated(prob%fracture_energy)) return
-      if (.not. any(prob%fracture_energy > 0.0_wp) .or. mesh%full_mass) return
+      if (.not. any(prob%fracture_energy > 0.0_wp)) return
       st%coh%on = .true.
       allocate(st%coh%gc(0:n), st%coh%r(0:n), st%coh%dc(0:n), st%coh%dmax(0:n), st%coh%q(0:n), &
                st%coh%offset(0:n), source=0.0_wp)

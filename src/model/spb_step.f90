@@ -10,6 +10,7 @@ module spb_step
       hold_face, book_ends, transmits, has_base, is_striker, strike
    use spb_wave, only: transmit_residuals
    use spb_crack, only: start_cracks, cohesive_step
+   use spb_full_mass, only: cut_closing, cut_spring_forces, full_mass_supports
    implicit none
    private
    public :: section_stress_a, section_stress_b, advance, advance_joined, joined_only, &
@@ -140,9 +141,9 @@ contains
       type(state_t), intent(inout) :: st   !! the state
       real(wp), allocatable :: swap(:), du_cut_old(:)
       real(wp) :: old_a(st%n_split), old_b(st%n_split), old_sec(st%n_split)
-      real(wp) :: dt, dt2, d, w_cut, strain_cut
+      real(wp) :: dt, dt2, d
       integer :: split(st%n_split)
-      integer :: i, n, c, k, n_split, n_new
+      integer :: i, n, c, n_split, n_new
       integer :: new_cracks(mesh%n)
       type(face_step_t) :: r(2)
 
@@ -162,13 +163,8 @@ contains
       st%s(n + 1) = r(face_bottom)%s
       r(face_top)%du_old = st%dub(0)
       r(face_bottom)%du_old = st%dua(n)
-      if (st%fm%n_cut > 0) then
-         allocate(du_cut_old(st%fm%n_cut))
-         do c = 1, st%fm%n_cut
-            k = st%fm%cut(c)
-            du_cut_old(c) = st%dua(k) - st%dub(k - 1)
-         end do
-      end if
+      ! the full-mass model's cut springs (spb_full_mass): their closing before the step
+      if (st%fm%n_cut > 0) du_cut_old = cut_closing(st)
 
       ! (2.3)1-2: a joined node takes the forces on both halves over both masses. Every
       ! node is first updated as joined (one branch-free, vectorisable pass), then the few
@@ -233,21 +229,8 @@ contains
       ! (2.3)3: u^{n+1} = u^n + du^{n+1}
       st%ua = st%ua + st%dua
       st%ub = st%ub + st%dub
-      ! full-mass model: a cut spring pushes only in compression, s = max(0, E/dx (u_{k-1} -
-      ! u_k)); its force is not part of the linear invariant, so its work W (the F^n (u^{n+1}
-      ! - u^{n-1})/2 product) and its strain measure go to e_contact, keeping the ledger exact
-      if (st%fm%n_cut > 0) then
-         w_cut = 0.0_wp
-         strain_cut = 0.0_wp
-         do c = 1, st%fm%n_cut
-            k = st%fm%cut(c)
-            w_cut = w_cut + st%s_old(k) * 0.5_wp * ((st%dua(k) - st%dub(k - 1)) + du_cut_old(c))
-            st%s(k) = max(0.0_wp, mesh%stiff(k) * (st%ub(k - 1) - st%ua(k)))
-            strain_cut = strain_cut + 0.5_wp * st%s_old(k) * st%s(k) / mesh%stiff(k)
-         end do
-         st%ledger%e_contact = st%ledger%e_contact - w_cut - (strain_cut - st%fm%strain_cut)
-         st%fm%strain_cut = strain_cut
-      end if
+      ! the full-mass model's cut springs push only in compression (spb_full_mass)
+      if (st%fm%n_cut > 0) call cut_spring_forces(mesh, st, du_cut_old)
       st%step = st%step + 1
    end subroutine advance
 
@@ -449,7 +432,8 @@ contains
       end if
    end subroutine hold_end
 
-   !> The end nodes' part of one step (spb_ends book_ends), with the end cells' numbers.
+   !> The end nodes' part of one step (spb_ends book_ends), with the end cells' numbers; the
+   !> full-mass model's supports take the force on their node instead (spb_full_mass).
    pure subroutine book_end_nodes(mesh, g, st, f)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
@@ -459,8 +443,10 @@ contains
       integer :: n
       n = mesh%n
       section = [st%section(0), st%section(n)]
-      call book_ends(st%ends, f, [mesh%z(1), mesh%z(n)], [mesh%dm(1), mesh%dm(n)], &
-                     [mesh%mb(0), mesh%ma(n)], g, mesh%dt, mesh%full_mass, st%ledger, section)
+      call book_ends(st%ends, f, [mesh%z(1), mesh%z(n)], [mesh%dm(1), mesh%dm(n)], g, mesh%dt, &
+                     st%ledger, section)
+      if (mesh%full_mass) call full_mass_supports(st%ends, f, [mesh%mb(0), mesh%ma(n)], g, &
+                                                  section)
       st%section(0) = section(1)
       st%section(n) = section(2)
    end subroutine book_end_nodes

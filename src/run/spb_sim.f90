@@ -18,6 +18,7 @@ module spb_sim
    use spb_load, only: load_t, build_load
    use spb_cohesive, only: dissipated
    use spb_state, only: state_t, init_state, fragment_count
+   use spb_full_mass, only: init_full_mass, full_mass_measure
    use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
    use spb_ends, only: face_top, face_bottom, has_base, is_velocity_end, is_striker, &
       strike_events, striker_energy
@@ -122,18 +123,18 @@ contains
 
    !> The energy measure of the outputs and the guard: the wave measure (spb_wave) of the
    !> half-mass model; the full-mass comparison model has no continuum reading and keeps the
-   !> scheme's own (e_wave = e_kin + e_strain, w_wave = w_ext, e_lost_w = e_lost).
-   pure subroutine measure(sim, e, wv, w_wave, e_lost_w)
+   !> scheme's own (spb_full_mass full_mass_measure). scale: the guard's scale at t = 0.
+   pure subroutine measure(sim, e, wv, w_wave, e_lost_w, scale)
       type(sim_t), intent(in) :: sim       !! the simulation
       type(energies_t), intent(in) :: e    !! the scheme's energies (spb_diag)
       type(wave_t), intent(out) :: wv      !! the wave measure (full mass: only e_wave)
       real(wp), intent(out) :: w_wave      !! work in that measure [J/m^2]
       real(wp), intent(out) :: e_lost_w    !! energy events removed, in that measure [J/m^2]
-      real(wp) :: q_top, q_bot
+      real(wp), intent(out), optional :: scale   !! the energy guard's scale [J/m^2]
+      real(wp) :: q_top, q_bot, e_scale
       if (sim%mesh%full_mass) then
-         wv%e_wave = e%e_kin + e%e_strain
-         w_wave = e%w_ext
-         e_lost_w = e%e_lost
+         call full_mass_measure(e, wv, w_wave, e_lost_w, e_scale)
+         if (present(scale)) scale = e_scale
          return
       end if
       call face_load_integrals(sim%mesh, sim%load, sim%st%step, sim%st, q_top, q_bot)
@@ -143,6 +144,7 @@ contains
          sum(striker_energy(sim%st%ends, 0.0_wp))
       w_wave = sim%st%ledger%w_wave + wv%w_support
       e_lost_w = sim%st%ledger%e_lost_wave
+      if (present(scale)) scale = wv%e_wave
    end subroutine measure
 
    !> The mass gravity acts on: the bar's and a striking mass's [kg/m^2 A].
@@ -243,7 +245,13 @@ contains
       allocate(sim%gauges(size(sim%record%gauge_x)))
       call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges)
       call watch_gauges(sim%mesh, sim%gauges)
-      call init_state(sim%prob, sim%mesh, sim%st)
+      ! the model, chosen once: the half-mass model, or the full-mass comparison model, which
+      ! sets up its own masses and state (spb_full_mass)
+      if (sim%prob%full_mass) then
+         call init_full_mass(sim%prob, sim%mesh, sim%st)
+      else
+         call init_state(sim%prob, sim%mesh, sim%st)
+      end if
       ! the start holds none of the lattice's zig-zag mode (spb_wave; issue 17)
       call start_without_zigzag(sim%mesh, sim%prob%gravity, sim%st)
       ! the work of constant-velocity ends on the continuum state counts from t = 0: its part
@@ -524,10 +532,10 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(energies_t) :: e0
       type(wave_t) :: w0
-      real(wp) :: w_w, e_l
+      real(wp) :: w_w, e_l, scale
       e0 = energies(sim%mesh, sim%st, sim%prob%gravity)
-      call measure(sim, e0, w0, w_w, e_l)
-      call summary_start(summary, e0, w0, w_w, e_l, sim%mesh%full_mass, &
+      call measure(sim, e0, w0, w_w, e_l, scale)
+      call summary_start(summary, e0, w0, w_w, e_l, scale, &
                          sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       call row(sim, run, summary, err)
       if (run%sched%every(act_gauge) > 0) call gauge_row(sim, run)
