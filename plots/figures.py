@@ -156,9 +156,9 @@ def fig10(exe, indir, out):
     _fig10_zoom(fig.add_subplot(grid[3, :]), runs, a, d, dt, pairs, t_lost, scale, unit)
     shift = _fig10_shift(fig.add_subplot(grid[4, 0]), fig.add_subplot(grid[5, 0]), a, d, dt,
                          pairs, t_lost)
-    seg = runs[2].deck.get("segments", {})
-    period = (4.0 * float(seg["length"]) / np.sqrt(float(seg["young"]) / float(seg["density"]))
-              if seg else float("nan"))                              # 4h/a of the fixed bar
+    fixed = runs[2]
+    period = 4.0 * fixed.deck_real("segments", "length") / np.sqrt(   # 4h/a of the fixed bar
+        fixed.deck_real("segments", "young") / fixed.deck_real("segments", "density"))
     _fig10_intervals(fig.add_subplot(grid[4, 1]), fig.add_subplot(grid[5, 1]), phases, period)
     fig.suptitle("Fig. 10 - Example 3, case 1: base reaction R, dx = h/19", fontsize=9)
     if min(len(a), len(d)) < 2:
