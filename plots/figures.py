@@ -26,7 +26,7 @@ import subprocess
 
 import numpy as np
 
-from _common import nothing_to_draw, plt, save, spbread, stress_scale
+from _common import View, nothing_to_draw, plt, save, spbread, stress_scale
 import reaction
 import xt
 
@@ -173,6 +173,7 @@ def fig10(exe, indir, out):
 
 
 FIG10_COLORS = ("tab:blue", "tab:orange", "tab:green")
+SECONDS = View(time="s")     # the paper's Figs. 10 and 12 draw seconds
 
 
 def _fig10_traces(fig, grid, runs, phases, scale, unit):
@@ -185,7 +186,8 @@ def _fig10_traces(fig, grid, runs, phases, scale, unit):
                                                              phases)):
         ax = fig.add_subplot(grid[k, :], sharex=top, sharey=top)
         top = top or ax
-        reaction.plot([run], [label], ax, scale=scale, unit=unit, colors=[color], legend=False)
+        reaction.plot([run], [label], ax, scale=scale, unit=unit, colors=[color], legend=False,
+                      view=SECONDS)
         ax.plot(starts, np.full(len(starts), -0.05), "^", transform=ax.get_xaxis_transform(),
                 clip_on=False, ms=4, color=color, mec="k", mew=0.4)
         ax.set_title(f"{label}; triangles: starts of the main contact phases", fontsize=8,
@@ -318,7 +320,7 @@ def fig12(exe, indir, out):
                                  out, "fig12_full", {"hdf5": ".true."}))
     fig, ax = plt.subplots(figsize=(9, 4.2))
     reaction.plot([half, full], ["half-mass model (exact free ends)",
-                                 "full-mass model (paper: dash-dotted)"], ax)
+                                 "full-mass model (paper: dash-dotted)"], ax, view=SECONDS)
     ax.set_title("Fig. 12 - Example 3, case 2: base reaction, h/19, accelerate / fragment",
                  fontsize=9)
     save(fig, os.path.join(out, "fig12.png"))
