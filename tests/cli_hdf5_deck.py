@@ -14,7 +14,7 @@ import sys
 import h5py
 import numpy as np
 
-from clitools import Checks, run
+from clitools import Checks, run_decks
 
 # every kind of variable: reals, lists of reals, integers, logicals, texts, a keyword list,
 # reals left unset (t_cut, the Weibull modulus and scale), an optional group (&gauges)
@@ -52,13 +52,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     check = Checks()
-    for name, text in (("full", FULL), ("small", SMALL)):
-        with open(os.path.join(work, name + ".nml"), "w") as f:
-            f.write(text)
-        r = run(exe, [name + ".nml", "--quiet"], work)
-        check(r.returncode == 0, f"{name}: exit {r.returncode} {r.stderr.strip()}")
-        if r.returncode != 0:
-            return check.finish()
+    if not run_decks(check, exe, work, (("full", FULL), ("small", SMALL))):
+        return check.finish()
 
     def typed(attrs, name, kind, value, what):
         """attrs[name] has the dtype kind ('f', 'i', 'b', 'S') and equals value (exactly:

@@ -22,7 +22,7 @@ import shutil
 import subprocess
 import sys
 
-from clitools import Checks, run
+from clitools import Checks, run_decks
 
 WINDOW = ["--t-min", "0.2ms", "--t-max", "9e-4"]       # [2e-4 s, 9e-4 s]
 T_MIN, T_MAX = 2.0e-4, 9.0e-4
@@ -173,13 +173,9 @@ def main():
     deck = deck.replace("&run", "&run\n  hdf5 = .true.\n  field_every = 4", 1)
     deck = deck.replace("t_end         = 2.0e-3", "t_end         = 1.2e-3")
     deck = deck.replace(", 1.4e-3, 1.6e-3, 1.8e-3, 2.0e-3", "")
-    for name, text_ in (("ex2", deck + "&gauges\n  x = 0.3, 1.0\n/\n"), ("struck", STRUCK)):
-        with open(os.path.join(work, name + ".nml"), "w") as f:
-            f.write(text_)
-        r = run(exe, [name + ".nml", "-q"], work)
-        check(r.returncode == 0, f"spallbar {name}: exit {r.returncode} {r.stderr.strip()}")
-        if r.returncode != 0:
-            return check.finish()
+    if not run_decks(check, exe, work, (("ex2", deck + "&gauges\n  x = 0.3, 1.0\n/\n"),
+                                        ("struck", STRUCK))):
+        return check.finish()
     ex2, struck = os.path.join(work, "ex2"), os.path.join(work, "struck")
     # a text run without its .evt, a damaged PREFIX.h5
     for ext in (".his", ".prf", ".frg"):
