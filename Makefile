@@ -95,7 +95,7 @@ blows: build
 	mkdir -p $(BUILD_RELEASE)/blows
 	cd input && for d in drop_hammer striker_spall; do \
 	  ../$(BUILD_RELEASE)/bin/spallbar $$d.nml --quiet --output ../$(BUILD_RELEASE)/blows/$$d || exit 1; done
-	$(PYTHON) plots/blows.py $(BUILD_RELEASE)/blows/drop_hammer -o doc/figures/drop_hammer_blows.png
+	$(PYTHON) plots/blows.py $(BUILD_RELEASE)/blows/drop_hammer --units s -o doc/figures/drop_hammer_blows.png
 	$(PYTHON) plots/blows.py $(BUILD_RELEASE)/blows/striker_spall -o doc/figures/striker_blows.png
 
 fragmentation: build

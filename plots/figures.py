@@ -26,7 +26,7 @@ import subprocess
 
 import numpy as np
 
-from _common import nothing_to_draw, plt, save, spbread, stress_scale
+from _common import View, nothing_to_draw, plt, save, spbread, stress_scale
 import reaction
 import xt
 
@@ -156,9 +156,9 @@ def fig10(exe, indir, out):
     _fig10_zoom(fig.add_subplot(grid[3, :]), runs, a, d, dt, pairs, t_lost, scale, unit)
     shift = _fig10_shift(fig.add_subplot(grid[4, 0]), fig.add_subplot(grid[5, 0]), a, d, dt,
                          pairs, t_lost)
-    seg = runs[2].deck.get("segments", {})
-    period = (4.0 * float(seg["length"]) / np.sqrt(float(seg["young"]) / float(seg["density"]))
-              if seg else float("nan"))                              # 4h/a of the fixed bar
+    fixed = runs[2]
+    period = 4.0 * fixed.deck_real("segments", "length") / np.sqrt(   # 4h/a of the fixed bar
+        fixed.deck_real("segments", "young") / fixed.deck_real("segments", "density"))
     _fig10_intervals(fig.add_subplot(grid[4, 1]), fig.add_subplot(grid[5, 1]), phases, period)
     fig.suptitle("Fig. 10 - Example 3, case 1: base reaction R, dx = h/19", fontsize=9)
     if min(len(a), len(d)) < 2:
@@ -173,6 +173,7 @@ def fig10(exe, indir, out):
 
 
 FIG10_COLORS = ("tab:blue", "tab:orange", "tab:green")
+SECONDS = View(time="s")     # the paper's Figs. 10 and 12 draw seconds
 
 
 def _fig10_traces(fig, grid, runs, phases, scale, unit):
@@ -185,7 +186,8 @@ def _fig10_traces(fig, grid, runs, phases, scale, unit):
                                                              phases)):
         ax = fig.add_subplot(grid[k, :], sharex=top, sharey=top)
         top = top or ax
-        reaction.plot([run], [label], ax, scale=scale, unit=unit, colors=[color], legend=False)
+        reaction.plot([run], [label], ax, scale=scale, unit=unit, colors=[color], legend=False,
+                      view=SECONDS)
         ax.plot(starts, np.full(len(starts), -0.05), "^", transform=ax.get_xaxis_transform(),
                 clip_on=False, ms=4, color=color, mec="k", mew=0.4)
         ax.set_title(f"{label}; triangles: starts of the main contact phases", fontsize=8,
@@ -318,7 +320,7 @@ def fig12(exe, indir, out):
                                  out, "fig12_full", {"hdf5": ".true."}))
     fig, ax = plt.subplots(figsize=(9, 4.2))
     reaction.plot([half, full], ["half-mass model (exact free ends)",
-                                 "full-mass model (paper: dash-dotted)"], ax)
+                                 "full-mass model (paper: dash-dotted)"], ax, view=SECONDS)
     ax.set_title("Fig. 12 - Example 3, case 2: base reaction, h/19, accelerate / fragment",
                  fontsize=9)
     save(fig, os.path.join(out, "fig12.png"))

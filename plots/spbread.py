@@ -9,6 +9,12 @@
     run.gauges     dict(t, x, stress, velocity, u): t (rows), x (gauges), the others arrays
                    (rows, gauges), or None without &gauges (PREFIX.gau, /gauges)
     run.source     'hdf5' or 'text'
+    run.deck       {group: {name: value}} from /deck of PREFIX.h5 (empty from the text files):
+                   reals float, integers int, logicals bool, texts str, lists numpy arrays
+                   (keywords as str); files written before issue 35 hold every value as
+                   its echoed text (doc/migration.md)
+    run.deck_real(group, name, k=0)   element k of a deck real as float from either
+                   layout (NaN when not set or absent)
 
 The HDF5 layout is in doc/outputs.md; h5py shows the Fortran x-t arrays (rows, snapshots)
 as (snapshots, rows), which is the orientation returned here for both sources.
@@ -21,6 +27,19 @@ import numpy as np
 
 def _text(value):
     return value.decode(errors="replace") if isinstance(value, bytes) else str(value)
+
+
+def deck_value(value):
+    """A /deck attribute as a Python value: a string as str, a number or a bool as its
+    Python scalar, a list as a numpy array (strings decoded, dtype object)."""
+    if isinstance(value, (bytes, np.bytes_, str)):
+        return _text(value)
+    a = np.asarray(value)
+    if a.ndim == 0:
+        return a.item()
+    if a.dtype.kind in "SUO":
+        return np.array([_text(x) for x in a], dtype=object)
+    return a
 
 
 def event_kinds(kind_codes):
@@ -45,6 +64,21 @@ class Run:
         else:
             self._read_text()
 
+    def deck_real(self, group, name, k=0):
+        """Element k (0 for a scalar) of the deck real group:name as a float, from typed
+        attributes or the echoed text of older files; NaN when it is not set or absent."""
+        value = self.deck.get(group, {}).get(name)
+        if value is None:
+            return float("nan")
+        if isinstance(value, str):                    # before issue 35: '0.5, 0.5'
+            words = [w.strip() for w in value.split(",")]
+            try:
+                return float(words[k])
+            except (IndexError, ValueError):          # '(not set)'
+                return float("nan")
+        a = np.atleast_1d(value)
+        return float(a[k]) if k < len(a) else float("nan")
+
     # ------------------------------------------------------------------ HDF5
     def _read_h5(self):
         import h5py
@@ -52,8 +86,8 @@ class Run:
         with h5py.File(self.prefix + ".h5", "r") as f:
             self.title = _text(f.attrs.get("title", ""))
             for group in f["deck"]:
-                self.deck[group] = {k: _text(v) for k, v in f["deck"][group].attrs.items()
-                                    if ":" not in k}
+                self.deck[group] = {k: deck_value(v) for k, v in
+                                    f["deck"][group].attrs.items() if ":" not in k}
             self.history = {k: f["history"][k][:] for k in f["history"]}
             self.events = {k: f["events"][k][:] for k in f["events"]}
             if "kind" in self.events:

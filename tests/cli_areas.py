@@ -14,7 +14,7 @@ import os
 import shutil
 import sys
 
-from clitools import Checks, history, run
+from clitools import Checks, history, run, run_deck
 
 LEDGER_BOUND = 2e-13   # of the scale: round-off of 1600 steps of 800 cells (7e-14 measured)
 CELLS = 400            # per segment
@@ -61,11 +61,7 @@ def main():
     check = Checks()
 
     for name, text in AT_LIMIT:
-        with open(os.path.join(work, name + ".nml"), "w") as f:
-            f.write(text)
-        r = run(exe, [name + ".nml", "--quiet"], work)
-        check(r.returncode == 0, f"{name}: exit {r.returncode}: {r.stderr!r}")
-        if r.returncode != 0:
+        if not run_deck(check, exe, work, name, text):
             continue
         drift = ledger_drift(os.path.join(work, name + ".his"))
         check(drift <= LEDGER_BOUND, f"{name}: ledger_w drifts {drift:.3g} of the scale, "

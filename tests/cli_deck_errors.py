@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Command-line contract for bad input (doc/deck.md; README.md, "A short tour"): exit status 2,
+"""Command-line contract for bad input (doc/deck.md; README.md, "The command line"): exit status 2,
 exactly one line on stderr naming the group and variable, and no output file written or
 touched.
 

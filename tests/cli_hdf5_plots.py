@@ -113,7 +113,7 @@ def main():
         if k < nt:
             check(close(f["fields"]["xt"]["u"][k, :], np.array(last[1])[:, 1]),
                   "x-t row = the profile at the same time")
-        check(f["deck"]["run"].attrs["field_every"].decode() == "4", "deck as attributes")
+        check(f["deck"]["run"].attrs["field_every"] == 4, "deck as attributes (typed)")
         check(f["deck"]["segments"].attrs["n:from"].decode() == "input", "deck: input/default")
         check(f["history"]["t"].attrs["units"].decode() == "s", "units as attributes")
     # every plot script, from the HDF5 file and from the text files alone

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Run-time contract (README.md, "A short tour"; doc/outputs.md, "Before anything is written;
+"""Run-time contract (README.md, "The command line"; doc/outputs.md, "Before anything is written;
 when writing fails"): a run that goes wrong stops with exit status 3 and one message, and
 what was written until then stays readable.
 

@@ -4,6 +4,8 @@ loads gets a warning on stderr naming the variable, its value and the likely uni
 run still runs (exit 0); --quiet keeps the warnings; &run warnings = .false. silences them;
 the decks of input/ get none, nor the estimate's (issue 32: more than an hour, more than
 10 GB), whose warnings name &mesh cells and &run t_end, or the variable of each large output.
+The transit count (t_end over 1000 transits: ms meant?) warns a spall deck, not a drop, a
+bounce, a striking mass or a dry interface, where long runs are the point (issue 35).
 
 usage: cli_warnings.py SPALLBAR INPUT_DIR WORKDIR
 """
@@ -31,6 +33,30 @@ CASES = [  # (what changes, the words every warning line must hold)
     (dict(p0="20"), ["&load: p0 = 20 Pa", "20 MPa = 2e7 Pa meant?"]),
     (dict(t_k="50"), ["&load: t_k = 50 s", "us meant?", "50 us = 5e-5 s"]),
     (dict(strength="20"), ["&segments: strength(1) = 20 Pa", "20 MPa = 2e7 Pa meant?"]),
+]
+
+# issue 35: a 1 m concrete bar for 1 s (3859 transits). Loaded at its top it is a spall test
+# whose t_end is ms meant: warned. Dropped onto a base, struck by a mass, parting at a dry
+# interface, or under gravity alone, long runs are the point: no transit warning.
+DROP = """&run t_end = 1.0 {run} /
+&mesh cells = 5 /
+&segments n = {n}, length = {length}, young = {n}*35e9, density = {n}*2350 {seg} /
+{rest}
+"""
+SPALL_1S = DROP.format(run="", n=1, length="1.0", seg=", strength = 4e6",
+                       rest="&load kind = 'power', p0 = 1e7, t_k = 1e-4 /")
+LONG_RUNS = [  # (what, deck) that must run without the transit warning
+    ("a drop onto the base", DROP.format(run=", gravity = 9.81", n=1, length="1.0", seg="",
+                                         rest="&ends bottom = 'base', base_gap = 0.05 /")),
+    ("gravity alone (free fall)", DROP.format(run=", gravity = 9.81", n=1, length="1.0",
+                                              seg="", rest="")),
+    ("a base without gravity", DROP.format(run="", n=1, length="1.0", seg=", velocity = 1.0",
+                                           rest="&ends bottom = 'base', base_gap = 0.01 /")),
+    ("a striking mass", DROP.format(run="", n=1, length="1.0", seg="",
+                                    rest="&impactor mass = 500, velocity = 2.0 /")),
+    ("a dry interface", DROP.format(run="", n=2, length="0.5, 0.5",
+                                    seg=", velocity = 1.0, 0.0, interface = 'dry', gap = 0.001",
+                                    rest="")),
 ]
 
 
@@ -116,6 +142,21 @@ def main():
         check(r.returncode == 0 and all(w in r.stderr for w in words) and
               len(r.stderr.splitlines()) == 1, f"{words[0]}: exit {r.returncode} {r.stderr!r}")
         print(f"ok   {r.stderr.strip()}")
+    # the issue's bar: the spall deck warns, the decks of long motions do not
+    with open(os.path.join(work, "w.nml"), "w") as f:
+        f.write(SPALL_1S)
+    r = run(exe, ["w.nml", "--quiet"], work)
+    words = ["&run: t_end = 1 s is 3859 transits of the bar", "ms meant?"]
+    check(r.returncode == 0 and all(w in r.stderr for w in words) and
+          len(r.stderr.splitlines()) == 1, f"spall deck over 1 s: exit {r.returncode} {r.stderr!r}")
+    print(f"ok   a spall deck over 1 s: {r.stderr.strip()}")
+    for what, text in LONG_RUNS:
+        with open(os.path.join(work, "w.nml"), "w") as f:
+            f.write(text)
+        r = run(exe, ["w.nml", "--quiet"], work)
+        check(r.returncode == 0 and r.stderr == "", f"{what} over 1 s (3859 transits): exit "
+              f"{r.returncode} {r.stderr!r}")
+        print(f"ok   {what} over 1 s (3859 transits): exit {r.returncode}, no warning")
     with open(os.path.join(work, "w.nml"), "w") as f:
         f.write(BASE.format(**GOOD))
     r = run(exe, ["w.nml", "--quiet"], work)

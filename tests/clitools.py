@@ -1,4 +1,5 @@
 """Small helpers shared by the command-line tests (cli_*.py)."""
+import os
 import subprocess
 
 
@@ -24,6 +25,22 @@ def run(exe, args, cwd, timeout=600):
     """Run spallbar; text output, nothing on stdin."""
     return subprocess.run([exe] + args, cwd=cwd, capture_output=True, text=True,
                           errors="replace", timeout=timeout, stdin=subprocess.DEVNULL)
+
+
+def run_deck(check, exe, work, name, text):
+    """Write text as WORK/name.nml and run it with --quiet in WORK; whether it exited 0
+    (checked)."""
+    with open(os.path.join(work, name + ".nml"), "w") as f:
+        f.write(text)
+    r = run(exe, [name + ".nml", "--quiet"], work)
+    check(r.returncode == 0, f"spallbar {name}: exit {r.returncode}: {r.stderr.strip()!r}")
+    return r.returncode == 0
+
+
+def run_decks(check, exe, work, decks):
+    """run_deck for each (name, text) of decks, up to the first that fails; whether all
+    exited 0."""
+    return all(run_deck(check, exe, work, name, text) for name, text in decks)
 
 
 def history(path):

@@ -14,7 +14,7 @@
 !> relate it to other variables go to spb_deck's validation.
 module spb_deck_params
    use, intrinsic :: iso_fortran_env, only: int64
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
    use, intrinsic :: ieee_exceptions, only: ieee_underflow, ieee_get_flag, ieee_set_flag
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
@@ -270,6 +270,7 @@ contains
       case default
          call add_item(p, group, name, echo_text(r, i, l, t, ra, ta, count, empty), unit, &
                        doc // choice_list(choices))
+         call type_item(p%items(size(p%items)), r, i, l, ra, ta, count)
       end select
    end subroutine param
 
@@ -578,6 +579,57 @@ contains
       if (p%mode == pass_doc) item%doc = doc
       p%items = [p%items, item]
    end subroutine add_item
+
+   !> The value of an echoed variable with its type (the one of r, i, l, ra, ta given;
+   !> none: a text, whose value is the echo's): a real not set has no value (reals empty),
+   !> an element not set of an array is NaN; an array variable is a list of its first
+   !> count elements.
+   subroutine type_item(item, r, i, l, ra, ta, count)
+      type(echo_item_t), intent(inout) :: item   !! the item just added
+      real(wp), intent(in), optional :: r      !! a real
+      integer, intent(in), optional :: i       !! an integer
+      logical, intent(in), optional :: l       !! a logical
+      real(wp), intent(in), optional :: ra(:)           !! reals
+      character(len=*), intent(in), optional :: ta(:)   !! keywords
+      integer, intent(in), optional :: count   !! elements of ra or ta
+      integer :: k, n
+      n = 0
+      if (present(count)) n = max(0, count)
+      item%list = present(ra) .or. present(ta)
+      if (present(r)) then
+         item%type = 'r'
+         allocate(item%reals(merge(1, 0, is_set(r))))
+         if (is_set(r)) item%reals(1) = r
+      else if (present(ra)) then
+         item%type = 'r'
+         allocate(item%reals(n))
+         do k = 1, size(item%reals)
+            item%reals(k) = not_set_nan(ra(k))
+         end do
+      else if (present(i)) then
+         item%type = 'i'
+         item%ints = [i]
+      else if (present(l)) then
+         item%type = 'l'
+         item%flags = [l]
+      else if (present(ta)) then
+         allocate(item%words(n))
+         do k = 1, size(item%words)
+            item%words(k) = ta(k)
+         end do
+      end if
+   end subroutine type_item
+
+   !> x, or NaN for a real the deck did not set.
+   function not_set_nan(x) result(y)
+      real(wp), intent(in) :: x   !! a deck real
+      real(wp) :: y
+      if (is_set(x)) then
+         y = x
+      else
+         y = ieee_value(y, ieee_quiet_nan)
+      end if
+   end function not_set_nan
 
    !> ' (''a'' | ''b'')' for a keyword's documentation ('' without choices).
    function choice_list(choices) result(s)

@@ -49,6 +49,16 @@ module spb_deck_types
       character(len=:), allocatable :: group, name, value, unit
       logical :: given = .false.                        !! set in the deck (else default)
       character(len=:), allocatable :: doc              !! what it means (documentation only)
+      ! the value with its type, for the typed attributes of /deck (doc/outputs.md)
+      character(len=1) :: type = 't'                    !! 'r' real, 'i' integer, 'l' logical,
+                                                        !! 't' text (its value unquoted)
+      logical :: list = .false.                         !! an array variable: a list of values
+      real(wp), allocatable :: reals(:)                 !! 'r': the values [its unit]; a
+                                                        !! scalar not set: none, an element
+                                                        !! not set: NaN
+      integer, allocatable :: ints(:)                   !! 'i': the values
+      logical, allocatable :: flags(:)                  !! 'l': the values
+      character(len=name_len), allocatable :: words(:)  !! 't' list: the keywords
    end type echo_item_t
 
    type :: run_cfg

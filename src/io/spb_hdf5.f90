@@ -12,7 +12,7 @@ module spb_hdf5
       h5sselect_hyperslab_f, h5pcreate_f, h5pset_chunk_f, h5pset_deflate_f, h5pclose_f, &
       h5dcreate_f, h5dopen_f, h5dclose_f, h5dwrite_f, h5dread_f, h5dget_space_f, &
       h5dset_extent_f, h5sget_simple_extent_dims_f, h5acreate_f, h5awrite_f, h5aclose_f, &
-      h5tcopy_f, h5tset_size_f, h5tclose_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
+      h5tcopy_f, h5tset_size_f, h5tclose_f, h5tenum_create_f, h5tenum_insert_f, h5lexists_f, h5oopen_f, h5oclose_f, h5eset_auto_f, &
       h5aopen_f, h5aread_f, h5aget_type_f, h5tget_size_f, h5aexists_f, h5ocopy_f, &
       h5tget_class_f, h5tis_variable_str_f, H5T_STRING_F, h5aget_space_f, &
       h5sget_simple_extent_npoints_f, &
@@ -81,8 +81,18 @@ module spb_hdf5
       character(len=:), allocatable :: error    !! first failure, if any
    end type h5file_t
 
+   !> An attribute being written: the object it belongs to, its dataspace and itself.
+   type :: attr_t
+      integer(hid_t) :: obj = -1                !! the group or dataset
+      integer(hid_t) :: space = -1              !! its dataspace
+      integer(hid_t) :: attr = -1               !! the attribute (< 0: not created)
+      integer(hsize_t) :: dims(1) = 1           !! its elements (1 for a scalar)
+      character(len=:), allocatable :: what     !! 'path:name', for messages
+   end type attr_t
+
    interface h5_attr
-      module procedure attr_string, attr_real, attr_int, attr_reals
+      module procedure attr_string, attr_real, attr_int, attr_reals, attr_strings, attr_ints, &
+         attr_logical, attr_logicals
    end interface h5_attr
 
    interface h5_write
@@ -169,36 +179,92 @@ contains
       call h5oclose_f(obj, hdferr)
    end subroutine close_obj
 
+   !> Open the object at path and create its attribute name of type atype, a scalar
+   !> (n < 0) or a 1-D array of n elements (n = 0: an empty one); a%attr < 0 when that
+   !> failed (recorded by check) or the file is not open.
+   subroutine attr_begin(h5, path, name, atype, n, a)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer(hid_t), intent(in) :: atype    !! its datatype
+      integer, intent(in) :: n               !! elements (< 0: a scalar)
+      type(attr_t), intent(out) :: a         !! the attribute
+      integer :: hdferr
+      a%what = path // ':' // name
+      if (h5%file < 0) return
+      call h5oopen_f(h5%file, path, a%obj, hdferr)
+      call check(h5, hdferr, 'h5oopen_f ' // path)
+      if (hdferr < 0) a%obj = -1
+      if (allocated(h5%error)) return
+      if (n < 0) then
+         call h5screate_f(H5S_SCALAR_F, a%space, hdferr)
+      else
+         a%dims = int(n, hsize_t)
+         call h5screate_simple_f(1, a%dims, a%space, hdferr)
+      end if
+      call check(h5, hdferr, 'h5screate_f ' // a%what)
+      if (hdferr < 0) return
+      call h5acreate_f(a%obj, name, atype, a%space, a%attr, hdferr)
+      call check(h5, hdferr, 'h5acreate_f ' // a%what)
+      if (hdferr < 0) a%attr = -1
+   end subroutine attr_begin
+
+   !> Check the write of an attribute begun by attr_begin, then close what it opened.
+   subroutine attr_end(h5, a, hdferr)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      type(attr_t), intent(inout) :: a      !! the attribute
+      integer, intent(in) :: hdferr         !! status of its h5awrite_f
+      integer :: ignored
+      if (a%attr >= 0) then
+         call check(h5, hdferr, 'h5awrite_f ' // a%what)
+         call h5aclose_f(a%attr, ignored)
+      end if
+      if (a%space >= 0) call h5sclose_f(a%space, ignored)
+      if (a%obj >= 0) call close_obj(a%obj)
+   end subroutine attr_end
+
    !> A string attribute of the object at path.
    subroutine attr_string(h5, path, name, value)
       type(h5file_t), intent(inout) :: h5   !! the HDF5 file
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: name   !! attribute name
       character(len=*), intent(in) :: value   !! its value
-      integer(hid_t) :: obj, space, atype, attr
-      integer(hsize_t) :: dims(1)
-      integer :: hdferr
-      logical :: is_dset
       character(len=max(1, len(value))) :: text   ! an empty value is stored as one blank
-      if (h5%file < 0) return
       text = value
-      call open_obj(h5, path, obj, is_dset)
-      if (allocated(h5%error)) return
-      dims = 1
-      call h5screate_f(H5S_SCALAR_F, space, hdferr)
-      call h5tcopy_f(H5T_NATIVE_CHARACTER, atype, hdferr)
-      call h5tset_size_f(atype, int(len(text), hsize_t), hdferr)
-      call h5acreate_f(obj, name, atype, space, attr, hdferr)
-      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
-      if (hdferr >= 0) then
-         call h5awrite_f(attr, atype, text, dims, hdferr)
-         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
-         call h5aclose_f(attr, hdferr)
-      end if
-      call h5tclose_f(atype, hdferr)
-      call h5sclose_f(space, hdferr)
-      call close_obj(obj)
+      call attr_texts(h5, path, name, [text], -1)
    end subroutine attr_string
+
+   !> A 1-D string attribute of the object at path (every element as long as the longest,
+   !> at least one character).
+   subroutine attr_strings(h5, path, name, values)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      character(len=*), intent(in) :: values(:)   !! its values
+      character(len=max(1, maxval([0, len_trim(values)]))) :: texts(size(values))
+      texts = values
+      call attr_texts(h5, path, name, texts, size(values))
+   end subroutine attr_strings
+
+   !> Strings of one length as a scalar (n < 0: texts(1)) or 1-D attribute.
+   subroutine attr_texts(h5, path, name, texts, n)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      character(len=*), intent(in) :: texts(:)   !! the values, of length >= 1
+      integer, intent(in) :: n               !! elements (< 0: a scalar)
+      type(attr_t) :: a
+      integer(hid_t) :: atype
+      integer :: hdferr, ignored
+      if (h5%file < 0) return
+      call h5tcopy_f(H5T_NATIVE_CHARACTER, atype, hdferr)
+      call h5tset_size_f(atype, int(len(texts), size_t), hdferr)
+      call attr_begin(h5, path, name, atype, n, a)
+      hdferr = 0
+      if (a%attr >= 0) call h5awrite_f(a%attr, atype, texts, a%dims, hdferr)
+      call attr_end(h5, a, hdferr)
+      call h5tclose_f(atype, ignored)
+   end subroutine attr_texts
 
    !> A real attribute of the object at path.
    subroutine attr_real(h5, path, name, value)
@@ -206,24 +272,12 @@ contains
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: name   !! attribute name
       real(wp), intent(in) :: value        !! its value
-      integer(hid_t) :: obj, space, attr
-      integer(hsize_t) :: dims(1)
+      type(attr_t) :: a
       integer :: hdferr
-      logical :: is_dset
-      if (h5%file < 0) return
-      call open_obj(h5, path, obj, is_dset)
-      if (allocated(h5%error)) return
-      dims = 1
-      call h5screate_f(H5S_SCALAR_F, space, hdferr)
-      call h5acreate_f(obj, name, H5T_NATIVE_DOUBLE, space, attr, hdferr)
-      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
-      if (hdferr >= 0) then
-         call h5awrite_f(attr, H5T_NATIVE_DOUBLE, value, dims, hdferr)
-         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
-         call h5aclose_f(attr, hdferr)
-      end if
-      call h5sclose_f(space, hdferr)
-      call close_obj(obj)
+      call attr_begin(h5, path, name, H5T_NATIVE_DOUBLE, -1, a)
+      hdferr = 0
+      if (a%attr >= 0) call h5awrite_f(a%attr, H5T_NATIVE_DOUBLE, value, a%dims, hdferr)
+      call attr_end(h5, a, hdferr)
    end subroutine attr_real
 
    !> A 1-D real attribute of the object at path.
@@ -232,24 +286,12 @@ contains
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: name   !! attribute name
       real(wp), intent(in) :: values(:)    !! its values
-      integer(hid_t) :: obj, space, attr
-      integer(hsize_t) :: dims(1)
+      type(attr_t) :: a
       integer :: hdferr
-      logical :: is_dset
-      if (h5%file < 0) return
-      call open_obj(h5, path, obj, is_dset)
-      if (allocated(h5%error)) return
-      dims = size(values)
-      call h5screate_simple_f(1, dims, space, hdferr)
-      call h5acreate_f(obj, name, H5T_NATIVE_DOUBLE, space, attr, hdferr)
-      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
-      if (hdferr >= 0) then
-         call h5awrite_f(attr, H5T_NATIVE_DOUBLE, values, dims, hdferr)
-         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
-         call h5aclose_f(attr, hdferr)
-      end if
-      call h5sclose_f(space, hdferr)
-      call close_obj(obj)
+      call attr_begin(h5, path, name, H5T_NATIVE_DOUBLE, size(values), a)
+      hdferr = 0
+      if (a%attr >= 0) call h5awrite_f(a%attr, H5T_NATIVE_DOUBLE, values, a%dims, hdferr)
+      call attr_end(h5, a, hdferr)
    end subroutine attr_reals
 
    !> An integer attribute of the object at path.
@@ -258,25 +300,74 @@ contains
       character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
       character(len=*), intent(in) :: name   !! attribute name
       integer, intent(in) :: value         !! its value
-      integer(hid_t) :: obj, space, attr
-      integer(hsize_t) :: dims(1)
-      integer :: hdferr
-      logical :: is_dset
-      if (h5%file < 0) return
-      call open_obj(h5, path, obj, is_dset)
-      if (allocated(h5%error)) return
-      dims = 1
-      call h5screate_f(H5S_SCALAR_F, space, hdferr)
-      call h5acreate_f(obj, name, H5T_NATIVE_INTEGER, space, attr, hdferr)
-      call check(h5, hdferr, 'h5acreate_f ' // path // ':' // name)
-      if (hdferr >= 0) then
-         call h5awrite_f(attr, H5T_NATIVE_INTEGER, value, dims, hdferr)
-         call check(h5, hdferr, 'h5awrite_f ' // path // ':' // name)
-         call h5aclose_f(attr, hdferr)
-      end if
-      call h5sclose_f(space, hdferr)
-      call close_obj(obj)
+      call attr_int_as(h5, path, name, [value], -1, H5T_NATIVE_INTEGER)
    end subroutine attr_int
+
+   !> A 1-D integer attribute of the object at path.
+   subroutine attr_ints(h5, path, name, values)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer, intent(in) :: values(:)     !! its values
+      call attr_int_as(h5, path, name, values, size(values), H5T_NATIVE_INTEGER)
+   end subroutine attr_ints
+
+   !> A logical attribute of the object at path: the enumeration FALSE = 0, TRUE = 1 over a
+   !> native integer, which h5py reads as numpy.bool_ (h5dump shows FALSE or TRUE).
+   subroutine attr_logical(h5, path, name, value)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      logical, intent(in) :: value         !! its value
+      call attr_bools(h5, path, name, [value], -1)
+   end subroutine attr_logical
+
+   !> A 1-D logical attribute of the object at path (the enumeration of attr_logical).
+   subroutine attr_logicals(h5, path, name, values)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      logical, intent(in) :: values(:)     !! its values
+      call attr_bools(h5, path, name, values, size(values))
+   end subroutine attr_logicals
+
+   !> Logicals as the FALSE/TRUE enumeration, a scalar (n < 0: values(1)) or 1-D.
+   subroutine attr_bools(h5, path, name, values, n)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      logical, intent(in) :: values(:)     !! the values
+      integer, intent(in) :: n             !! elements (< 0: a scalar)
+      integer(hid_t) :: atype
+      integer :: hdferr, ignored
+      if (h5%file < 0) return
+      call h5tenum_create_f(H5T_NATIVE_INTEGER, atype, hdferr)
+      call check(h5, hdferr, 'h5tenum_create_f ' // path // ':' // name)
+      if (hdferr < 0) return
+      call h5tenum_insert_f(atype, 'FALSE', 0, hdferr)
+      call check(h5, hdferr, 'h5tenum_insert_f FALSE ' // path // ':' // name)
+      call h5tenum_insert_f(atype, 'TRUE', 1, hdferr)
+      call check(h5, hdferr, 'h5tenum_insert_f TRUE ' // path // ':' // name)
+      call attr_int_as(h5, path, name, merge(1, 0, values), n, atype)
+      call h5tclose_f(atype, ignored)
+   end subroutine attr_bools
+
+   !> Integers as an attribute of type atype (native integers or an enumeration over them),
+   !> a scalar (n < 0: values(1)) or 1-D.
+   subroutine attr_int_as(h5, path, name, values, n, atype)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: path   !! object path in the file (a group or dataset)
+      character(len=*), intent(in) :: name   !! attribute name
+      integer, intent(in) :: values(:)     !! the values
+      integer, intent(in) :: n             !! elements (< 0: a scalar)
+      integer(hid_t), intent(in) :: atype  !! the datatype in the file and in memory
+      type(attr_t) :: a
+      integer :: hdferr
+      call attr_begin(h5, path, name, atype, n, a)
+      hdferr = 0
+      if (a%attr >= 0) call h5awrite_f(a%attr, atype, values, a%dims, hdferr)
+      call attr_end(h5, a, hdferr)
+   end subroutine attr_int_as
 
    !> A fixed 1-D dataset with a units attribute.
    subroutine write_real_1d(h5, path, values, units)

@@ -11,6 +11,7 @@ module spb_output
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa, es20_12, int_right, int_into
    use spb_deck, only: deck_record_t, write_echo
+   use spb_deck_types, only: echo_item_t
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
       h5_table, h5_append, h5_xt, h5_append_xt, h5_open_read, h5_get, h5_get_columns, h5_copy, &
       h5_table_rows, h5_xt_rows, h5_read_size, xt_gauges, block_name, buffer_rows
@@ -1046,13 +1047,41 @@ contains
             call h5_group(h5, '/deck/' // items(k)%group)
          end if
          associate (g => '/deck/' // items(k)%group, nm => items(k)%name)
-            call h5_attr(h5, g, nm, unquote(items(k)%value))
+            call h5_deck_value(h5, g, items(k))
             if (len_trim(items(k)%unit) > 0) call h5_attr(h5, g, nm // ':units', items(k)%unit)
             call h5_attr(h5, g, nm // ':from', trim(merge('input  ', 'default', items(k)%given)))
          end associate
       end do
       end associate
    end subroutine h5_deck_header
+
+   !> One deck value as an attribute of its type (doc/outputs.md, "/deck"): a real as
+   !> float64 (not set: no attribute), an integer as int32, a logical as the FALSE/TRUE
+   !> enumeration h5py reads as bool, a text as a string; an array variable as a 1-D array
+   !> of them.
+   subroutine h5_deck_value(h5, group, item)
+      type(h5file_t), intent(inout) :: h5   !! the HDF5 file
+      character(len=*), intent(in) :: group   !! '/deck/GROUP'
+      type(echo_item_t), intent(in) :: item   !! the value
+      select case (item%type)
+      case ('r')
+         if (item%list) then
+            call h5_attr(h5, group, item%name, item%reals)
+         else if (size(item%reals) == 1) then
+            call h5_attr(h5, group, item%name, item%reals(1))
+         end if
+      case ('i')
+         call h5_attr(h5, group, item%name, item%ints(1))
+      case ('l')
+         call h5_attr(h5, group, item%name, item%flags(1))
+      case default
+         if (item%list) then
+            call h5_attr(h5, group, item%name, item%words)
+         else
+            call h5_attr(h5, group, item%name, unquote(item%value))
+         end if
+      end select
+   end subroutine h5_deck_value
 
    !> PREFIX.h5: root attributes, /deck, /mesh, the /history and /events tables, /fields
    !> (profiles, and x-t rows when field_every > 0), /fragments.
