@@ -1,5 +1,5 @@
 !> The columns of an output table, registered by the modules that own their quantities (the
-!> MOM6 register_diag_field / post_data pattern; doc/outputs.md, "Columns"): an owner
+!> MOM6 register_diag_field / post_data pattern; doc/build.md, "Output columns"): an owner
 !> registers each quantity once (name, unit, whole numbers or not) and keeps the id it gets
 !> in a type of its own; each row it posts the value under that id, row(id) = value. The id
 !> is the column's place in the file, given by the name: a set starts from the list of names

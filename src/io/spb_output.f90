@@ -20,7 +20,8 @@ module spb_output
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
-   use spb_events, only: event_list_t, event_kinds
+   use spb_events, only: event_list_t, event_kinds, event_columns_t, register_event_columns, &
+      post_event_columns
    use spb_diag, only: frag_info_t
    use spb_gauge, only: gauge_t, locate_gauges
    use spb_columns, only: column_t, column_set_t, column_fault, column_names
@@ -37,23 +38,6 @@ module spb_output
    ! for spb_restart, which continues the outputs of a checkpointed run
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
       block_name, split
-
-   !> PREFIX.evt and /events: the one list of the event columns, in order.
-   integer, parameter :: n_event_columns = 13
-   type(column_t), parameter :: event_table(n_event_columns) = [ &
-      column_t('t', 's', .false., 20, .false.), &
-      column_t('step', '-', .true., 12, .false.), &
-      column_t('kind', '-', .true., 16, .true.), &
-      column_t('node', '-', .true., 12, .false.), &
-      column_t('x', 'm', .false., 20, .false.), &
-      column_t('stress', 'Pa', .false., 20, .false.), &
-      column_t('dt_bound', 's', .false., 20, .false.), &
-      column_t('dx_bound', 'm', .false., 20, .false.), &
-      column_t('opening', 'm', .false., 20, .false.), &
-      column_t('frag_above', '-', .true., 12, .false.), &
-      column_t('frag_below', '-', .true., 12, .false.), &
-      column_t('stress_bound', 'Pa', .false., 20, .false.), &
-      column_t('shift', 'm', .false., 20, .false.) ]
 
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
@@ -104,6 +88,8 @@ module spb_output
       type(column_t), allocatable :: his_table(:)         !! the history's columns (spb_history)
       type(history_ids_t) :: his_id                       !! their ids: a row is posted under
                                                           !! them (spb_history post_history)
+      type(column_t), allocatable :: evt_table(:)         !! the events' columns (spb_events)
+      type(event_columns_t) :: evt_id                     !! their ids
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
       integer(int64) :: head(5) = 0                       !! header bytes of each text file
       type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
@@ -151,12 +137,14 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
       logical, intent(in), optional :: temporaries   !! as PREFIX.ext.part (default: no)
-      type(column_set_t) :: his
+      type(column_set_t) :: his, evt
       out%prefix = prefix
       out%part = ''
-      ! the history's columns as their owners register them (spb_history)
+      ! the tables' columns as their owners register them (spb_history, spb_events)
       call register_history(his, out%his_id)
       out%his_table = his%col
+      call register_event_columns(evt, out%evt_id)
+      out%evt_table = evt%col
       if (len(column_fault(his)) > 0) then
          call make_error(err, 'history: ' // column_fault(his), code=exit_runtime)
          return
@@ -1027,7 +1015,6 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
-      logical :: whole_evt(n_event_columns)
       character(len=32), allocatable :: names(:), units(:)
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5' // out%part)
@@ -1062,10 +1049,9 @@ contains
       end do
       call h5_table(out%h5, '/history', names, units, out%his_table%whole, out%h_his)
       call h5_attr(out%h5, '/history', 'columns', history_columns())
-      names = event_table%name
-      units = event_table%unit
-      whole_evt = event_table%whole
-      call h5_table(out%h5, '/events', names, units, whole_evt, out%h_evt)
+      names = out%evt_table%name
+      units = out%evt_table%unit
+      call h5_table(out%h5, '/events', names, units, out%evt_table%whole, out%h_evt)
       call h5_attr(out%h5, '/events', 'kind_codes', kind_codes())
       call h5_group(out%h5, '/fields')
       call h5_group(out%h5, '/fields/profiles')
@@ -1158,7 +1144,10 @@ contains
    !> The event columns' names, blank-separated (the column line of PREFIX.evt).
    pure function event_columns() result(line)
       character(len=:), allocatable :: line
-      line = column_names(event_table)
+      type(column_set_t) :: evt
+      type(event_columns_t) :: id
+      call register_event_columns(evt, id)
+      line = column_names(evt%col)
    end function event_columns
 
    !> The blank-separated words of s.
@@ -1203,15 +1192,13 @@ contains
    subroutine write_events(out, events)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
-      real(wp) :: v(n_event_columns)
-      character(len=sum(event_table%width + 1)) :: line
+      real(wp) :: v(size(out%evt_table))
+      character(len=sum(out%evt_table%width + 1)) :: line
       integer :: k
       do k = 1, events%n
          associate (e => events%e(k))
-            v = [e%t, real(e%step, wp), real(e%kind, wp), real(e%node, wp), e%x, e%stress, &
-                 e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
-                 real(e%frag_below, wp), e%stress_bound, e%shift]
-            call table_line(event_table, v, line, out%evt_cache)
+            call post_event_columns(out%evt_id, e, v)
+            call table_line(out%evt_table, v, line, out%evt_cache)
             call put_row(out, 3, line // ' ' // int_right(e%kind, 9))   ! kind_code
             out%n_evt = out%n_evt + 1
             if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
