@@ -56,13 +56,15 @@ module spb_output
    !> the writing otherwise); the bytes in the file are the same.
    integer, parameter :: row_buffer_len = 262144
 
-   !> The text of each real column of a table's last row, with the bits it was made from:
-   !> a value repeated from the row before (a third of the event columns: t within a step,
-   !> x, dt_bound, ...) is not formatted again (es20_12 depends on the bits alone).
+   !> A table's last row as text, with the bits of the value each field was made from: a
+   !> value repeated from the row before (a third of the event columns: t within a step, x,
+   !> dt_bound, ...; most of the history's) is not formatted or copied again (a field's
+   !> text depends on the value's bits alone), and the next row is written over this one.
    type :: row_cache_t
-      integer(int64), allocatable :: bits(:)           !! the value's bits (transfer)
-      character(len=20), allocatable :: text(:)        !! es20_12 of it
-      logical, allocatable :: set(:)                   !! text holds a value
+      character(len=:), allocatable :: line            !! the row: each column a blank and
+                                                       !! its field (allocated at the first)
+      integer(int64), allocatable :: bits(:)           !! each field's value's bits (transfer)
+      logical, allocatable :: set(:)                   !! the field holds a value
    end type row_cache_t
 
    !> Rows of one text file not yet written: text(1:n), each row ended by a newline.
@@ -1178,9 +1180,8 @@ contains
    subroutine write_history_row(out, v)
       type(outputs_t), intent(inout) :: out    !! the outputs
       real(wp), intent(in) :: v(:)             !! the row
-      character(len=sum(out%his_table%width + 1)) :: line
-      call table_line(out%his_table, v, line, out%his_cache)
-      call put_row(out, 1, line)
+      call table_line(out%his_table, v, out%his_cache)
+      call put_row(out, 1, out%his_cache%line)
       out%n_his = out%n_his + 1
       ! the text reaches the file before PREFIX.h5 writes a block of rows: a killed run's
       ! text never holds fewer rows than its HDF5 tables
@@ -1193,13 +1194,12 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
       real(wp) :: v(size(out%evt_table))
-      character(len=sum(out%evt_table%width + 1)) :: line
       integer :: k
       do k = 1, events%n
          associate (e => events%e(k))
             call post_event_columns(out%evt_id, e, v)
-            call table_line(out%evt_table, v, line, out%evt_cache)
-            call put_row(out, 3, line // ' ' // int_right(e%kind, 9))   ! kind_code
+            call table_line(out%evt_table, v, out%evt_cache)
+            call put_row(out, 3, out%evt_cache%line // ' ' // int_right(e%kind, 9))   ! kind_code
             out%n_evt = out%n_evt + 1
             if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
                call drain_one(out, 3)
@@ -1260,41 +1260,34 @@ contains
       end associate
    end subroutine drain_one
 
-   !> One text row of a table: each column a blank and its field, by the fast formatters
-   !> (the same characters as es20.12e3 and iW edit descriptors, tests/test_format.pf).
-   pure subroutine table_line(table, v, line, cache)
+   !> One text row of a table into cache%line: each column a blank and its field, by the
+   !> fast formatters (the same characters as es20.12e3 and iW edit descriptors,
+   !> tests/test_format.pf); a field whose value has the bits of the row before keeps its text.
+   pure subroutine table_line(table, v, cache)
       type(column_t), intent(in) :: table(:)   !! the columns
       real(wp), intent(in) :: v(:)             !! the row's values (whole numbers as float64)
-      ! the caller's buffer receives the row
-      ! allow(assumed-size-character-intent)
-      character(len=*), intent(out) :: line    !! the row (sum of widths + 1 characters)
-      type(row_cache_t), intent(inout) :: cache   !! the texts of the table's last row
+      type(row_cache_t), intent(inout) :: cache   !! the table's last row, then this one
       integer :: k, at
       integer(int64) :: bits
-      if (.not. allocated(cache%set)) then
-         allocate(cache%bits(size(table)), cache%text(size(table)), cache%set(size(table)))
+      if (.not. allocated(cache%line)) then
+         cache%line = repeat(' ', sum(table%width + 1))
+         allocate(cache%bits(size(table)), cache%set(size(table)))
          cache%set = .false.
       end if
-      line = ' '
       at = 1
       do k = 1, size(table)
          associate (c => table(k))
-            if (c%kind) then
-               line(at + 1:at + c%width) = kind_field(whole(v(k)))
-            else if (c%whole) then
-               call int_into(whole(v(k)), line(at + 1:at + c%width))
-            else
-               bits = transfer(v(k), 0_int64)
-               if (.not. cache%set(k) .or. cache%bits(k) /= bits) then
-                  cache%text(k) = es20_12(v(k))
-                  cache%bits(k) = bits
-                  cache%set(k) = .true.
-               end if
-               if (c%width == 20) then
-                  line(at + 1:at + 20) = cache%text(k)       ! a copy of known length
+            bits = transfer(v(k), 0_int64)
+            if (.not. cache%set(k) .or. cache%bits(k) /= bits) then
+               if (c%kind) then
+                  cache%line(at + 1:at + c%width) = kind_field(whole(v(k)))
+               else if (c%whole) then
+                  call int_into(whole(v(k)), cache%line(at + 1:at + c%width))
                else
-                  line(at + 1:at + c%width) = cache%text(k)
+                  cache%line(at + 1:at + c%width) = es20_12(v(k))
                end if
+               cache%bits(k) = bits
+               cache%set(k) = .true.
             end if
             at = at + c%width + 1
          end associate
