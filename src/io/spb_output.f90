@@ -1194,12 +1194,17 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
       real(wp) :: v(size(out%evt_table))
-      integer :: k
+      character(len=:), allocatable :: line   ! the row and its kind_code (1x,i9)
+      integer :: k, n
       do k = 1, events%n
          associate (e => events%e(k))
             call post_event_columns(out%evt_id, e, v)
             call table_line(out%evt_table, v, out%evt_cache)
-            call put_row(out, 3, out%evt_cache%line // ' ' // int_right(e%kind, 9))   ! kind_code
+            n = len(out%evt_cache%line)
+            if (.not. allocated(line)) line = repeat(' ', n + 10)
+            line(1:n) = out%evt_cache%line
+            call int_into(e%kind, line(n + 2:n + 10))
+            call put_row(out, 3, line)
             out%n_evt = out%n_evt + 1
             if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
                call drain_one(out, 3)
