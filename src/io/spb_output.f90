@@ -1018,6 +1018,7 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
       character(len=32), allocatable :: names(:), units(:)
+      logical, allocatable :: whole(:)
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5' // out%part)
       out%hdf5 = .true.
@@ -1049,11 +1050,13 @@ contains
       do k = 1, size(units)
          units(k) = bar_units(trim(units(k)), mesh)
       end do
-      call h5_table(out%h5, '/history', names, units, out%his_table%whole, out%h_his)
+      whole = out%his_table%whole
+      call h5_table(out%h5, '/history', names, units, whole, out%h_his)
       call h5_attr(out%h5, '/history', 'columns', history_columns())
       names = out%evt_table%name
       units = out%evt_table%unit
-      call h5_table(out%h5, '/events', names, units, out%evt_table%whole, out%h_evt)
+      whole = out%evt_table%whole
+      call h5_table(out%h5, '/events', names, units, whole, out%h_evt)
       call h5_attr(out%h5, '/events', 'kind_codes', kind_codes())
       call h5_group(out%h5, '/fields')
       call h5_group(out%h5, '/fields/profiles')
