@@ -21,14 +21,17 @@ module spb_output
       sys_file_kind, file_other
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t
-   use spb_events, only: event_list_t, event_kinds
+   use spb_events, only: event_list_t, event_kinds, event_columns_t, register_event_columns, &
+      post_event_columns
    use spb_diag, only: frag_info_t
    use spb_gauge, only: gauge_t, locate_gauges
+   use spb_columns, only: column_t, column_set_t, column_fault, column_names
+   use spb_history, only: history_ids_t, register_history, history_set
    implicit none
    private
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
-   public :: write_field, flush_outputs, h5_deck_header, history_table, column_t, column_names
+   public :: write_field, flush_outputs, h5_deck_header, column_t, column_names
    public :: write_gauge_row, gauge_columns, text_count, claim_sweep_outputs, bar_units
    public :: program_line, publish_outputs, where_outputs, out_path, is_temporary, remove_file
    public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
@@ -37,73 +40,6 @@ module spb_output
    public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
       block_name, split
 
-   !> A column of a table: its name, its unit, and whether it holds whole numbers (text: an
-   !> integer field; HDF5: int64). Rows carry every value as float64 (exact below 2^53).
-   type :: column_t
-      character(len=24) :: name = ''
-      character(len=8) :: unit = ''
-      logical :: whole = .false.
-      integer :: width = 20              !! text field width; a whole number right-aligned
-      logical :: kind = .false.          !! the event kind: its name in the text (the code in HDF5)
-   end type column_t
-
-   !> PREFIX.evt and /events: the one list of the event columns, in order.
-   integer, parameter :: n_event_columns = 13
-   type(column_t), parameter :: event_table(n_event_columns) = [ &
-      column_t('t', 's', .false., 20, .false.), &
-      column_t('step', '-', .true., 12, .false.), &
-      column_t('kind', '-', .true., 16, .true.), &
-      column_t('node', '-', .true., 12, .false.), &
-      column_t('x', 'm', .false., 20, .false.), &
-      column_t('stress', 'Pa', .false., 20, .false.), &
-      column_t('dt_bound', 's', .false., 20, .false.), &
-      column_t('dx_bound', 'm', .false., 20, .false.), &
-      column_t('opening', 'm', .false., 20, .false.), &
-      column_t('frag_above', '-', .true., 12, .false.), &
-      column_t('frag_below', '-', .true., 12, .false.), &
-      column_t('stress_bound', 'Pa', .false., 20, .false.), &
-      column_t('shift', 'm', .false., 20, .false.) ]
-
-   !> PREFIX.his and /history: the one list of the history columns, in order.
-   integer, parameter :: n_history = 37
-   type(column_t), parameter :: history_table(n_history) = [ &
-      column_t('t', 's', .false.), &
-      column_t('reaction_bottom', 'Pa', .false.), &
-      column_t('reaction_top', 'Pa', .false.), &
-      column_t('fragments', '-', .true.), &
-      column_t('e_kin', 'J/m^2', .false.), &
-      column_t('e_strain', 'J/m^2', .false.), &
-      column_t('e_pot', 'J/m^2', .false.), &
-      column_t('w_ext', 'J/m^2', .false.), &
-      column_t('e_lost', 'J/m^2', .false.), &
-      column_t('momentum', 'kg/(m s)', .false.), &
-      column_t('step', '-', .true.), &
-      column_t('s_end_top', 'Pa', .false.), &
-      column_t('s_end_bottom', 'Pa', .false.), &
-      column_t('w_load', 'J/m^2', .false.), &
-      column_t('w_transmit', 'J/m^2', .false.), &
-      column_t('ledger', 'J/m^2', .false.), &
-      column_t('e_fracture', 'J/m^2', .false.), &
-      column_t('e_join', 'J/m^2', .false.), &
-      column_t('e_shift', 'J/m^2', .false.), &
-      column_t('e_contact', 'J/m^2', .false.), &
-      column_t('i_gravity', 'kg/(m s)', .false.), &
-      column_t('i_ends', 'kg/(m s)', .false.), &
-      column_t('i_support', 'kg/(m s)', .false.), &
-      column_t('p_shift', 'kg/(m s)', .false.), &
-      column_t('e_wave', 'J/m^2', .false.), &
-      column_t('e_wave_g', 'J/m^2', .false.), &
-      column_t('jordan', '-', .false.), &
-      column_t('w_wave', 'J/m^2', .false.), &
-      column_t('e_lost_w', 'J/m^2', .false.), &
-      column_t('ledger_w', 'J/m^2', .false.), &
-      column_t('overlap', '-', .false.), &
-      column_t('e_cohesive', 'J/m^2', .false.), &
-      column_t('w_cohesive', 'J/m^2', .false.), &
-      column_t('cracks_open', '-', .true.), &
-      column_t('x_impactor', 'm', .false.), &
-      column_t('v_impactor', 'm/s', .false.), &
-      column_t('f_impactor', 'N/m^2', .false.) ]
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]; x_impactor [m], v_impactor [m/s] ' &
@@ -121,13 +57,15 @@ module spb_output
    !> the writing otherwise); the bytes in the file are the same.
    integer, parameter :: row_buffer_len = 262144
 
-   !> The text of each real column of a table's last row, with the bits it was made from:
-   !> a value repeated from the row before (a third of the event columns: t within a step,
-   !> x, dt_bound, ...) is not formatted again (es20_12 depends on the bits alone).
+   !> A table's last row as text, with the bits of the value each field was made from: a
+   !> value repeated from the row before (a third of the event columns: t within a step, x,
+   !> dt_bound, ...; most of the history's) is not formatted or copied again (a field's
+   !> text depends on the value's bits alone), and the next row is written over this one.
    type :: row_cache_t
-      integer(int64) :: bits(n_history) = 0            !! the value's bits (transfer)
-      character(len=20) :: text(n_history) = ''        !! es20_12 of it
-      logical :: set(n_history) = .false.              !! text holds a value
+      character(len=:), allocatable :: line            !! the row: each column a blank and
+                                                       !! its field (allocated at the first)
+      integer(int64), allocatable :: bits(:)           !! each field's value's bits (transfer)
+      logical, allocatable :: set(:)                   !! the field holds a value
    end type row_cache_t
 
    !> Rows of one text file not yet written: text(1:n), each row ended by a newline.
@@ -150,6 +88,11 @@ module spb_output
       logical :: per_area = .true.                        !! every area 1: units per unit area
       type(h5file_t) :: h5
       integer :: h_his = 0, h_evt = 0                     !! its table handles
+      type(column_t), allocatable :: his_table(:)         !! the history's columns (spb_history)
+      type(history_ids_t) :: his_id                       !! their ids: a row is posted under
+                                                          !! them (spb_history post_history)
+      type(column_t), allocatable :: evt_table(:)         !! the events' columns (spb_events)
+      type(event_columns_t) :: evt_id                     !! their ids
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
       integer(int64) :: head(5) = 0                       !! header bytes of each text file
       type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
@@ -197,8 +140,18 @@ contains
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
       logical, intent(in), optional :: temporaries   !! as PREFIX.ext.part (default: no)
+      type(column_set_t) :: his, evt
       out%prefix = prefix
       out%part = ''
+      ! the tables' columns as their owners register them (spb_history, spb_events)
+      call register_history(his, out%his_id)
+      out%his_table = his%col
+      call register_event_columns(evt, out%evt_id)
+      out%evt_table = evt%col
+      if (len(column_fault(his)) > 0) then
+         call make_error(err, 'history: ' // column_fault(his), code=exit_runtime)
+         return
+      end if
       if (present(temporaries)) then
          if (temporaries) out%part = part_suffix
       end if
@@ -1093,8 +1046,8 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
-      logical :: whole(n_history), whole_evt(n_event_columns)
       character(len=32), allocatable :: names(:), units(:)
+      logical, allocatable :: whole(:)
       integer :: k, n
       call h5_create(out%h5, prefix // '.h5' // out%part)
       out%hdf5 = .true.
@@ -1121,18 +1074,18 @@ contains
       call h5_write(out%h5, '/mesh/segment', mesh%seg, '-')
       call h5_write(out%h5, '/mesh/x_half', half_x(mesh), 'm')
       ! tables
-      names = history_table%name
-      units = history_table%unit
+      names = out%his_table%name
+      units = out%his_table%unit
       do k = 1, size(units)
          units(k) = bar_units(trim(units(k)), mesh)
       end do
-      whole = history_table%whole
+      whole = out%his_table%whole
       call h5_table(out%h5, '/history', names, units, whole, out%h_his)
       call h5_attr(out%h5, '/history', 'columns', history_columns())
-      names = event_table%name
-      units = event_table%unit
-      whole_evt = event_table%whole
-      call h5_table(out%h5, '/events', names, units, whole_evt, out%h_evt)
+      names = out%evt_table%name
+      units = out%evt_table%unit
+      whole = out%evt_table%whole
+      call h5_table(out%h5, '/events', names, units, whole, out%h_evt)
       call h5_attr(out%h5, '/events', 'kind_codes', kind_codes())
       call h5_group(out%h5, '/fields')
       call h5_group(out%h5, '/fields/profiles')
@@ -1217,25 +1170,19 @@ contains
    !> The history's column names, blank-separated (the column line of PREFIX.his).
    pure function history_columns() result(line)
       character(len=:), allocatable :: line
-      line = column_names(history_table)
+      type(column_set_t) :: his
+      his = history_set()
+      line = column_names(his%col)
    end function history_columns
 
    !> The event columns' names, blank-separated (the column line of PREFIX.evt).
    pure function event_columns() result(line)
       character(len=:), allocatable :: line
-      line = column_names(event_table)
+      type(column_set_t) :: evt
+      type(event_columns_t) :: id
+      call register_event_columns(evt, id)
+      line = column_names(evt%col)
    end function event_columns
-
-   !> The names of a table's columns, blank-separated.
-   pure function column_names(table) result(line)
-      type(column_t), intent(in) :: table(:)   !! the table's columns
-      character(len=:), allocatable :: line
-      integer :: k
-      line = trim(table(1)%name)
-      do k = 2, size(table)
-         line = line // ' ' // trim(table(k)%name)
-      end do
-   end function column_names
 
    !> The blank-separated words of s.
    pure subroutine split(s, words)
@@ -1260,13 +1207,13 @@ contains
       end do
    end subroutine split
 
-   !> One history row: the values in the order of history_table (whole numbers as float64).
+   !> One history row: the values of out%his_table's columns, each posted under its id
+   !> (spb_history post_history; whole numbers as float64).
    subroutine write_history_row(out, v)
       type(outputs_t), intent(inout) :: out    !! the outputs
-      real(wp), intent(in) :: v(n_history)     !! the row
-      character(len=sum(history_table%width + 1)) :: line
-      call table_line(history_table, v, line, out%his_cache)
-      call put_row(out, 1, line)
+      real(wp), intent(in) :: v(:)             !! the row
+      call table_line(out%his_table, v, out%his_cache)
+      call put_row(out, 1, out%his_cache%line)
       out%n_his = out%n_his + 1
       ! the text reaches the file before PREFIX.h5 writes a block of rows: a killed run's
       ! text never holds fewer rows than its HDF5 tables
@@ -1278,16 +1225,18 @@ contains
    subroutine write_events(out, events)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
-      real(wp) :: v(n_event_columns)
-      character(len=sum(event_table%width + 1)) :: line
-      integer :: k
+      real(wp) :: v(size(out%evt_table))
+      character(len=:), allocatable :: line   ! the row and its kind_code (1x,i9)
+      integer :: k, n
       do k = 1, events%n
          associate (e => events%e(k))
-            v = [e%t, real(e%step, wp), real(e%kind, wp), real(e%node, wp), e%x, e%stress, &
-                 e%dt_bound, e%dx_bound, e%opening, real(e%frag_above, wp), &
-                 real(e%frag_below, wp), e%stress_bound, e%shift]
-            call table_line(event_table, v, line, out%evt_cache)
-            call put_row(out, 3, line // ' ' // int_right(e%kind, 9))   ! kind_code
+            call post_event_columns(out%evt_id, e, v)
+            call table_line(out%evt_table, v, out%evt_cache)
+            n = len(out%evt_cache%line)
+            if (.not. allocated(line)) line = repeat(' ', n + 10)
+            line(1:n) = out%evt_cache%line
+            call int_into(e%kind, line(n + 2:n + 10))
+            call put_row(out, 3, line)
             out%n_evt = out%n_evt + 1
             if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
                call drain_one(out, 3)
@@ -1348,37 +1297,34 @@ contains
       end associate
    end subroutine drain_one
 
-   !> One text row of a table: each column a blank and its field, by the fast formatters
-   !> (the same characters as es20.12e3 and iW edit descriptors, tests/test_format.pf).
-   pure subroutine table_line(table, v, line, cache)
-      type(column_t), intent(in) :: table(:)   !! the columns (at most n_history)
+   !> One text row of a table into cache%line: each column a blank and its field, by the
+   !> fast formatters (the same characters as es20.12e3 and iW edit descriptors,
+   !> tests/test_format.pf); a field whose value has the bits of the row before keeps its text.
+   pure subroutine table_line(table, v, cache)
+      type(column_t), intent(in) :: table(:)   !! the columns
       real(wp), intent(in) :: v(:)             !! the row's values (whole numbers as float64)
-      ! the caller's buffer receives the row
-      ! allow(assumed-size-character-intent)
-      character(len=*), intent(out) :: line    !! the row (sum of widths + 1 characters)
-      type(row_cache_t), intent(inout) :: cache   !! the texts of the table's last row
+      type(row_cache_t), intent(inout) :: cache   !! the table's last row, then this one
       integer :: k, at
       integer(int64) :: bits
-      line = ' '
+      if (.not. allocated(cache%line)) then
+         cache%line = repeat(' ', sum(table%width + 1))
+         allocate(cache%bits(size(table)), cache%set(size(table)))
+         cache%set = .false.
+      end if
       at = 1
       do k = 1, size(table)
          associate (c => table(k))
-            if (c%kind) then
-               line(at + 1:at + c%width) = kind_field(whole(v(k)))
-            else if (c%whole) then
-               call int_into(whole(v(k)), line(at + 1:at + c%width))
-            else
-               bits = transfer(v(k), 0_int64)
-               if (.not. cache%set(k) .or. cache%bits(k) /= bits) then
-                  cache%text(k) = es20_12(v(k))
-                  cache%bits(k) = bits
-                  cache%set(k) = .true.
-               end if
-               if (c%width == 20) then
-                  line(at + 1:at + 20) = cache%text(k)       ! a copy of known length
+            bits = transfer(v(k), 0_int64)
+            if (.not. cache%set(k) .or. cache%bits(k) /= bits) then
+               if (c%kind) then
+                  cache%line(at + 1:at + c%width) = kind_field(whole(v(k)))
+               else if (c%whole) then
+                  call int_into(whole(v(k)), cache%line(at + 1:at + c%width))
                else
-                  line(at + 1:at + c%width) = cache%text(k)
+                  cache%line(at + 1:at + c%width) = es20_12(v(k))
                end if
+               cache%bits(k) = bits
+               cache%set(k) = .true.
             end if
             at = at + c%width + 1
          end associate

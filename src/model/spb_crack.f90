@@ -6,13 +6,40 @@ module spb_crack
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t, open_node
    use spb_wave, only: fragment_characteristics, region_wave
-   use spb_cohesive, only: cohesive_force, law_integral
+   use spb_cohesive, only: cohesive_force, law_integral, dissipated
    use spb_fragments, only: fragment_span
+   use spb_columns, only: column_set_t, add_column
    implicit none
    private
    public :: start_cracks, cohesive_step
+   public :: crack_columns_t, register_crack_columns, post_crack_columns
+
+   !> The cohesive cracks' history columns (PREFIX.his, /history): their ids (spb_columns).
+   type :: crack_columns_t
+      integer :: e_cohesive = 0, cracks_open = 0
+   end type crack_columns_t
 
 contains
+
+   !> Register the cohesive cracks' history columns: the energy they have dissipated, the
+   !> cracks still open (their meaning: doc/outputs.md).
+   pure subroutine register_crack_columns(set, id)
+      type(column_set_t), intent(inout) :: set   !! the history's columns
+      type(crack_columns_t), intent(out) :: id   !! their ids
+      call add_column(set, id%e_cohesive, 'e_cohesive', 'J/m^2')
+      call add_column(set, id%cracks_open, 'cracks_open', '-', whole=.true.)
+   end subroutine register_crack_columns
+
+   !> Post the cohesive cracks' values into a history row: the energy they have dissipated
+   !> so far, open and completed (spb_cohesive), and the cracks that carry traction.
+   pure subroutine post_crack_columns(id, st, row)
+      type(crack_columns_t), intent(in) :: id   !! the columns' ids
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(inout) :: row(:)    !! the row
+      row(id%e_cohesive) = 0.0_wp
+      if (st%coh%on) row(id%e_cohesive) = sum(dissipated(st%coh%dmax, st%coh%r, st%coh%dc))
+      row(id%cracks_open) = real(st%coh%n_active, wp)
+   end subroutine post_crack_columns
 
    !> Open a cohesive crack at t^n at every joined section with a fracture energy whose
    !> section stress over the coming step, S^{n+1/2} (just computed), is beyond its strength:

@@ -11,9 +11,11 @@ module spb_diag
    use spb_mesh, only: mesh_t
    use spb_state, only: state_t, separates
    use spb_ends, only: face_top, face_bottom, is_striker, striker_momentum
+   use spb_columns, only: column_set_t, add_column
    implicit none
    private
    public :: energies_t, energies, frag_info_t, fragment_list
+   public :: energies_columns_t, register_energies_columns, post_energies_columns
 
    type :: energies_t
       real(wp) :: e_kin = 0.0_wp      !! [J/m^2]
@@ -25,6 +27,12 @@ module spb_diag
       real(wp) :: ledger = 0.0_wp     !! e_kin + e_strain + e_pot - w_ext + e_lost [J/m^2]
       real(wp) :: momentum = 0.0_wp   !! [kg/(m s)]
    end type energies_t
+
+   !> The energies' history columns (PREFIX.his, /history): their ids (spb_columns).
+   type :: energies_columns_t
+      integer :: e_kin = 0, e_strain = 0, e_pot = 0, w_ext = 0, e_lost = 0, ledger = 0
+      integer :: momentum = 0
+   end type energies_columns_t
 
    type :: frag_info_t
       integer :: id = 0, parent = 0, birth_step = 0
@@ -38,6 +46,33 @@ module spb_diag
    end type frag_info_t
 
 contains
+
+   !> Register the energies' history columns (their meaning: doc/outputs.md).
+   pure subroutine register_energies_columns(set, id)
+      type(column_set_t), intent(inout) :: set   !! the history's columns
+      type(energies_columns_t), intent(out) :: id   !! their ids
+      call add_column(set, id%e_kin, 'e_kin', 'J/m^2')
+      call add_column(set, id%e_strain, 'e_strain', 'J/m^2')
+      call add_column(set, id%e_pot, 'e_pot', 'J/m^2')
+      call add_column(set, id%w_ext, 'w_ext', 'J/m^2')
+      call add_column(set, id%e_lost, 'e_lost', 'J/m^2')
+      call add_column(set, id%momentum, 'momentum', 'kg/(m s)')
+      call add_column(set, id%ledger, 'ledger', 'J/m^2')
+   end subroutine register_energies_columns
+
+   !> Post the energies into a history row.
+   pure subroutine post_energies_columns(id, e, row)
+      type(energies_columns_t), intent(in) :: id   !! the columns' ids
+      type(energies_t), intent(in) :: e            !! the energies (energies)
+      real(wp), intent(inout) :: row(:)            !! the row
+      row(id%e_kin) = e%e_kin
+      row(id%e_strain) = e%e_strain
+      row(id%e_pot) = e%e_pot
+      row(id%w_ext) = e%w_ext
+      row(id%e_lost) = e%e_lost
+      row(id%momentum) = e%momentum
+      row(id%ledger) = e%ledger
+   end subroutine post_energies_columns
 
    !> The energy terms of the state in the scheme's own measure, and its momentum.
    pure function energies(mesh, st, g) result(e)

@@ -20,6 +20,7 @@ module spb_ends
    use spb_impactor, only: mass_state_t, mass_step_t, strike_step, mass_energy
    use spb_events, only: event_t, event_list_t, push_event, ev_impact, ev_release
    use spb_field_io, only: field_io_t
+   use spb_columns, only: column_set_t, add_column
    implicit none
    private
    public :: end_t, face_step_t, face_top, face_bottom
@@ -28,6 +29,7 @@ module spb_ends
    public :: face_stress, face_load_share, hold_face, book_ends, start_end, place_on_base, &
       define_ends, strike, striker_energy, striker_momentum, face_integral, strike_events, &
       striker_fields
+   public :: end_columns_t, register_end_columns, post_end_columns
 
    !> One end of the bar: its kind (end_* of spb_problem) and what the kind keeps from step to
    !> step. The fields a kind does not use stay at their defaults.
@@ -84,6 +86,12 @@ module spb_ends
       real(wp) :: rho = 0.0_wp                !! zig-zag content at a transmitting end after the
                                               !! step (spb_wave) [m]
    end type face_step_t
+
+   !> The ends' history columns (PREFIX.his, /history): their ids (spb_columns).
+   type :: end_columns_t
+      integer :: s_end_top = 0, s_end_bottom = 0, x_impactor = 0, v_impactor = 0
+      integer :: f_impactor = 0
+   end type end_columns_t
 
 contains
 
@@ -342,6 +350,43 @@ contains
          call push_event(events, ev(k))
       end do
    end subroutine strike_events
+
+   !> Register the ends' history columns: the stresses on the end faces, a striking mass's
+   !> displacement, velocity and contact force (their meaning: doc/outputs.md).
+   pure subroutine register_end_columns(set, id)
+      type(column_set_t), intent(inout) :: set   !! the history's columns
+      type(end_columns_t), intent(out) :: id     !! their ids
+      call add_column(set, id%s_end_top, 's_end_top', 'Pa')
+      call add_column(set, id%s_end_bottom, 's_end_bottom', 'Pa')
+      call add_column(set, id%x_impactor, 'x_impactor', 'm')
+      call add_column(set, id%v_impactor, 'v_impactor', 'm/s')
+      call add_column(set, id%f_impactor, 'f_impactor', 'N/m^2')
+   end subroutine register_end_columns
+
+   !> Post the ends' values into a history row at step: the end faces' stresses, and a
+   !> striking mass's displacement from its start, its velocity, and the contact force's
+   !> mean over the last step (N, or Pa when every area is 1); 0 without one.
+   pure subroutine post_end_columns(id, ends, mesh, step, s_top, s_bot, row)
+      type(end_columns_t), intent(in) :: id   !! the columns' ids
+      type(end_t), intent(in) :: ends(2)      !! the top and the bottom end
+      type(mesh_t), intent(in) :: mesh        !! the mesh
+      integer, intent(in) :: step             !! the row's step
+      real(wp), intent(in) :: s_top           !! stress on the top face at the row's time [Pa A]
+      real(wp), intent(in) :: s_bot           !! the same on the bottom face [Pa A]
+      real(wp), intent(inout) :: row(:)       !! the row
+      integer :: side
+      row(id%s_end_top) = s_top / mesh%area(1)
+      row(id%s_end_bottom) = s_bot / mesh%area(mesh%n)
+      row(id%x_impactor) = 0.0_wp
+      row(id%v_impactor) = 0.0_wp
+      row(id%f_impactor) = 0.0_wp
+      do side = face_top, face_bottom
+         if (.not. is_striker(ends(side))) cycle
+         row(id%x_impactor) = ends(side)%striker%x
+         row(id%v_impactor) = ends(side)%striker%v
+         if (ends(side)%q_step == step) row(id%f_impactor) = ends(side)%q / mesh%dt
+      end do
+   end subroutine post_end_columns
 
    !> What a striking mass keeps from step to step, as checkpoint fields (the one list, for
    !> writing and reading back; a run without a striking mass has none of them).

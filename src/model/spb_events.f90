@@ -2,11 +2,13 @@
 !> written by the output module, inspected by tests.
 module spb_events
    use spb_kinds, only: wp
+   use spb_columns, only: column_set_t, column_set, add_column
    implicit none
    private
    public :: event_t, event_list_t, push_event, ev_fracture, ev_collision, ev_separation
    public :: ev_base_collision, ev_impact, ev_release, ev_crack, event_kind_t, event_kinds, &
       n_event_kinds
+   public :: event_columns_t, register_event_columns, post_event_columns
 
    integer, parameter :: ev_fracture = 1, ev_collision = 2, ev_separation = 3
    integer, parameter :: ev_base_collision = 4
@@ -62,7 +64,56 @@ module spb_events
       integer :: n = 0
    end type event_list_t
 
+   !> The columns of PREFIX.evt and /events: their ids (spb_columns).
+   type :: event_columns_t
+      integer :: t = 0, step = 0, kind = 0, node = 0, x = 0, stress = 0, dt_bound = 0
+      integer :: dx_bound = 0, opening = 0, frag_above = 0, frag_below = 0, stress_bound = 0
+      integer :: shift = 0
+   end type event_columns_t
+
 contains
+
+   !> The columns of PREFIX.evt and /events (their meaning: doc/outputs.md), one owner's:
+   !> the file's order is the registration order here. Whole numbers in 12 characters, the
+   !> kind's name in 16.
+   pure subroutine register_event_columns(set, id)
+      type(column_set_t), intent(out) :: set    !! the events' columns, in file order
+      type(event_columns_t), intent(out) :: id  !! their ids
+      set = column_set([character(len=24) ::])
+      call add_column(set, id%t, 't', 's')
+      call add_column(set, id%step, 'step', '-', whole=.true., width=12)
+      call add_column(set, id%kind, 'kind', '-', whole=.true., width=16, kind=.true.)
+      call add_column(set, id%node, 'node', '-', whole=.true., width=12)
+      call add_column(set, id%x, 'x', 'm')
+      call add_column(set, id%stress, 'stress', 'Pa')
+      call add_column(set, id%dt_bound, 'dt_bound', 's')
+      call add_column(set, id%dx_bound, 'dx_bound', 'm')
+      call add_column(set, id%opening, 'opening', 'm')
+      call add_column(set, id%frag_above, 'frag_above', '-', whole=.true., width=12)
+      call add_column(set, id%frag_below, 'frag_below', '-', whole=.true., width=12)
+      call add_column(set, id%stress_bound, 'stress_bound', 'Pa')
+      call add_column(set, id%shift, 'shift', 'm')
+   end subroutine register_event_columns
+
+   !> Post an event into a row of the events' columns.
+   pure subroutine post_event_columns(id, e, row)
+      type(event_columns_t), intent(in) :: id   !! the columns' ids
+      type(event_t), intent(in) :: e            !! the event
+      real(wp), intent(inout) :: row(:)         !! the row
+      row(id%t) = e%t
+      row(id%step) = real(e%step, wp)
+      row(id%kind) = real(e%kind, wp)
+      row(id%node) = real(e%node, wp)
+      row(id%x) = e%x
+      row(id%stress) = e%stress
+      row(id%dt_bound) = e%dt_bound
+      row(id%dx_bound) = e%dx_bound
+      row(id%opening) = e%opening
+      row(id%frag_above) = real(e%frag_above, wp)
+      row(id%frag_below) = real(e%frag_below, wp)
+      row(id%stress_bound) = e%stress_bound
+      row(id%shift) = e%shift
+   end subroutine post_event_columns
 
    !> Append an event to the list (grown by doubling).
    pure subroutine push_event(list, ev)

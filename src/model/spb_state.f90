@@ -13,10 +13,12 @@ module spb_state
       define_ends, has_base, moves_with_bar, place_on_base, is_striker
    use spb_static, only: static_state
    use spb_random, only: rng_t, rng_seed, rng_uniform, weibull
+   use spb_columns, only: column_set_t, add_column
    implicit none
    private
    public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths, &
       separates
+   public :: state_columns_t, register_state_columns, post_state_columns
 
    !> The fragments' genealogy, kept per node (memory does not grow with the events).
    type :: genealogy_t
@@ -94,6 +96,11 @@ module spb_state
       type(full_mass_t) :: fm                 !! the full-mass model's cut springs
       type(cohesive_t) :: coh                 !! cohesive cracks
    end type state_t
+
+   !> The state's history columns (PREFIX.his, /history): their ids (spb_columns).
+   type :: state_columns_t
+      integer :: t = 0, step = 0, reaction_bottom = 0, reaction_top = 0, fragments = 0
+   end type state_columns_t
 
 contains
 
@@ -384,6 +391,31 @@ contains
       type(state_t), intent(in) :: st      !! the state
       nf = 1 + st%fm%n_cut + st%n_split - st%coh%n_active
    end function fragment_count
+
+   !> Register the state's history columns: the row's time and step, the supports' section
+   !> stresses, the fragments (their meaning: doc/outputs.md).
+   pure subroutine register_state_columns(set, id)
+      type(column_set_t), intent(inout) :: set   !! the history's columns
+      type(state_columns_t), intent(out) :: id   !! their ids
+      call add_column(set, id%t, 't', 's')
+      call add_column(set, id%step, 'step', '-', whole=.true.)
+      call add_column(set, id%reaction_bottom, 'reaction_bottom', 'Pa')
+      call add_column(set, id%reaction_top, 'reaction_top', 'Pa')
+      call add_column(set, id%fragments, 'fragments', '-', whole=.true.)
+   end subroutine register_state_columns
+
+   !> Post the state's values into a history row.
+   pure subroutine post_state_columns(id, mesh, st, row)
+      type(state_columns_t), intent(in) :: id   !! the columns' ids
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      real(wp), intent(inout) :: row(:)    !! the row
+      row(id%t) = real(st%step, wp) * mesh%dt
+      row(id%step) = real(st%step, wp)
+      row(id%reaction_bottom) = st%section(mesh%n) / mesh%area(mesh%n)
+      row(id%reaction_top) = st%section(0) / mesh%area(1)
+      row(id%fragments) = real(fragment_count(st), wp)
+   end subroutine post_state_columns
 
    !> Whether node i separates two fragments: split, and not a cohesive crack that still
    !> carries traction (its faces are held together by it).

@@ -29,11 +29,13 @@ module spb_wave
    use spb_ends, only: face_top, face_bottom, has_free_face, transmits, is_velocity_end, &
       has_base, on_base, holds, gives_equation
    use spb_state, only: state_t
+   use spb_columns, only: column_set_t, add_column
    implicit none
    private
    public :: wave_t, wave_energy, fragment_wave, fragment_characteristics, region_wave, &
       transmit_residuals, start_without_zigzag, start_zigzag, held_odd, credit_bound, &
       vertex_offset, credit_position
+   public :: wave_columns_t, register_wave_columns, post_wave_columns
 
    !> The whole bar's wave energy and the largest Jordan amplitude of its fragments.
    type :: wave_t
@@ -50,6 +52,11 @@ module spb_wave
                                        !! the continuum state that is a function of it [J/m^2]
    end type wave_t
 
+   !> The wave measure's history columns (PREFIX.his, /history): their ids (spb_columns).
+   type :: wave_columns_t
+      integer :: e_wave = 0, e_wave_g = 0, jordan = 0
+   end type wave_columns_t
+
    !> What a fragment's two faces give its reading (face_equations).
    type :: faces_t
       logical :: eq_top = .false.     !! the top face gives an equation (tr_top included)
@@ -65,6 +72,25 @@ module spb_wave
    end type faces_t
 
 contains
+
+   !> Register the wave measure's history columns (their meaning: doc/outputs.md).
+   pure subroutine register_wave_columns(set, id)
+      type(column_set_t), intent(inout) :: set   !! the history's columns
+      type(wave_columns_t), intent(out) :: id    !! their ids
+      call add_column(set, id%e_wave, 'e_wave', 'J/m^2')
+      call add_column(set, id%e_wave_g, 'e_wave_g', 'J/m^2')
+      call add_column(set, id%jordan, 'jordan', '-')
+   end subroutine register_wave_columns
+
+   !> Post the wave measure into a history row.
+   pure subroutine post_wave_columns(id, w, row)
+      type(wave_columns_t), intent(in) :: id   !! the columns' ids
+      type(wave_t), intent(in) :: w            !! the wave measure
+      real(wp), intent(inout) :: row(:)        !! the row
+      row(id%e_wave) = w%e_wave
+      row(id%e_wave_g) = w%e_gravity
+      row(id%jordan) = w%jordan
+   end subroutine post_wave_columns
 
    !> Wave energy of the bar at t^{n+1} = st%step dt. i_top, i_bot: integrals of the load on the
    !> top and bottom faces over the step just taken [Pa s] (0 where no load acts there).

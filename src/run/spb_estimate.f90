@@ -11,7 +11,8 @@ module spb_estimate
    use spb_kinds, only: wp
    use spb_strings, only: itoa
    use spb_deck_types, only: deck_t
-   use spb_output, only: history_table
+   use spb_columns, only: column_set_t
+   use spb_history, only: history_set
    implicit none
    private
    public :: estimate_t, estimate_run, estimate_line, estimate_warnings, progress_period, &
@@ -87,6 +88,7 @@ contains
       real(wp) :: c_step      ! seconds per cell and step [s]
       real(wp) :: half_rows   ! rows of a profile block: the half nodes, 2 per cell [-]
       integer :: ng, np, g_every
+      type(column_set_t) :: his   ! the history's columns
       est%cells = cells
       est%steps = max(nsteps - first, 0)
       est%cell_steps = real(cells, wp) * real(est%steps, wp)
@@ -106,7 +108,8 @@ contains
       np = deck%run%n_profiles
       if (first > 0) np = count(nint(deck%run%profile_times(1:np) / dt) > first)
       half_rows = 2.0_wp * real(cells, wp)
-      his_row = real(sum(max(len_trim(history_table%name), 20) + 1) + 1, wp)
+      his = history_set()
+      his_row = real(sum(his%col%width + 1) + 1, wp)   ! each field and its blank, the newline
       est%bytes(out_his) = est%rows * his_row
       ! a block: its two '#' lines, then a row per half node (5 columns)
       est%bytes(out_prf) = real(np, wp) * (100.0_wp + half_rows * real(5 * col_bytes + 1, wp))
@@ -116,7 +119,7 @@ contains
          xt_rows = 0.0_wp
          if (deck%run%field_every > 0) xt_rows = rows_between(first, nsteps, &
                                                               deck%run%field_every)
-         est%bytes(out_h5) = 8.0_wp * (est%rows * real(size(history_table), wp) + &
+         est%bytes(out_h5) = 8.0_wp * (est%rows * real(size(his%col), wp) + &
             real(np, wp) * 3.0_wp * half_rows + gau_rows * real(1 + 3 * ng, wp) + &
             xt_rows * (1.0_wp + 3.0_wp * half_rows))
       end if

@@ -16,15 +16,14 @@ module spb_sim
    use spb_mesh, only: mesh_t, build_mesh, mesh_size, mesh_fault_t, &
       fault_none, node_area
    use spb_load, only: load_t, build_load
-   use spb_cohesive, only: dissipated
-   use spb_state, only: state_t, init_state, fragment_count
-   use spb_full_mass, only: init_full_mass, full_mass_measure
-   use spb_step, only: advance, advance_joined, joined_only, end_stresses, face_load_integrals
-   use spb_ends, only: face_top, face_bottom, has_base, is_velocity_end, is_striker, &
-      strike_events, striker_energy
+   use spb_state, only: state_t, init_state
+   use spb_full_mass, only: init_full_mass
+   use spb_step, only: advance, advance_joined, joined_only, face_load_integrals
+   use spb_ends, only: face_top, face_bottom, is_velocity_end, is_striker, strike_events
    use spb_fragments, only: fragment_span
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
+   use spb_history, only: measure, post_history
    use spb_events, only: event_list_t
    use spb_summary, only: run_summary_t, summary_start, summary_row, summary_guard, &
       summary_reaction, summary_events, summary_checkpoint, summary_end
@@ -121,39 +120,6 @@ module spb_sim
 
 contains
 
-   !> The energy measure of the outputs and the guard: the wave measure (spb_wave) of the
-   !> half-mass model; the full-mass comparison model has no continuum reading and keeps the
-   !> scheme's own (spb_full_mass full_mass_measure). scale: the guard's scale at t = 0.
-   pure subroutine measure(sim, e, wv, w_wave, e_lost_w, scale)
-      type(sim_t), intent(in) :: sim       !! the simulation
-      type(energies_t), intent(in) :: e    !! the scheme's energies (spb_diag)
-      type(wave_t), intent(out) :: wv      !! the wave measure (full mass: only e_wave)
-      real(wp), intent(out) :: w_wave      !! work in that measure [J/m^2]
-      real(wp), intent(out) :: e_lost_w    !! energy events removed, in that measure [J/m^2]
-      real(wp), intent(out), optional :: scale   !! the energy guard's scale [J/m^2]
-      real(wp) :: q_top, q_bot, e_scale
-      if (sim%mesh%full_mass) then
-         call full_mass_measure(e, wv, w_wave, e_lost_w, e_scale)
-         if (present(scale)) scale = e_scale
-         return
-      end if
-      call face_load_integrals(sim%mesh, sim%load, sim%st%step, sim%st, q_top, q_bot)
-      wv = wave_energy(sim%mesh, sim%st, sim%prob%gravity, q_top, q_bot)
-      ! a striking mass's kinetic and cushion energy (its gravity energy is in e_pot)
-      if (any(is_striker(sim%st%ends))) wv%e_wave = wv%e_wave + &
-         sum(striker_energy(sim%st%ends, 0.0_wp))
-      w_wave = sim%st%ledger%w_wave + wv%w_support
-      e_lost_w = sim%st%ledger%e_lost_wave
-      if (present(scale)) scale = wv%e_wave
-   end subroutine measure
-
-   !> The mass gravity acts on: the bar's and a striking mass's [kg/m^2 A].
-   pure real(wp) function bar_mass(sim) result(m)
-      type(sim_t), intent(in) :: sim       !! the simulation
-      m = sum(sim%mesh%ma) + sum(sim%mesh%mb)
-      if (any(is_striker(sim%st%ends))) m = m + sum(sim%st%ends%mass, is_striker(sim%st%ends))
-   end function bar_mass
-
    !> A striking mass's energy at stake, for the energy guard's scale: its kinetic energy
    !> and its weight over its gap to the face, M |g| gap (0 without one) [J/m^2 A].
    pure real(wp) function striker_scale(sim) result(e)
@@ -167,60 +133,6 @@ contains
          end associate
       end do
    end function striker_scale
-
-   !> x_impactor, v_impactor, f_impactor of PREFIX.his: a striking mass's displacement from
-   !> its start, its velocity, and the contact force's mean over the last step (N, or Pa
-   !> when every area is 1); 0 without one.
-   pure function striker_columns(sim) result(c)
-      type(sim_t), intent(in) :: sim       !! the simulation
-      real(wp) :: c(3)
-      integer :: side
-      c = 0.0_wp
-      do side = face_top, face_bottom
-         if (.not. is_striker(sim%st%ends(side))) cycle
-         c(1) = sim%st%ends(side)%striker%x
-         c(2) = sim%st%ends(side)%striker%v
-         if (sim%st%ends(side)%q_step == sim%st%step) c(3) = sim%st%ends(side)%q / sim%mesh%dt
-      end do
-   end function striker_columns
-
-   !> Energy the cohesive cracks have dissipated so far, open and completed (spb_cohesive)
-   !> [J/m^2].
-   pure real(wp) function cohesive_dissipated(st) result(e)
-      type(state_t), intent(in) :: st      !! the state
-      e = 0.0_wp
-      if (st%coh%on) e = sum(dissipated(st%coh%dmax, st%coh%r, st%coh%dc))
-   end function cohesive_dissipated
-
-   !> What rigid shifts added to the faces' distance at an open cohesive crack, which is no
-   !> opening of the crack (spb_state cohesive_t); 0 elsewhere [m].
-   pure real(wp) function crack_offset(st, i) result(d)
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: i             !! split node
-      d = 0.0_wp
-      if (st%coh%on) then
-         if (st%coh%active(i)) d = st%coh%offset(i)
-      end if
-   end function crack_offset
-
-   !> The largest overlap of two faces at a split node (at an open cohesive crack, of its own
-   !> opening below 0), or of the bottom face and the base, in cells of that node (<= 0: none;
-   !> -huge with no open face) [-].
-   pure real(wp) function largest_overlap(sim) result(ov)
-      type(sim_t), intent(in) :: sim       !! the simulation
-      integer :: c, i
-      ov = -huge(1.0_wp)
-      do c = 1, sim%st%n_split
-         i = sim%st%split(c)
-         ov = max(ov, (sim%st%ua(i) - sim%st%ub(i) + crack_offset(sim%st, i)) / &
-                      min(sim%mesh%dx(i), sim%mesh%dx(i + 1)))
-      end do
-      if (has_base(sim%st%ends(face_bottom))) ov = max(ov, (sim%st%ua(sim%mesh%n) - &
-         sim%st%ends(face_bottom)%u_contact) / sim%mesh%dx(sim%mesh%n))
-      if (has_base(sim%st%ends(face_top))) ov = max(ov, (sim%st%ends(face_top)%u_contact - &
-         sim%st%ub(0)) / sim%mesh%dx(1))
-      ov = max(ov, -1.0_wp)
-   end function largest_overlap
 
    !> Build mesh, load and initial state from a validated deck, once the memory they need
    !> (and the outputs', a restart's) is known to fit.
@@ -534,7 +446,7 @@ contains
       type(wave_t) :: w0
       real(wp) :: w_w, e_l, scale
       e0 = energies(sim%mesh, sim%st, sim%prob%gravity)
-      call measure(sim, e0, w0, w_w, e_l, scale)
+      call measure(sim%mesh, sim%load, sim%st, sim%prob%gravity, e0, w0, w_w, e_l, scale)
       call summary_start(summary, e0, w0, w_w, e_l, scale, &
                          sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       call row(sim, run, summary, err)
@@ -664,7 +576,7 @@ contains
       real(wp) :: w_w, e_l
       e = energies(sim%mesh, sim%st, sim%prob%gravity)
       if (ieee_is_finite(e%ledger)) then
-         call measure(sim, e, wv, w_w, e_l)
+         call measure(sim%mesh, sim%load, sim%st, sim%prob%gravity, e, wv, w_w, e_l)
          call guard(sim, summary, e, wv, w_w, err)
          if (allocated(err)) call row(sim, run, summary, err)
       else
@@ -698,11 +610,10 @@ contains
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(energies_t) :: e
       type(wave_t) :: wv
-      real(wp) :: s_top, s_bot, w_w, e_l, g
+      real(wp) :: w_w, e_l, g
       integer :: i
       g = sim%prob%gravity
       e = energies(sim%mesh, sim%st, g)
-      call end_stresses(sim%mesh, sim%load, sim%st, s_top, s_bot)
       if (.not. ieee_is_finite(e%ledger)) then
          ! the first node whose displacements, increments or cell stress above are bad
          do i = 0, sim%mesh%n
@@ -716,22 +627,17 @@ contains
          if (run%to_files) call flush_outputs(run%out)
          return
       end if
-      call measure(sim, e, wv, w_w, e_l)
+      call measure(sim%mesh, sim%load, sim%st, sim%prob%gravity, e, wv, w_w, e_l)
       ! the summary's running values (wv%jordan made relative to the largest momentum scale)
       call summary_row(summary, sim%st%step, e, wv, w_w, e_l)
-      ! the values in the order of history_table (spb_output)
-      if (run%to_files) call write_history_row(run%out, [real(sim%st%step, wp) * sim%mesh%dt, &
-         sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n), &
-         sim%st%section(0) / sim%mesh%area(1), real(fragment_count(sim%st), wp), &
-         e%e_kin, e%e_strain, e%e_pot, e%w_ext, e%e_lost, e%momentum, &
-         real(sim%st%step, wp), s_top / sim%mesh%area(1), s_bot / sim%mesh%area(sim%mesh%n), &
-         sim%st%ledger%w_load, sim%st%ledger%w_transmit, &
-         e%ledger, sim%st%ledger%e_fracture, sim%st%ledger%e_join, sim%st%ledger%e_shift, sim%st%ledger%e_contact, &
-         g * bar_mass(sim) * real(sim%st%step, wp) * sim%mesh%dt, &
-         sim%st%ledger%i_ends, sim%st%ledger%i_support, sim%st%ledger%p_shift, wv%e_wave, wv%e_gravity, wv%jordan, &
-         w_w, e_l, wv%e_wave + e%e_pot + wv%e_gravity - w_w + e_l, largest_overlap(sim), &
-         cohesive_dissipated(sim%st), sim%st%ledger%w_cohesive, real(sim%st%coh%n_active, wp), &
-         striker_columns(sim)])
+      if (run%to_files) then
+         block
+            real(wp) :: v(size(run%out%his_table))   ! the row: each owner posts its columns
+            v = 0.0_wp
+            call post_history(run%out%his_id, sim%mesh, sim%load, sim%st, g, e, wv, w_w, e_l, v)
+            call write_history_row(run%out, v)
+         end block
+      end if
       call guard(sim, summary, e, wv, w_w, err)
    end subroutine row
 
