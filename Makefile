@@ -8,6 +8,7 @@
 #   make figures   run the paper's examples, render its figures into build/release/figures
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make event-study  the event layer's energy, momentum, invariance table (bench/event_study.py)
+#   make consistency  the event corrections under refinement: x_drift, e_lost_w (bench/consistency.py)
 #   make blows     the striking mass's worked examples: doc/figures/{drop_hammer,striker}_blows.png
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): brittle Weibull bar
 #                  and the cohesive ZMR benchmark (plots/zmr_study.py): figures, tables
@@ -38,7 +39,7 @@ CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran $(CMAKE_FLAGS)
 
 PREFIX ?= /usr/local
 
-.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study blows fragmentation golden archive-check rebaseline clean help
+.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study consistency blows fragmentation golden archive-check rebaseline clean help
 
 all: build
 
@@ -83,6 +84,11 @@ PYTHON ?= $(shell test -x .venv/bin/python && echo .venv/bin/python || echo pyth
 bench: build
 	$(PYTHON) bench/run.py --exe $(BUILD_RELEASE)/bin/spallbar --label "$$(git describe --always --dirty 2>/dev/null || echo build)" \
 	  --table doc/benchmarks-latest.md --plot doc/figures/bench_scaling.png
+
+# doc/method.md "What the corrections move": x_drift and e_lost_w under refinement, every rule
+consistency: build
+	$(PYTHON) bench/consistency.py --exe $(BUILD_RELEASE)/bin/spallbar --work $(BUILD_RELEASE)/consistency \
+	  --json $(BUILD_RELEASE)/consistency/results.json --case2-meshes 19,95,190,380
 
 # doc/benchmarks.md "The event study": the tables doc/validation.md summarises (wave measure)
 event-study: build

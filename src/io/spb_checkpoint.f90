@@ -227,6 +227,8 @@ contains
       call later_field(ck, writing, '/state', 'v_end_top', st%ends(face_top)%v_end)
       call later_field(ck, writing, '/state', 'v_end_bot', st%ends(face_bottom)%v_end)
       call later_field(ck, writing, '/state', 'w_support', st%ledger%w_support)
+      ! added with x_drift (0 in a checkpoint of a version without it)
+      call later_field(ck, writing, '/state', 'm_drift', st%ledger%m_drift)
       ! a striking mass (only a run that has one)
       if (any(is_striker(st%ends))) then
          ck%writing = writing

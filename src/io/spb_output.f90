@@ -43,7 +43,7 @@ module spb_output
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
       // '(compression > 0); fragments, step [-]; e_*, w_*, ledger [J/m^2]; momentum, i_*, ' &
       // 'p_shift [kg/(m s)] along +x (down); jordan [-]; x_impactor [m], v_impactor [m/s] ' &
-      // 'along +x, f_impactor [N/m^2] (compression > 0)'
+      // 'along +x, f_impactor [N/m^2] (compression > 0); x_cm, x_drift [m] along +x'
    character(len=*), parameter :: fragment_columns = 'id parent birth_t x_top x_bottom mass ' &
       // 'velocity e_vib top_node bottom_node t'
    character(len=*), parameter :: profile_columns = 'x u v stress t'

@@ -258,6 +258,9 @@ contains
          ! section stress starts from the face half's own velocity with S^{n+1/2} = 0, the
          ! collision stress (5.6), alpha -> infinity
          st%s_old(bf%c) = st%s_old(bf%c) - bf%sgn * mesh%stiff(bf%c) * du_trial
+         ! the face keeps the step it took, the base takes its momentum: that step moved the
+         ! mass with no momentum left behind it (x_drift)
+         st%ledger%m_drift = st%ledger%m_drift + face_mass(mesh, bf) * du_trial
          st%section(bf%e) = 0.0_wp
          st%ends(bf%side)%landing = .true.
          st%ends(bf%side)%v_land = du_trial / mesh%dt

@@ -107,6 +107,8 @@ contains
          end if
       end if
       de_pot = -g * span_mass(mesh, top, bot) * delta
+      ! the centre of mass moves with no momentum behind it (x_drift, doc/outputs.md)
+      st%ledger%m_drift = st%ledger%m_drift + span_mass(mesh, top, bot) * delta
    end subroutine shift_span
 
    !> Issue a new fragment id for the fragment whose top node is `node`, with its parent and
@@ -244,6 +246,8 @@ contains
       st%ledger%e_shift = st%ledger%e_shift - (mom * w + mass * (0.5_wp * w**2 + 0.5_wp * g * mesh%dt * w) &
                                  + de - work)
       st%ledger%p_shift = st%ledger%p_shift + mass * w
+      ! the step's increments gained w dt that no displacement followed (x_drift)
+      st%ledger%m_drift = st%ledger%m_drift - mass * w * mesh%dt
    end subroutine shift_late
 
    !> Shift the nodes a..b rigidly by delta (shift_span), booking the gravity energy in

@@ -33,7 +33,7 @@ module spb_history
       'w_transmit', 'ledger', 'e_fracture', 'e_join', 'e_shift', 'e_contact', 'i_gravity', &
       'i_ends', 'i_support', 'p_shift', 'e_wave', 'e_wave_g', 'jordan', 'w_wave', 'e_lost_w', &
       'ledger_w', 'overlap', 'e_cohesive', 'w_cohesive', 'cracks_open', 'x_impactor', &
-      'v_impactor', 'f_impactor']
+      'v_impactor', 'f_impactor', 'x_cm', 'x_drift']
 
    !> The ids of the history's columns, each owner's in its own type.
    type :: history_ids_t
@@ -44,6 +44,7 @@ module spb_history
       type(wave_columns_t) :: wave
       type(crack_columns_t) :: cracks
       integer :: i_gravity = 0, w_wave = 0, e_lost_w = 0, ledger_w = 0, overlap = 0
+      integer :: x_cm = 0, x_drift = 0
    end type history_ids_t
 
 contains
@@ -65,6 +66,8 @@ contains
       call add_column(set, id%e_lost_w, 'e_lost_w', 'J/m^2')
       call add_column(set, id%ledger_w, 'ledger_w', 'J/m^2')
       call add_column(set, id%overlap, 'overlap', '-')
+      call add_column(set, id%x_cm, 'x_cm', 'm')
+      call add_column(set, id%x_drift, 'x_drift', 'm')
    end subroutine register_history
 
    !> The history's columns, in file order.
@@ -100,6 +103,8 @@ contains
       row(id%e_lost_w) = e_lost_w
       row(id%ledger_w) = wv%e_wave + e%e_pot + wv%e_gravity - w_wave + e_lost_w
       row(id%overlap) = largest_overlap(mesh, st)
+      row(id%x_cm) = centre_of_mass(mesh, st)
+      row(id%x_drift) = st%ledger%m_drift / (sum(mesh%ma) + sum(mesh%mb))
    end subroutine post_history
 
    !> The energy measure of the outputs and the guard: the wave measure (spb_wave) of the
@@ -129,6 +134,15 @@ contains
       e_lost_w = st%ledger%e_lost_wave
       if (present(scale)) scale = wv%e_wave
    end subroutine measure
+
+   !> Displacement of the bar's centre of mass, sum (m_A u_A + m_B u_B) / M over the half
+   !> nodes [m]: with the momentum's sum over the steps, the centre-of-mass theorem's
+   !> M (X(t) - X(0)) = dt sum p + M x_drift (doc/outputs.md).
+   pure real(wp) function centre_of_mass(mesh, st) result(x)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      x = (sum(mesh%ma * st%ua) + sum(mesh%mb * st%ub)) / (sum(mesh%ma) + sum(mesh%mb))
+   end function centre_of_mass
 
    !> The mass gravity acts on: the bar's and a striking mass's [kg/m^2 A].
    pure real(wp) function bar_mass(mesh, st) result(m)
