@@ -64,6 +64,7 @@ KINDS = {
     ("segments", "interface"): "word", ("segments", "velocity"): "real",
     ("segments", "gap"): "real",
     ("ends", "top"): "word", ("ends", "bottom"): "word", ("ends", "base_gap"): "real",
+    ("ends", "base_gap_top"): "real",
     ("load", "kind"): "word", ("load", "face"): "word", ("load", "p0"): "real",
     ("load", "t_k"): "real", ("load", "exponent"): "real", ("load", "t_cut"): "real",
     ("load", "table"): "text",

@@ -937,6 +937,15 @@ contains
                             // 'separated pieces are not in equilibrium')
             return
          end if
+         ! a base holds the bar's weight only where gravity presses the bar onto it
+         if ((deck%ends%bottom == 'base' .and. deck%run%gravity < 0.0_wp) .or. &
+             (deck%ends%top == 'base' .and. deck%run%gravity > 0.0_wp)) then
+            call make_error(err, '&initial: state = ''static'' with gravity = ' // &
+               rtoa(deck%run%gravity) // ' pulls the bar away from its base (&ends ' // &
+               trim(merge('bottom', 'top   ', deck%ends%bottom == 'base' .and. &
+               deck%run%gravity < 0.0_wp)) // ' = ''base''), which cannot hold it by a pull')
+            return
+         end if
          if (deck%ends%top == 'base' .and. deck%ends%base_gap_top > 0.0_wp) then
             call make_error(err, '&initial: state = ''static'' with &ends base_gap_top > 0: a ' &
                             // 'bar off the base is not in equilibrium')

@@ -26,7 +26,7 @@ module spb_base
       choose_time, du_before_a, du_before_b, path_speed, shift_late, shift_part, extend_up, &
       extend_down, finish_event, book_shift_work, skip_next, keep_credit
    use spb_base_face, only: base_face_t, base_face, face_u, face_du, face_mass, move_base_face, &
-      base_fragment, base_ids, lift_off_event
+      base_fragment, base_ids, lift_off_event, end_order
    use spb_problem, only: events_paper, shift_above
    implicit none
    private
@@ -36,7 +36,7 @@ contains
 
    !> After the trial step: a face off its base that has passed it lands, by the rule set's
    !> landing (land_admissible, land_paper: chosen here), the region's wave measure before and
-   !> after booked in e_lost_wave; the bottom first, then the top.
+   !> after booked in e_lost_wave; with two bases the deeper overlap first (end_order).
    pure subroutine touch_base(mesh, st, g, timing, policy, events, i_top, i_bot, rules, eps_rel)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -49,9 +49,19 @@ contains
       integer, intent(in) :: rules             !! events_admissible | events_paper
       real(wp), intent(in) :: eps_rel          !! admissible: the face lands when it overlaps
                                                !! the base by more than eps_rel dx [-]
-      integer :: side
+      integer :: side, k, order(2)
+      real(wp) :: key(2)
       type(base_face_t) :: bf
-      do side = face_bottom, face_top, -1
+      ! with two bases, the deeper overlap (in cells) lands first
+      key = -huge(1.0_wp)
+      do side = face_top, face_bottom
+         if (.not. has_base(st%ends(side)) .or. st%ends(side)%contact) cycle
+         bf = base_face(mesh, side)
+         key(side) = bf%sgn * (face_u(st, bf) - st%ends(side)%u_contact) / mesh%dx(bf%c)
+      end do
+      order = end_order(key)
+      do k = 1, 2
+         side = order(k)
          if (.not. has_base(st%ends(side)) .or. st%ends(side)%contact) cycle
          bf = base_face(mesh, side)
          select case (rules)
@@ -364,7 +374,7 @@ contains
 
    !> Each face resting on its base leaves it when the base section stress falls below -eps
    !> (the base has no tensile strength), by the rule set's lift-off (lift_admissible,
-   !> lift_paper: chosen here); the bottom first, then the top.
+   !> lift_paper: chosen here); with two bases the stronger pull first (end_order).
    pure subroutine lift_off(mesh, st, g, eps, events, rules, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -374,9 +384,12 @@ contains
       integer, intent(in) :: rules         !! event rules (events_*)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      integer :: side
+      integer :: side, k, order(2)
       type(base_face_t) :: bf
-      do side = face_bottom, face_top, -1
+      ! with two bases, the stronger pull lets go first
+      order = end_order(merge(-st%section([0, mesh%n]), -huge(1.0_wp), on_base(st%ends)))
+      do k = 1, 2
+         side = order(k)
          if (.not. on_base(st%ends(side))) cycle
          bf = base_face(mesh, side)
          if (any(st%skip_test(1:st%n_skip) == bf%e)) cycle

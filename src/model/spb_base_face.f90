@@ -16,7 +16,7 @@ module spb_base_face
    implicit none
    private
    public :: base_face_t, base_face, face_u, face_du, face_mass, move_base_face, base_fragment, &
-      base_ids, lift_off_event
+      base_ids, lift_off_event, end_order
 
    !> A base end in its own numbers.
    type :: base_face_t
@@ -122,6 +122,16 @@ contains
          below = 0
       end if
    end subroutine base_ids
+
+   !> The order in which the two ends are taken when both may act in one step (two bases): the
+   !> larger key first (an overlap in cells, a pull), so that a mirrored bar takes them in the
+   !> mirrored order; on a tie the bottom first. key(face_top), key(face_bottom).
+   pure function end_order(key) result(order)
+      real(wp), intent(in) :: key(2)       !! each end's key (-huge: it does not act)
+      integer :: order(2)                  !! the sides in the order taken
+      order = [face_bottom, face_top]
+      if (key(face_top) > key(face_bottom)) order = [face_top, face_bottom]
+   end function end_order
 
    !> The separation event of a face that left its base (after the state has been updated).
    pure subroutine lift_off_event(mesh, st, bf, a, stress, events)

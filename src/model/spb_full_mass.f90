@@ -21,7 +21,8 @@ module spb_full_mass
    use spb_wave, only: wave_t, region_wave
    use spb_diag, only: energies_t
    use spb_fragments, only: node_energy, fragment_span, new_fragment_id
-   use spb_base_face, only: base_face_t, base_face, move_base_face, base_fragment, lift_off_event
+   use spb_base_face, only: base_face_t, base_face, move_base_face, base_fragment, lift_off_event, &
+      end_order
    implicit none
    private
    public :: init_full_mass, full_mass_fracture, cut_closing, cut_spring_forces, &
@@ -52,7 +53,7 @@ contains
    end subroutine init_full_mass
 
    !> The model's part of fracture_step at t^{n+1}: a base lets go of a face it pulls
-   !> (full_mass_lift_off; the bottom first, then the top), then the springs beyond their
+   !> (full_mass_lift_off; with two bases the stronger pull first), then the springs beyond their
    !> strength are cut.
    pure subroutine full_mass_fracture(mesh, st, g, eps, events, i_top, i_bot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
@@ -62,10 +63,12 @@ contains
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
-      integer :: side
-      do side = face_bottom, face_top, -1
-         if (on_base(st%ends(side))) call full_mass_lift_off(mesh, st, base_face(mesh, side), g, &
-                                                             eps, events, i_top, i_bot)
+      integer :: k, order(2)
+      ! with two bases, the stronger pull lets go first (spb_base_face end_order)
+      order = end_order(merge(-st%section([0, mesh%n]), -huge(1.0_wp), on_base(st%ends)))
+      do k = 1, 2
+         if (on_base(st%ends(order(k)))) call full_mass_lift_off(mesh, st, &
+            base_face(mesh, order(k)), g, eps, events, i_top, i_bot)
       end do
       if (st%n_breakable == 0) return
       call cut_springs(mesh, st, eps, events)

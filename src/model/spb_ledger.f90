@@ -43,9 +43,10 @@ module spb_ledger
       real(wp) :: e_traction = 0.0_wp         !! the same work in the scheme's own measure,
                                               !! P^n (delta^{n+1} - delta^{n-1})/2 (in e_lost) [J/m^2]
       real(wp) :: m_drift = 0.0_wp            !! mass times displacement that corrections moved
-                                              !! without momentum: the sum of M delta over the
-                                              !! rigid shifts (spb_fragments shift_span); / the
-                                              !! bar's mass, the history's x_drift [kg/m A]
+                                              !! without momentum: rigid shifts (shift_span),
+                                              !! regions set on their path (shift_late), landings
+                                              !! at t^{n+1} (spb_base join_base); / the bar's
+                                              !! mass, the history's x_drift [kg/m A]
    end type ledger_t
 
    !> The ledger's history columns (PREFIX.his, /history): their ids (spb_columns).
