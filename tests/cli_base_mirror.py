@@ -256,6 +256,9 @@ def bad_input(check, exe, work):
         deck = (f"&run t_end = 1e-3, gravity = -9.81 /\n&mesh cells = 10 /\n"
                 f"&segments n = 1, length = 1.0, young = 2e9, density = 2000 /\n"
                 f"&ends {ends} /\n" + (f"&initial {initial} /\n" if initial else ""))
+        for f in os.listdir(work):            # what an earlier run left
+            if f.startswith(name + "."):
+                os.remove(os.path.join(work, f))
         with open(os.path.join(work, name + ".nml"), "w") as f:
             f.write(deck)
         r = run(exe, [name + ".nml"], work)
