@@ -41,6 +41,8 @@ ROOT = os.path.dirname(HERE)
 RULES = [("accelerate", "above", "admissible"), ("accelerate", "fragment", "admissible"),
          ("delay", "above", "admissible"), ("delay", "fragment", "admissible"),
          ("min", "above", "admissible"), ("min", "fragment", "admissible"),
+         ("accelerate", "face", "admissible"), ("delay", "face", "admissible"),
+         ("min", "face", "admissible"),
          ("accelerate", "above", "paper")]
 THETAS = (0.13, 0.37, 0.61, 0.89)
 LEVELS = (1, 2, 4, 8)
@@ -165,34 +167,40 @@ def main(argv):
         print(f"\n### {deck_name}: mean |x_drift| [m] and e_lost_w [J/m^2] at t_end, dt / "
               f"{', '.join(str(l) for l in LEVELS)}, and the orders between meshes\n")
         print("| rule | " + " | ".join(f"x_drift dt/{l}" for l in LEVELS) + " | order | "
-              + " | ".join(f"e_lost_w dt/{l}" for l in LEVELS) + " | order |")
-        print("|---" * (2 * len(LEVELS) + 3) + "|")
+              + " | ".join(f"e_lost_w dt/{l}" for l in LEVELS) + " | order | "
+              + " | ".join(f"l_defect dt/{l}" for l in LEVELS) + " | order |")
+        print("|---" * (3 * len(LEVELS) + 4) + "|")
         for ri, rule in enumerate(RULES):
-            xs, es = [], []
+            xs, es, ls = [], [], []
             for level in LEVELS:
                 rows = [v for k, v in results.items()
                         if k.startswith(f"{deck_name}_r{ri}_l{level}_") and v]
                 xs.append(sum(abs(r.get("x_drift", float("nan"))) for r in rows) / max(len(rows), 1))
                 es.append(sum(abs(r["e_lost_w"]) for r in rows) / max(len(rows), 1))
-            tables.setdefault(deck_name, {})["/".join(rule)] = {"x_drift": xs, "e_lost_w": es}
+                ls.append(sum(abs(r.get("l_defect", float("nan"))) for r in rows)
+                          / max(len(rows), 1))
+            tables.setdefault(deck_name, {})["/".join(rule)] = {"x_drift": xs, "e_lost_w": es,
+                                                                "l_defect": ls}
             print(f"| {'/'.join(rule)} | " + " | ".join(f"{x:.2e}" for x in xs)
                   + f" | {order(xs[-2], xs[-1])} | " + " | ".join(f"{e:.2e}" for e in es)
-                  + f" | {order(es[-2], es[-1])} |")
+                  + f" | {order(es[-2], es[-1])} | " + " | ".join(f"{x:.2e}" for x in ls)
+                  + f" | {order(ls[-2], ls[-1])} |")
     if meshes:
         print("\n### Example 3 case 2 at 0.6 s: e_lost_w [J/m^2], base impulse -i_support "
-              "[kg/(m s)], x_drift [m]\n")
-        print("| rule | " + " | ".join(f"e_lost_w h/{m} | impulse h/{m} | x_drift h/{m}"
-                                       for m in meshes) + " |")
-        print("|---" * (3 * len(meshes) + 1) + "|")
+              "[kg/(m s)], x_drift [m], l_defect [m]\n")
+        print("| rule | " + " | ".join(f"e_lost_w h/{m} | impulse h/{m} | x_drift h/{m} | "
+                                       f"l_defect h/{m}" for m in meshes) + " |")
+        print("|---" * (4 * len(meshes) + 1) + "|")
         for ri, rule in enumerate(RULES):
             cells = []
             for m in meshes:
                 r = results.get(f"case2_r{ri}_h{m}")
                 if r:
                     cells.append(f"{r['e_lost_w']:.1f} | {-r['i_support']:.1f} | "
-                                 f"{r.get('x_drift', float('nan')):.2e}")
+                                 f"{r.get('x_drift', float('nan')):.2e} | "
+                                 f"{r.get('l_defect', float('nan')):.2e}")
                 else:
-                    cells.append("- | - | -")
+                    cells.append("- | - | - | -")
             tables.setdefault("case2", {})["/".join(rule)] = [results.get(f"case2_r{ri}_h{m}")
                                                             for m in meshes]
             print(f"| {'/'.join(rule)} | " + " | ".join(cells) + " |")

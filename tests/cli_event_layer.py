@@ -50,7 +50,7 @@ import sys
 import numpy as np
 
 RULES = ("accelerate", "delay", "min")
-POLICIES = ("above", "fragment")
+POLICIES = ("above", "fragment", "face")
 EXCESS_TOL = 1.0e-6      # the issue: energy <= initial + work + 1e-6 of the scale
 LOST_TOL = 1.0e-12       # e_lost never decreases (to round-off: 1e-12 of the scale)
 LEDGER_TOL = 1.0e-9

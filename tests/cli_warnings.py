@@ -163,14 +163,14 @@ def main():
     check(r.returncode == 0 and r.stderr == "", f"a plausible deck: {r.stderr!r}")
     print("ok   warnings = .false. silences them; a plausible deck has none")
     # the issue's deck (issue 32, item 8): 100 gauges every step on 1e4 cells to 0.198 s
-    # would write about 63 GB of .gau and 8.2 GB of .his; the run is stopped once it warned
+    # would write about 63 GB of .gau and 8.4 GB of .his; the run is stopped once it warned
     with open(os.path.join(work, "g.nml"), "w") as f:
         f.write(GAUGES)
     lines = warnings_then_stop(exe, ["g.nml", "--quiet"], work)
     volume = [l for l in lines if "more than 10 GB" in l]
     check(len(volume) == 1 and all(w in volume[0] for w in (
         "the outputs would be about 71", ".gau 63.2 GB from &gauges every = 1 with 100 gauges",
-        ".his 8.20 GB from &run history_every = 1")), f"gauges every step: {lines}")
+        ".his 8.41 GB from &run history_every = 1")), f"gauges every step: {lines}")
     print(f"ok   {volume[0] if volume else lines}")
     decks = sorted(glob.glob(os.path.join(indir, "*.nml")) +
                    glob.glob(os.path.join(indir, "example3_case2", "*.nml")) +

@@ -26,7 +26,7 @@ module spb_deck
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, end_velocity, &
       end_impactor, &
       load_none, load_power, load_table, load_exponential, face_top, face_bottom, &
-      timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment, &
+      timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment, shift_face, &
       events_admissible, events_paper
    implicit none
    private
@@ -107,7 +107,8 @@ contains
       prob%full_mass = deck%run%model == 'full-mass'
       prob%timing = code_of(timing_words, deck%run%timing, [timing_accelerate, timing_delay, &
                             timing_min])
-      prob%shift = code_of(shift_words, deck%run%shift, [shift_above, shift_fragment])
+      prob%shift = code_of(shift_words, deck%run%shift, [shift_above, shift_fragment, &
+                           shift_face])
       prob%events = code_of(events_words, deck%run%events, [events_admissible, events_paper])
       prob%eps_rel = deck%run%eps_rel
    contains
@@ -539,6 +540,13 @@ contains
       call need_choice(err, 'run', 'events', run%events, events_words)
       call need_choice(err, 'run', 'model', run%model, model_words)
       call need_choice(err, 'run', 'header', run%header, header_words)
+      if (allocated(err)) return
+      ! the paper's rules shift fragments (its (5.2)); moving only the faces is ours
+      if (run%shift == 'face' .and. run%events == 'paper') then
+         call make_error(err, '&run: shift = ''face'' needs events = ''admissible'' (the paper''s ' &
+                         // 'rules shift fragments)')
+         return
+      end if
       call need_finite(err, 'run', 'eps_rel', run%eps_rel)
       if (allocated(err)) return
       if (run%eps_rel < 0.0_wp .or. run%eps_rel > 1.0e-3_wp) then

@@ -23,7 +23,7 @@ module spb_deck_types
    ! variable in spb_deck_params, turned into codes by problem_from_deck in this order)
    character(len=*), parameter :: timing_words(3) = [character(len=10) :: 'accelerate', &
       'delay', 'min']
-   character(len=*), parameter :: shift_words(2) = [character(len=8) :: 'above', 'fragment']
+   character(len=*), parameter :: shift_words(3) = [character(len=8) :: 'above', 'fragment', 'face']
    character(len=*), parameter :: events_words(2) = [character(len=10) :: 'admissible', 'paper']
    character(len=*), parameter :: model_words(2) = [character(len=9) :: 'half-mass', 'full-mass']
    character(len=*), parameter :: fit_words(2) = [character(len=7) :: 'strict', 'stretch']

@@ -27,7 +27,7 @@ module spb_base
       extend_down, finish_event, book_shift_work, skip_next, keep_credit
    use spb_base_face, only: base_face_t, base_face, face_u, face_du, face_mass, move_base_face, &
       base_fragment, base_ids, lift_off_event, end_order
-   use spb_problem, only: events_paper, shift_above
+   use spb_problem, only: events_paper, shift_above, shift_face
    implicit none
    private
    public :: touch_base, lift_off
@@ -122,7 +122,10 @@ contains
       real(wp), intent(out) :: shift_amount    !! its shift along x [m] (0: none)
       call base_fragment(mesh, st, bf, policy, a, b)
       shift_amount = 0.0_wp
-      if (.not. anchored(mesh, st, a, b)) then
+      if (policy == shift_face) then
+         ! only the face half moves (correct_admissible): it is never held
+         shift_amount = -bf%sgn * corr
+      else if (.not. anchored(mesh, st, a, b)) then
          shift_amount = -bf%sgn * corr
          if (bf%side == face_top) then
             call extend_down(mesh, st, b, shift_amount)
@@ -306,9 +309,13 @@ contains
       ! bias: the push of gravity and the far face's load along +x; the bar side moves by
       ! -sgn corr: against the bias, take the other time's correction if it moves along it,
       ! or the smaller one where both go against
-      bias = g * span_mass(mesh, a, b) * mesh%dt
-      if (bf%side == face_bottom .and. a == 0) bias = bias + i_top
-      if (bf%side == face_top .and. b == mesh%n) bias = bias - i_bot
+      if (policy == shift_face) then
+         bias = g * face_mass(mesh, bf) * mesh%dt
+      else
+         bias = g * span_mass(mesh, a, b) * mesh%dt
+         if (bf%side == face_bottom .and. a == 0) bias = bias + i_top
+         if (bf%side == face_top .and. b == mesh%n) bias = bias - i_bot
+      end if
       other = merge(d_del, d_acc, at_n)
       if (bias * (-bf%sgn * corr) < 0.0_wp .and. (.not. bias * (-bf%sgn * other) < 0.0_wp .or. &
                                                  abs(other) < abs(corr))) then
@@ -323,7 +330,13 @@ contains
          corr = d_acc
       end if
       if (.not. abs(shift_amount) > 0.0_wp) return
-      if (bf%side == face_top) then
+      if (policy == shift_face) then
+         ! the 'face' policy: the face half alone moves onto the base (a length defect of its
+         ! end cell; nothing beyond the end node moves)
+         call move_base_face(st, bf, -shift_amount, 0.0_wp)
+         st%ledger%e_shift = st%ledger%e_shift + g * face_mass(mesh, bf) * shift_amount
+         st%ledger%m_drift = st%ledger%m_drift + face_mass(mesh, bf) * shift_amount
+      else if (bf%side == face_top) then
          call fragment_span(mesh, st, 0, j_near, k_near)
          call shift_part(mesh, st, g, 0, min(b, k_near), shift_amount, .false.)
          if (b > k_near) call shift_part(mesh, st, g, k_near, b, shift_amount, .true.)

@@ -22,6 +22,7 @@ module spb_fragments
       shift_late, shift_part, extend_up, extend_down, finish_event, book_shift_work, skip_next, &
       keep_credit
    public :: cohesive_open, gap_at_n, start_collision, join_node, open_section, record_break
+   public :: join_stress, move_faces
 
 contains
 
@@ -431,6 +432,46 @@ contains
       call choose_time(timing, d_acc, d_del, at_n, corr)
    end subroutine start_collision
 
+   !> The collision stress (5.6) in the section of split node i if its halves joined at t^n
+   !> (at_n: from the cells' stresses s^n and the halves' increments du0 of the step before)
+   !> or at t^{n+1} (from s^{n+1} and the increments just taken) [Pa, + compression].
+   pure real(wp) function join_stress(mesh, st, i, at_n, du0) result(sz)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! split node
+      logical, intent(in) :: at_n          !! joined at t^n (else t^{n+1})
+      real(wp), intent(in) :: du0(2)       !! the halves' increments of the step before [m]
+      if (at_n) then
+         sz = collision_stress(st%s_old(i), st%s_old(i + 1), du0(1) / mesh%dt, du0(2) / mesh%dt, &
+                               mesh%z(i), mesh%z(i + 1))
+      else
+         sz = collision_stress(st%s(i), st%s(i + 1), st%dua(i) / mesh%dt, st%dub(i) / mesh%dt, &
+                               mesh%z(i), mesh%z(i + 1))
+      end if
+   end function join_stress
+
+   !> Move the two faces of split node i towards each other by d (apart for d < 0): the upper
+   !> half by -d m_B/(m_A + m_B), the lower by +d m_A/(m_A + m_B), their displacements only.
+   !> Their common centre of mass stays (x_drift books + and - that cancel), so gravity does
+   !> no work on the move; the cells next to the node keep their stresses, so the two cells'
+   !> lengths take the correction as a length defect; nothing beyond the node moves (the
+   !> 'face' policy's correction, causal: doc/method.md, "The 'face' correction").
+   pure subroutine move_faces(mesh, st, g, i, d)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! split node
+      real(wp), intent(in) :: d            !! the faces' overlap to remove [m]
+      real(wp) :: x, y, de_pot
+      x = d * mesh%mb(i) / (mesh%ma(i) + mesh%mb(i))
+      y = d - x
+      st%ua(i) = st%ua(i) - x
+      st%ub(i) = st%ub(i) + y
+      de_pot = -g * (mesh%mb(i) * y - mesh%ma(i) * x)
+      st%ledger%e_shift = st%ledger%e_shift - de_pot
+      st%ledger%m_drift = st%ledger%m_drift + (mesh%mb(i) * y - mesh%ma(i) * x)
+   end subroutine move_faces
+
    !> The join of a collision at split node i once a rule set has corrected the positions
    !> (moved by shift, at the time at_n with the correction corr): the collision stress (5.6)
    !> at the joining time and its error bound (6.2), the join with conserved momentum (5.4),
@@ -445,19 +486,11 @@ contains
       real(wp), intent(in) :: shift        !! the shift applied (event's shift) [m]
       real(wp), intent(in) :: du0(2)       !! the halves' increments of the step before [m]
       type(event_list_t), intent(inout) :: events   !! events of the step (appended)
-      real(wp) :: mass_a, mass_b, du_join, e0, sz, v_a, v_b, du_a_trial, du_b_trial
+      real(wp) :: mass_a, mass_b, du_join, e0, sz, du_a_trial, du_b_trial
       integer :: j, k, parent_up, parent_dn
       type(event_t) :: ev
       ! collision stress (5.6) at the joining time, and its error bound (6.2)
-      if (at_n) then
-         v_a = du0(1) / mesh%dt
-         v_b = du0(2) / mesh%dt
-         sz = collision_stress(st%s_old(i), st%s_old(i + 1), v_a, v_b, mesh%z(i), mesh%z(i + 1))
-      else
-         v_a = st%dua(i) / mesh%dt
-         v_b = st%dub(i) / mesh%dt
-         sz = collision_stress(st%s(i), st%s(i + 1), v_a, v_b, mesh%z(i), mesh%z(i + 1))
-      end if
+      sz = join_stress(mesh, st, i, at_n, du0)
       ev%kind = ev_collision
       ev%stress = sz
       ev%stress_bound = abs(2.0_wp * (mesh%z(i + 1) / mesh%z(i) * st%s(i) + st%s(i + 1)) / &
@@ -479,8 +512,8 @@ contains
          st%ub(i) = st%ub(i) - du_b_trial + du_join
          st%s(i) = st%s(i) + mesh%stiff(i) * (du_a_trial - du_join)
          st%s(i + 1) = st%s(i + 1) + mesh%stiff(i + 1) * (du_join - du_b_trial)
-         st%section(i) = section_stress_a(st%s_old(i), 0.0_wp, v_a, du_join / mesh%dt, mesh%z(i), &
-                                      mesh%dm(i), g)
+         st%section(i) = section_stress_a(st%s_old(i), 0.0_wp, du0(1) / mesh%dt, &
+                                          du_join / mesh%dt, mesh%z(i), mesh%dm(i), g)
       else
          ! joined at t^{n+1}: positions and stresses at t^{n+1} stay, the increment becomes
          ! the mean, so the step in effect ended from other u^n, s^n: s_old follows (it only

@@ -14,9 +14,9 @@ module spb_rules_admissible
    use spb_events, only: event_list_t
    use spb_fragments, only: node_energy, fragment_span, span_mass, anchored, choose_time, &
       shift_part, extend_up, extend_down, book_shift_work, keep_credit, cohesive_open, &
-      gap_at_n, start_collision, join_node, open_section, record_break
+      gap_at_n, start_collision, join_node, open_section, record_break, move_faces
    use spb_wave, only: fragment_characteristics, region_wave, credit_position
-   use spb_problem, only: shift_above
+   use spb_problem, only: shift_above, shift_face
    implicit none
    private
    public :: admissible_collisions, admissible_breaks, pay_credit
@@ -166,8 +166,12 @@ contains
       real(wp) :: x, y
       call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
                               i_top, i_bot)
-      call fragment_span(mesh, st, i, j, k)
       moved = -x
+      if (policy == shift_face) then
+         call move_faces(mesh, st, g, i, corr)
+         return
+      end if
+      call fragment_span(mesh, st, i, j, k)
       if (abs(x) > 0.0_wp) then
          if (top < j) call shift_part(mesh, st, g, top, j, -x, .true.)
          call shift_part(mesh, st, g, max(top, j), i, -x, .false.)
@@ -206,6 +210,15 @@ contains
       integer :: j, k, pass
       real(wp) :: m_u, m_l, bias, other
       logical :: anch_u, anch_l, blocked, blocked_u, lift
+      if (policy == shift_face) then
+         ! only the two faces move (move_faces), at the timing rule's time: nothing is anchored,
+         ! their common centre of mass stays, so gravity and the end loads do no work on it
+         top = i
+         bot = i
+         x = corr * mesh%mb(i) / (mesh%ma(i) + mesh%mb(i))
+         y = corr - x
+         return
+      end if
       call fragment_span(mesh, st, i, j, k)
       if (policy == shift_above) then
          j = 0

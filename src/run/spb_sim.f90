@@ -23,7 +23,7 @@ module spb_sim
    use spb_fragments, only: fragment_span
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
-   use spb_history, only: measure, post_history
+   use spb_history, only: measure, post_history, length_defect
    use spb_events, only: event_list_t
    use spb_summary, only: run_summary_t, summary_start, summary_row, summary_guard, &
       summary_reaction, summary_events, summary_checkpoint, summary_end
@@ -668,9 +668,35 @@ contains
                '&run energy_guard = ' // rtoa(limit) // ') at step ' // &
                itoa(sim%st%step) // ' (t = ' // rtoa(real(sim%st%step, wp) * sim%mesh%dt) // &
                ' s); outputs up to here are written', code=exit_runtime)
+            return
          end if
+         ! the positions the event corrections moved with no momentum (x_drift) or left in the
+         ! cells' lengths (l_defect): beyond position_guard of the bar's length the positions
+         ! (gauges' u, gaps, profiles) mean nothing (doc/method.md, "Chatter")
+         if (limit > 0.0_wp) call position_guard(sim, err)
       end associate
    end subroutine guard
+
+   !> Stop when the event corrections have moved positions by more than position_share of
+   !> the bar's length: |x_drift| or |l_defect| (doc/outputs.md), with the energy guard.
+   subroutine position_guard(sim, err)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      real(wp), parameter :: position_share = 0.05_wp
+      real(wp) :: moved, length
+      length = sim%mesh%x(sim%mesh%n) - sim%mesh%x(0)
+      moved = max(abs(sim%st%ledger%m_drift) / (sum(sim%mesh%ma) + sum(sim%mesh%mb)), &
+                  abs(length_defect(sim%mesh, sim%st)))
+      if (moved > position_share * length) then
+         call make_error(err, 'run: the event corrections have moved positions by ' // &
+            rtoa(moved) // ' m (x_drift or l_defect), more than ' // rtoa(position_share) // &
+            ' of the bar''s length, at step ' // itoa(sim%st%step) // ' (t = ' // &
+            rtoa(real(sim%st%step, wp) * sim%mesh%dt) // ' s): the positions mean nothing ' // &
+            'beyond it (a pair that joins and parts on alternate steps does this, as under ' // &
+            'timing = ''delay''; doc/method.md, "Chatter"); outputs up to here are written', &
+            code=exit_runtime)
+      end if
+   end subroutine position_guard
 
    !> One row of the gauges (PREFIX.gau, /gauges) at the state's time.
    subroutine gauge_row(sim, run)
