@@ -108,7 +108,7 @@ contains
       end do
       tops(nb + 1) = n
       if (nb == 1) then
-         call body_static(mesh, g, split, 0, n, top_held, bot_held, u, s)
+         call body_static(mesh, g, 0, n, top_held, bot_held, u, s)
          supported = top_held .or. bot_held
          return
       end if
@@ -117,8 +117,7 @@ contains
          k = merge(nb + 1 - j, j, up)
          t = tops(k)
          b = tops(k + 1)
-         call body_static(mesh, g, split, t, b, t == 0 .and. top_held, b == n .and. bot_held, &
-                          w, s)
+         call body_static(mesh, g, t, b, t == 0 .and. top_held, b == n .and. bot_held, w, s)
          supported(t:b) = (t == 0 .and. top_held) .or. (b == n .and. bot_held)
          if (j == 1) then
             u(t:b) = w(t:b)
@@ -136,10 +135,9 @@ contains
    !> u(top:bot), s(top+1:bot). Held at one end: stresses from the weight carried, positions
    !> summed from the support (0 there); at both: the tridiagonal system (Thomas); at none:
    !> unstressed at rest (a body in free fall).
-   pure subroutine body_static(mesh, g, split, top, bot, top_held, bot_held, u, s)
+   pure subroutine body_static(mesh, g, top, bot, top_held, bot_held, u, s)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: g            !! gravity [m/s^2]
-      logical, intent(in) :: split(0:mesh%n)  !! the bar is split at the node
       integer, intent(in) :: top           !! the body's top node
       integer, intent(in) :: bot           !! the body's bottom node
       logical, intent(in) :: top_held      !! its top end is supported
