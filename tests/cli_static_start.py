@@ -232,17 +232,16 @@ def check_start(check, work, name, what, vel, dry, top, bot):
 
 
 def main(argv):
-    ap = argparse.ArgumentParser()
-    ap.add_argument("exe")
-    ap.add_argument("decks")
-    ap.add_argument("work")
-    ap.add_argument("--count", type=int, default=400)
-    ap.add_argument("--seed", type=int, default=34)
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    for name in ("exe", "decks", "work"):
+        ap.add_argument(name)
+    ap.add_argument("--count", type=int, default=400, help="decks of part states")
+    ap.add_argument("--seed", type=int, default=34, help="their draw")
     args = ap.parse_args(argv)
-    exe = os.path.abspath(args.exe)
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     check = Checks()
+    exe = os.path.abspath(args.exe)
     part_item4(check, exe, os.path.abspath(args.decks), args.work)
     part_states(check, exe, args.work, args.count, args.seed)
     return check.finish()
