@@ -109,8 +109,8 @@ contains
       type(problem_t), intent(in) :: prob   !! the problem
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(out) :: st     !! the state
-      integer :: n, j, i
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap, s_top, s_bot, xc
+      integer :: n, i
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), s_top, s_bot
       logical :: split(0:mesh%n), dry(0:mesh%n), supported(0:mesh%n)
 
       n = mesh%n
@@ -137,19 +137,7 @@ contains
       st%gen%n_frag_ids = 1
       call define_ends(st%ends, mesh)
       v = initial_velocities(prob, mesh, st%ends)
-      xc = mass_centre(mesh)
-      ! dry interfaces start open where a gap parts their sides or the sides move differently
-      ! (they touch at most: the contact starts at t = 0), closed otherwise
-      split = .false.
-      dry = .false.
-      do j = 1, mesh%nseg - 1
-         if (.not. prob%dry(j)) cycle
-         i = mesh%last(j)
-         split(i) = prob%gap(j) > 0.0_wp .or. abs(prob%velocity(j) - prob%velocity(j + 1)) > 0.0_wp
-         ! a bar stretched at t = 0 pulls every contact it does not press otherwise
-         if (.not. prob%static_start) split(i) = split(i) .or. prob%strain_rate > 0.0_wp
-         dry(i) = .not. split(i)
-      end do
+      call dry_starts(prob, mesh, split, dry)
       s_top = 0.0_wp
       s_bot = 0.0_wp
       supported = .false.
@@ -177,37 +165,7 @@ contains
       st%ub = u
       st%dua = v * dt
       st%dub = v * dt
-      ! dry interfaces: open with their halves' own velocities and the lower side moved down by
-      ! the gap, unless touching and moving together (then joined) and, in a static start,
-      ! pressed (split)
-      do j = 1, mesh%nseg - 1
-         i = mesh%last(j)
-         if (.not. prob%dry(j)) cycle
-         st%cracked(i) = .true.
-         st%strength(i) = 0.0_wp
-         if (st%coh%on) st%coh%gc(i) = 0.0_wp
-         va = prob%velocity(j)
-         vb = prob%velocity(j + 1)
-         if (split(i)) then
-            st%joined(i) = .false.
-            if (abs(prob%strain_rate) > 0.0_wp) then
-               ! each face moves with the mean velocity of its cell, as a free end face does
-               ! (initial_velocities): no zig-zag Jordan component in either piece
-               va = va + prob%strain_rate * (mesh%x(i) - 0.5_wp * mesh%dx(i) - xc)
-               vb = vb + prob%strain_rate * (mesh%x(i) + 0.5_wp * mesh%dx(i + 1) - xc)
-            end if
-            st%dua(i) = va * dt
-            st%dub(i) = vb * dt
-            ! everything below the interface moves down by its gap (earlier gaps are in
-            ! already); O(n) per gapped interface only
-            gap = prob%gap(j)
-            if (gap > 0.0_wp) then
-               st%ub(i) = st%ub(i) + gap
-               st%ua(i+1:n) = st%ua(i+1:n) + gap
-               st%ub(i+1:n) = st%ub(i+1:n) + gap
-            end if
-         end if
-      end do
+      call open_dry(prob, mesh, split, st)
       st%n_breakable = count(st%strength(1:n-1) >= 0.0_wp .and. st%joined(1:n-1))
       ! defined beyond n_split too: a checkpoint writes (and counts in its checksum) the whole list
       allocate(st%split(max(1, n - 1)), source=0)
@@ -233,6 +191,67 @@ contains
       call init_sections(prob, mesh, s, supported, st)
       st%s_scale = maxval(abs(s))
    end subroutine init_state
+
+   !> How the dry interfaces start: open (split) where a gap parts their sides, the sides
+   !> move differently (they touch at most: the contact starts at t = 0) or, in an unstressed
+   !> start, a strain rate > 0 stretches the bar (it pulls every contact); else closed (dry),
+   !> and a static start may still open those its static state pulls (spb_static).
+   pure subroutine dry_starts(prob, mesh, split, dry)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      logical, intent(out) :: split(0:mesh%n)  !! (0:n) the node starts open
+      logical, intent(out) :: dry(0:mesh%n)    !! (0:n) a dry interface that starts closed
+      integer :: i, j
+      split = .false.
+      dry = .false.
+      do j = 1, mesh%nseg - 1
+         if (.not. prob%dry(j)) cycle
+         i = mesh%last(j)
+         split(i) = prob%gap(j) > 0.0_wp .or. abs(prob%velocity(j) - prob%velocity(j + 1)) > 0.0_wp
+         if (.not. prob%static_start) split(i) = split(i) .or. prob%strain_rate > 0.0_wp
+         dry(i) = .not. split(i)
+      end do
+   end subroutine dry_starts
+
+   !> The dry interfaces in the state: no strength; those that start open (split) with their
+   !> halves' own velocities and the lower side moved down by the gap (O(n) per gapped
+   !> interface only). With a strain rate each face moves with the mean velocity of its
+   !> cell, as a free end face does (initial_velocities): no zig-zag Jordan component in
+   !> either piece.
+   pure subroutine open_dry(prob, mesh, split, st)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      logical, intent(in) :: split(0:mesh%n)   !! (0:n) the node starts open
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp) :: va, vb, gap, xc, dt
+      integer :: i, j, n
+      n = mesh%n
+      dt = mesh%dt
+      xc = mass_centre(mesh)
+      do j = 1, mesh%nseg - 1
+         i = mesh%last(j)
+         if (.not. prob%dry(j)) cycle
+         st%cracked(i) = .true.
+         st%strength(i) = 0.0_wp
+         if (st%coh%on) st%coh%gc(i) = 0.0_wp
+         if (.not. split(i)) cycle
+         va = prob%velocity(j)
+         vb = prob%velocity(j + 1)
+         st%joined(i) = .false.
+         if (abs(prob%strain_rate) > 0.0_wp) then
+            va = va + prob%strain_rate * (mesh%x(i) - 0.5_wp * mesh%dx(i) - xc)
+            vb = vb + prob%strain_rate * (mesh%x(i) + 0.5_wp * mesh%dx(i + 1) - xc)
+         end if
+         st%dua(i) = va * dt
+         st%dub(i) = vb * dt
+         gap = prob%gap(j)
+         if (gap > 0.0_wp) then
+            st%ub(i) = st%ub(i) + gap
+            st%ua(i+1:n) = st%ua(i+1:n) + gap
+            st%ub(i+1:n) = st%ub(i+1:n) + gap
+         end if
+      end do
+   end subroutine open_dry
 
    !> Node velocities at t = 0: the segment's, at an interface the momentum-weighted mean;
    !> with a strain rate the uniform stretching about the centre of mass; held ends at rest.
