@@ -109,8 +109,9 @@ contains
       type(problem_t), intent(in) :: prob   !! the problem
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(out) :: st     !! the state
-      integer :: n, j, i
-      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), va, vb, gap, s_top, s_bot
+      integer :: n, i
+      real(wp) :: g, dt, u(0:mesh%n), s(1:mesh%n), v(0:mesh%n), s_top, s_bot
+      logical :: split(0:mesh%n), dry(0:mesh%n), supported(0:mesh%n)
 
       n = mesh%n
       g = prob%gravity
@@ -136,14 +137,19 @@ contains
       st%gen%n_frag_ids = 1
       call define_ends(st%ends, mesh)
       v = initial_velocities(prob, mesh, st%ends)
+      call dry_starts(prob, mesh, split, dry)
       s_top = 0.0_wp
       s_bot = 0.0_wp
+      supported = .false.
       if (prob%static_start) then
          ! the base carries weight only where the bar starts resting on it (in contact); a
-         ! face moving at t = 0 is not touched by it (issue 17)
+         ! face moving at t = 0 is not touched by it (issue 17); a dry interface only where
+         ! it starts closed and pressed, so each body is in the equilibrium of its own
+         ! supports, one without any in free fall (issue 34)
          call static_state(mesh, st%ends, g, [prob%base_gap_top <= 0.0_wp .and. &
                            .not. (abs(v(0) * dt) > 0.0_wp), prob%base_gap <= 0.0_wp .and. &
-                           .not. (abs(v(n) * dt) > 0.0_wp)], u, s, s_top, s_bot)
+                           .not. (abs(v(n) * dt) > 0.0_wp)], dry, prob%strain_rate > 0.0_wp, &
+                           split, u, s, s_top, s_bot, supported)
       else
          u = 0.0_wp
          s = 0.0_wp
@@ -159,30 +165,7 @@ contains
       st%ub = u
       st%dua = v * dt
       st%dub = v * dt
-      ! dry interfaces: open with their halves' own velocities and the lower side moved down by
-      ! the gap, unless touching and moving together (then joined)
-      do j = 1, mesh%nseg - 1
-         i = mesh%last(j)
-         if (.not. prob%dry(j)) cycle
-         st%cracked(i) = .true.
-         st%strength(i) = 0.0_wp
-         if (st%coh%on) st%coh%gc(i) = 0.0_wp
-         va = prob%velocity(j)
-         vb = prob%velocity(j + 1)
-         if (prob%gap(j) > 0.0_wp .or. abs(va - vb) > 0.0_wp) then
-            st%joined(i) = .false.
-            st%dua(i) = va * dt
-            st%dub(i) = vb * dt
-            ! everything below the interface moves down by its gap (earlier gaps are in
-            ! already); O(n) per gapped interface only
-            gap = prob%gap(j)
-            if (gap > 0.0_wp) then
-               st%ub(i) = st%ub(i) + gap
-               st%ua(i+1:n) = st%ua(i+1:n) + gap
-               st%ub(i+1:n) = st%ub(i+1:n) + gap
-            end if
-         end if
-      end do
+      call open_dry(prob, mesh, split, st)
       st%n_breakable = count(st%strength(1:n-1) >= 0.0_wp .and. st%joined(1:n-1))
       ! defined beyond n_split too: a checkpoint writes (and counts in its checksum) the whole list
       allocate(st%split(max(1, n - 1)), source=0)
@@ -196,14 +179,79 @@ contains
                                                             st%ua(n), prob%base_gap, st%dua(n))
       if (has_base(st%ends(face_top))) call place_on_base(st%ends(face_top), face_top, st%ub(0), &
                                                          prob%base_gap_top, st%dub(0))
+      ! a face that gravity pulls away from the base it touches at rest is not pressed onto it:
+      ! it starts out of contact and leaves with no event (a static start is refused there)
+      if (g < 0.0_wp .and. has_base(st%ends(face_bottom))) st%ends(face_bottom)%contact = .false.
+      if (g > 0.0_wp .and. has_base(st%ends(face_top))) st%ends(face_top)%contact = .false.
       st%s = 0.0_wp
       st%s(1:n) = s
       ! s^{-1} = s^0 - E (du_{k-1} - du_k)/dx, for the strain-energy product at the first row
       st%s_old = 0.0_wp
       st%s_old(1:n) = st%s(1:n) - mesh%stiff * (st%dub(0:n-1) - st%dua(1:n))
-      call init_sections(prob, mesh, s, st)
+      call init_sections(prob, mesh, s, supported, st)
       st%s_scale = maxval(abs(s))
    end subroutine init_state
+
+   !> How the dry interfaces start: open (split) where a gap parts their sides, the sides
+   !> move differently (they touch at most: the contact starts at t = 0) or, in an unstressed
+   !> start, a strain rate > 0 stretches the bar (it pulls every contact); else closed (dry),
+   !> and a static start may still open those its static state pulls (spb_static).
+   pure subroutine dry_starts(prob, mesh, split, dry)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      logical, intent(out) :: split(0:mesh%n)  !! (0:n) the node starts open
+      logical, intent(out) :: dry(0:mesh%n)    !! (0:n) a dry interface that starts closed
+      integer :: i, j
+      split = .false.
+      dry = .false.
+      do j = 1, mesh%nseg - 1
+         if (.not. prob%dry(j)) cycle
+         i = mesh%last(j)
+         split(i) = prob%gap(j) > 0.0_wp .or. abs(prob%velocity(j) - prob%velocity(j + 1)) > 0.0_wp
+         if (.not. prob%static_start) split(i) = split(i) .or. prob%strain_rate > 0.0_wp
+         dry(i) = .not. split(i)
+      end do
+   end subroutine dry_starts
+
+   !> The dry interfaces in the state: no strength; those that start open (split) with their
+   !> halves' own velocities and the lower side moved down by the gap (O(n) per gapped
+   !> interface only). With a strain rate each face moves with the mean velocity of its
+   !> cell, as a free end face does (initial_velocities): no zig-zag Jordan component in
+   !> either piece.
+   pure subroutine open_dry(prob, mesh, split, st)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      logical, intent(in) :: split(0:mesh%n)   !! (0:n) the node starts open
+      type(state_t), intent(inout) :: st   !! the state
+      real(wp) :: va, vb, gap, xc, dt
+      integer :: i, j, n
+      n = mesh%n
+      dt = mesh%dt
+      xc = mass_centre(mesh)
+      do j = 1, mesh%nseg - 1
+         i = mesh%last(j)
+         if (.not. prob%dry(j)) cycle
+         st%cracked(i) = .true.
+         st%strength(i) = 0.0_wp
+         if (st%coh%on) st%coh%gc(i) = 0.0_wp
+         if (.not. split(i)) cycle
+         va = prob%velocity(j)
+         vb = prob%velocity(j + 1)
+         st%joined(i) = .false.
+         if (abs(prob%strain_rate) > 0.0_wp) then
+            va = va + prob%strain_rate * (mesh%x(i) - 0.5_wp * mesh%dx(i) - xc)
+            vb = vb + prob%strain_rate * (mesh%x(i) + 0.5_wp * mesh%dx(i + 1) - xc)
+         end if
+         st%dua(i) = va * dt
+         st%dub(i) = vb * dt
+         gap = prob%gap(j)
+         if (gap > 0.0_wp) then
+            st%ub(i) = st%ub(i) + gap
+            st%ua(i+1:n) = st%ua(i+1:n) + gap
+            st%ub(i+1:n) = st%ub(i+1:n) + gap
+         end if
+      end do
+   end subroutine open_dry
 
    !> Node velocities at t = 0: the segment's, at an interface the momentum-weighted mean;
    !> with a strain rate the uniform stretching about the centre of mass; held ends at rest.
@@ -232,8 +280,17 @@ contains
          ! ends; a constant-velocity end node takes its own v(x) exactly, so that with two of
          ! them every cell stretches alike, s = -E strain_rate t, whatever the centre)
          associate (m => mesh%ma + mesh%mb)
-            xc = sum(m * mesh%x) / sum(m)
+            xc = mass_centre(mesh)
             v = v + prob%strain_rate * (mesh%x - xc)
+            ! a node between cells that differ (materials, areas) moves with the mass-weighted
+            ! mean of its two cells' centre velocities: the lattice state of v(x) with no
+            ! zig-zag Jordan component (between equal cells that is v(x_i) itself; issue 34)
+            do i = 1, n - 1
+               if (.not. (abs(mesh%dm(i) - mesh%dm(i + 1)) > 0.0_wp .or. &
+                          abs(mesh%dx(i) - mesh%dx(i + 1)) > 0.0_wp)) cycle
+               v(i) = v(i) + prob%strain_rate * 0.5_wp * (mesh%mb(i) * mesh%dx(i + 1) - &
+                                                          mesh%ma(i) * mesh%dx(i)) * mesh%inv_m(i)
+            end do
             ! a free face moves in the first step with the mean velocity of its cell: that is
             ! the lattice state of the continuum field v(x) with no zig-zag Jordan component
             ! (spb_wave); the face's own v(x) would start one that grows linearly
@@ -249,11 +306,21 @@ contains
       if (is_fixed_end(ends(face_bottom))) v(n) = 0.0_wp
    end function initial_velocities
 
+   !> The bar's centre of mass in the reference configuration [m].
+   pure real(wp) function mass_centre(mesh)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      associate (m => mesh%ma + mesh%mb)
+         mass_centre = sum(m * mesh%x) / sum(m)
+      end associate
+   end function mass_centre
+
    !> Section stresses S^{-1/2} of the initial state, from its cell stresses s.
-   pure subroutine init_sections(prob, mesh, s, st)
+   pure subroutine init_sections(prob, mesh, s, supported, st)
       type(problem_t), intent(in) :: prob   !! the problem
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: s(:)             !! cell stresses at t = 0, cells 1..n [Pa]
+      logical, intent(in) :: supported(0:)     !! (0:n) in a static start, the node's body has
+                                               !! a support (spb_static)
       type(state_t), intent(inout) :: st   !! the state
       integer :: i, n
       real(wp) :: g
@@ -267,8 +334,13 @@ contains
       ! half's increment is 0, that is the value that makes the step's (3.1) do so.
       st%section = 0.0_wp
       if (prob%static_start) then
+         ! a body without a support is in free fall: S = s, as unstressed
          do i = 1, n - 1
-            st%section(i) = s(i) + 0.5_wp * mesh%dm(i) * g
+            if (supported(i)) then
+               st%section(i) = s(i) + 0.5_wp * mesh%dm(i) * g
+            else
+               st%section(i) = s(i)
+            end if
          end do
          if (.not. has_free_face(st%ends(face_top))) then
             st%section(0) = s(1) - 0.5_wp * mesh%dm(1) * g
