@@ -84,8 +84,9 @@ module spb_checkpoint
 
    !> Deck variables added after checkpoints existed ('group:name'): not given, they keep the
    !> behaviour of before, and a checkpoint that predates them fits a deck that leaves them out.
-   character(len=*), parameter :: later_variables(3) = [character(len=24) :: 'segments:area', &
-      'segments:fracture_energy', 'ends:base_gap_top']
+   character(len=*), parameter :: later_variables(6) = [character(len=24) :: 'segments:area', &
+      'segments:fracture_energy', 'ends:base_gap_top', 'gauges:side', &
+      'segments:damage_integral', 'segments:damage_exponent']
 
 contains
 

@@ -14,9 +14,10 @@ module spb_deck
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text, &
       group_preamble
    use spb_deck_types, only: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, &
-      deck_record_t, echo_item_t, known_groups, is_set, timing_words, shift_words, &
+      deck_record_t, gauges_cfg, echo_item_t, known_groups, is_set, timing_words, shift_words, &
       events_words, model_words, fit_words, top_words, bottom_words, interface_words, &
-      kind_words, face_words, state_words, field_words, distribution_words, header_words
+      kind_words, face_words, state_words, field_words, distribution_words, header_words, &
+      side_words
    use spb_deck_params, only: param_pass_t, deck_params, pass_read, pass_echo, pass_find, &
       pass_set, pass_doc, huge_real
    use spb_random, only: weibull_log_min, weibull_log_max
@@ -448,8 +449,38 @@ contains
          end if
          if (g%every < 1) call make_error(err, '&gauges: every must be >= 1, got ' // &
                                           itoa(g%every))
+         call validate_sides(g, err)
       end associate
    end subroutine validate_gauges
+
+   !> &gauges side: given in order from side(1), one value for all gauges or one per gauge,
+   !> each 'above' or 'below'; not given: 'above' for all (doc/gauges.md).
+   subroutine validate_sides(g, err)
+      type(gauges_cfg), intent(inout) :: g   !! &gauges values (n set)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer :: k
+      if (allocated(err)) return
+      g%n_side = 0
+      do k = 1, size(g%side)
+         if (len_trim(g%side(k)) > 0) g%n_side = k
+      end do
+      do k = 1, g%n_side
+         if (len_trim(g%side(k)) == 0) then
+            call make_error(err, '&gauges: side(' // itoa(g%n_side) // ') is given but side(' &
+                            // itoa(k) // ') is not: give one side for all gauges or one per gauge')
+            return
+         end if
+         call need_choice(err, 'gauges', 'side(' // itoa(k) // ')', g%side(k), side_words)
+         if (allocated(err)) return
+      end do
+      if (g%n_side == 0) then
+         g%side(1) = side_words(1)
+         g%n_side = 1
+      else if (g%n_side /= 1 .and. g%n_side /= g%n) then
+         call make_error(err, '&gauges: side: give one value for all gauges or one per ' // &
+                         'gauge (' // itoa(g%n) // '), got ' // itoa(g%n_side))
+      end if
+   end subroutine validate_sides
 
    !> Error unless x is a finite number; name is the variable as the user writes it.
    subroutine need_finite(err, group, name, x)
@@ -1044,6 +1075,7 @@ contains
    function deck_record(deck) result(rec)
       type(deck_t), intent(in) :: deck     !! the deck
       type(deck_record_t) :: rec
+      integer :: k
       rec%path = trim(deck%path)
       rec%title = trim(deck%run%title)
       rec%table = deck_file(deck, deck%load%table)
@@ -1057,6 +1089,10 @@ contains
       allocate(rec%gauge_x(deck%gauges%n))
       rec%gauge_x(:) = deck%gauges%x(1:deck%gauges%n)
       rec%gauge_every = max(deck%gauges%every, 1)
+      allocate(rec%gauge_below(deck%gauges%n))
+      do k = 1, deck%gauges%n
+         rec%gauge_below(k) = deck%gauges%side(min(k, max(deck%gauges%n_side, 1))) == 'below'
+      end do
    end function deck_record
 
    !> Every deck variable (spallbar --deck-help): group by group, its default as the echo

@@ -22,7 +22,7 @@ module spb_deck_params
    use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, impactor_cfg, echo_item_t, is_set, timing_words, &
       shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
       interface_words, kind_words, face_words, state_words, field_words, distribution_words, &
-      header_words
+      header_words, side_words
    implicit none
    private
    public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc, &
@@ -209,6 +209,9 @@ contains
                  // 'up to 100', ra=g%x, count=g%n, empty='(none)')
       call param(p, 'gauges', 'every', 'steps', 'steps between rows of PREFIX.gau (not ' &
                  // 'given: &run history_every)', i=g%every)
+      call param(p, 'gauges', 'side', '', 'at a node that splits, the side whose face a ' &
+                 // 'gauge reads: one value for all gauges or one per gauge (default ' &
+                 // '''above'')', ta=g%side, count=g%n_side, choices=side_words)
    end subroutine gauge_params
 
    !> &sweep's variables (a sweep deck only: read with --sweep).
