@@ -52,6 +52,9 @@ contains
       prob%nseg = n
       allocate(prob%fracture_energy(n))
       prob%fracture_energy(:) = deck%seg%fracture_energy(1:n)
+      allocate(prob%damage_integral(n), prob%damage_exponent(n))
+      prob%damage_integral(:) = deck%seg%damage_integral(1:n)
+      prob%damage_exponent(:) = deck%seg%damage_exponent(1:n)
       allocate(prob%length(n), prob%young(n), prob%density(n), prob%strength(n), &
                prob%velocity(n), prob%dry(n), prob%gap(n), prob%area(n))
       prob%length(:) = deck%seg%length(1:n)
@@ -688,6 +691,22 @@ contains
             else
                seg%fracture_energy(j) = 0.0_wp
             end if
+            if (is_set(seg%damage_integral(j))) then
+               call need_positive(err, 'segments', 'damage_integral' // sj, &
+                                  seg%damage_integral(j), zero_ok=.true.)
+               if (.not. allocated(err) .and. seg%damage_integral(j) > 0.0_wp .and. &
+                   .not. seg%strength(j) >= 0.0_wp) call make_error(err, '&segments: ' // &
+                  'damage_integral' // sj // ' > 0 needs strength' // sj // ' >= 0 (an ' &
+                  // 'unbreakable segment does not break)')
+            else
+               seg%damage_integral(j) = 0.0_wp
+            end if
+            if (is_set(seg%damage_exponent(j))) then
+               call need_positive(err, 'segments', 'damage_exponent' // sj, &
+                                  seg%damage_exponent(j))
+            else
+               seg%damage_exponent(j) = 2.0_wp
+            end if
             if (is_set(seg%velocity(j))) then
                call need_finite(err, 'segments', 'velocity' // sj, seg%velocity(j))
             else
@@ -724,6 +743,8 @@ contains
             call beyond_n('density', seg%density(j))
             call beyond_n('strength', seg%strength(j))
             call beyond_n('fracture_energy', seg%fracture_energy(j))
+            call beyond_n('damage_integral', seg%damage_integral(j))
+            call beyond_n('damage_exponent', seg%damage_exponent(j))
             call beyond_n('velocity', seg%velocity(j))
             call beyond_n('area', seg%area(j))
             if (j >= seg%n) call beyond_n('gap', seg%gap(j))
@@ -938,6 +959,11 @@ contains
       if (deck%run%model == 'full-mass' .and. any(deck%seg%fracture_energy(1:deck%seg%n) > 0.0_wp)) then
          call make_error(err, '&segments: fracture_energy > 0 needs &run model = ''half-mass'' ' &
                          // '(cohesive cracks open at nodes; the full-mass model breaks springs)')
+         return
+      end if
+      if (deck%run%model == 'full-mass' .and. any(deck%seg%damage_integral(1:deck%seg%n) > 0.0_wp)) then
+         call make_error(err, '&segments: damage_integral > 0 needs &run model = ''half-mass'' ' &
+                         // '(sections break at nodes; the full-mass model breaks springs)')
          return
       end if
       ! a cohesive crack opens at its strength: with none (and no strength field to draw one)

@@ -18,6 +18,7 @@ module spb_deck_params
    use, intrinsic :: ieee_exceptions, only: ieee_underflow, ieee_get_flag, ieee_set_flag
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
+   use spb_prescan, only: has_var
    use spb_strings, only: itoa, rtoa, ltoa, lower
    use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, impactor_cfg, echo_item_t, is_set, timing_words, &
       shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
@@ -129,6 +130,15 @@ contains
          call param(p, 'segments', 'fracture_energy', 'J/m^2', 'cohesive fracture ' &
                     // 'energies Gc (default 0: brittle)', ra=s%fracture_energy, count=n, &
                     sweep=.true.)
+         ! echoed by a deck that gives them (a deck of before has none: its echo stays as it was)
+         if (show_damage(deck, p%mode)) then
+            call param(p, 'segments', 'damage_integral', 'Pa^lambda s', 'Tuler-Butcher ' &
+                       // 'damage integral K: a section breaks when the integral of (S - R)' &
+                       // '^lambda dt over its tension S beyond its strength R reaches K ' &
+                       // '(default 0: at once)', ra=s%damage_integral, count=n, sweep=.true.)
+            call param(p, 'segments', 'damage_exponent', '-', 'Tuler-Butcher exponent ' &
+                       // 'lambda (default 2)', ra=s%damage_exponent, count=n, sweep=.true.)
+         end if
          call param(p, 'segments', 'interface', '', 'interface j between segments j and ' &
                     // 'j+1 (default ''bonded'')', ta=s%interface, count=n - 1, &
                     choices=interface_words)
@@ -182,6 +192,20 @@ contains
       ! the same for a striking mass
       if (pass%mode /= pass_echo .or. deck%impactor%on) call impactor_params(deck%impactor, pass)
    end subroutine deck_params
+
+   !> Whether a pass lists &segments damage_integral and damage_exponent: every pass but the
+   !> echo; the echo where the deck gives one of them or a K > 0.
+   logical function show_damage(deck, mode)
+      type(deck_t), intent(in) :: deck   !! the deck
+      integer, intent(in) :: mode        !! the pass's mode
+      show_damage = .true.
+      if (mode /= pass_echo) return
+      show_damage = has_var(deck%scan, 'segments', 'damage_integral') .or. &
+                    has_var(deck%scan, 'segments', 'damage_exponent')
+      if (show_damage .or. deck%seg%n < 1 .or. deck%seg%n > size(deck%seg%damage_integral)) &
+         return
+      show_damage = any(deck%seg%damage_integral(1:deck%seg%n) > 0.0_wp)
+   end function show_damage
 
    !> &impactor's variables (optional group: a striking mass, doc/impactor.md).
    subroutine impactor_params(m, p)

@@ -104,6 +104,9 @@ module spb_deck_types
       real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
       real(wp) :: fracture_energy(max_segments) = unset !! cohesive fracture energy [J/m^2];
                                                         !! 0 (default): brittle
+      real(wp) :: damage_integral(max_segments) = unset !! Tuler-Butcher damage integral K
+                                                        !! [Pa^lambda s]; 0 (default): none
+      real(wp) :: damage_exponent(max_segments) = unset !! its exponent lambda [-] (default 2)
       character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
       real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]
       real(wp) :: gap(max_segments) = unset             !! initial gap at a dry interface [m]
