@@ -13,6 +13,7 @@ reading 'above' and 'below' (doc/gauges.md, "What a gauge reads"), against close
     at v0; u of each side is its own (no offset by the gap);
   * one value for all gauges; the default is 'above' (the same bits as 'above' given);
     a gauge inside a cell or on an end node reads what it read before;
+  * an open cohesive crack: both faces read its traction, the same (tension < 0, within R);
   * bad values: a word not in the list, one value per gauge with the wrong count, a hole:
     exit 2, one line naming &gauges and side.
 
@@ -142,6 +143,43 @@ def main():
     check(e_b < 1e-9, f"equal bars, 'below': the target at v0 (error {e_b:.1e})")
     check(np.array_equal(r[:, 1:4], r[:, 4:7]), "one side for all gauges: both read 'below'")
     check(np.array_equal(r[:, 7:13], r2[:, 4:10]), "end nodes: side changes nothing")
+
+    # an open cohesive crack: both faces read its traction (tension < 0, within R), then 0
+    coh = f"""&run
+  title = 'gauge side: cohesive crack'
+  t_end = 6.0e-5
+/
+&mesh
+  dt = 1.0e-6
+/
+&segments
+  n = 2
+  length = 0.02, 0.05
+  young = 1.0e9, 1.0e9
+  density = 1000.0, 1000.0
+  strength = -1, 5.0e6
+  fracture_energy = 0, 50.0
+/
+&ends
+  top = 'free', bottom = 'transmit'
+/
+&load
+  kind = 'power', p0 = -8.0e6, t_k = 1.0, exponent = 0
+/
+&gauges
+  x = 0.02, 0.02
+  side = 'above', 'below'
+  every = 1
+/
+"""
+    r = run_deck(exe, work, "cohesive", coh, check)
+    held = r[:, 1] != 0.0
+    check(np.array_equal(r[:, 1], r[:, 4]), "cohesive crack: both faces read the same stress")
+    check(held.sum() >= 1 and np.all(r[held, 1] < 0.0) and np.all(r[held, 1] >= -5.0e6),
+          f"cohesive crack: a traction in [-R, 0) while it holds ({held.sum()} rows: "
+          f"{r[held, 1]})")
+    check(r[-1, 1] == 0.0 and r[-1, 2] != r[-1, 5], "cohesive crack: open fully, faces free "
+          "and apart")
 
     def bad(what, gauges, needles):
         text = deck(1.0e9, "free", 0.1, gauges)

@@ -61,6 +61,7 @@ KINDS = {
     ("segments", "n"): "int", ("segments", "length"): "real", ("segments", "young"): "real",
     ("segments", "density"): "real", ("segments", "area"): "real",
     ("segments", "strength"): "real", ("segments", "fracture_energy"): "real",
+    ("segments", "damage_integral"): "real", ("segments", "damage_exponent"): "real",
     ("segments", "interface"): "word", ("segments", "velocity"): "real",
     ("segments", "gap"): "real",
     ("ends", "top"): "word", ("ends", "bottom"): "word", ("ends", "base_gap"): "real",
@@ -80,7 +81,8 @@ KINDS = {
 ARRAYS = {("run", "profile_times"): 100, ("segments", "length"): 100,
           ("segments", "young"): 100, ("segments", "density"): 100, ("segments", "area"): 100,
           ("segments", "strength"): 100, ("segments", "interface"): 100,
-          ("segments", "fracture_energy"): 100,
+          ("segments", "fracture_energy"): 100, ("segments", "damage_integral"): 100,
+          ("segments", "damage_exponent"): 100,
           ("segments", "velocity"): 100, ("segments", "gap"): 100, ("sweep", "values"): 1000,
           ("gauges", "x"): 100, ("gauges", "side"): 100}
 
@@ -98,7 +100,8 @@ BASES = [
         ("mesh", [("cells", "20"), ("ref_segment", "1"), ("fit", "'strict'")]),
         ("segments", [("n", "2"), ("length", "1.0, 0.5"), ("young", "250.0, 250.0"),
                       ("density", "1000.0, 1000.0"), ("area", "1.0, 0.5"),
-                      ("strength", "5.0, -1.0"),
+                      ("strength", "5.0, -1.0"), ("damage_integral", "0.5, 0.0"),
+                      ("damage_exponent", "2.0, 1.5"),
                       ("interface", "'bonded'"), ("velocity", "0.0, 0.0"), ("gap", "0.0")]),
         ("ends", [("top", "'free'"), ("bottom", "'free'"), ("base_gap", "0.0")]),
         ("load", [("kind", "'power'"), ("face", "'top'"), ("p0", "10.0"), ("t_k", "0.2"),

@@ -961,7 +961,8 @@ contains
                          // '(cohesive cracks open at nodes; the full-mass model breaks springs)')
          return
       end if
-      if (deck%run%model == 'full-mass' .and. any(deck%seg%damage_integral(1:deck%seg%n) > 0.0_wp)) then
+      if (deck%run%model == 'full-mass' .and. &
+          any(deck%seg%damage_integral(1:deck%seg%n) > 0.0_wp)) then
          call make_error(err, '&segments: damage_integral > 0 needs &run model = ''half-mass'' ' &
                          // '(sections break at nodes; the full-mass model breaks springs)')
          return
