@@ -23,12 +23,11 @@ usage: cli_damage.py SPALLBAR WORKDIR
 """
 import math
 import os
-import shutil
 import sys
 
 import numpy as np
 
-from clitools import Checks, run
+from clitools import Checks, expect_refused, fresh_work, run_deck
 
 DT = 1.0e-6
 S, R = 8.0e6, 5.0e6
@@ -90,19 +89,12 @@ def history(work, name):
 
 
 def go(exe, work, name, text, check):
-    with open(os.path.join(work, name + ".nml"), "w") as f:
-        f.write(text)
-    p = run(exe, [name + ".nml", "-q"], work)
-    check(p.returncode == 0, f"{name} runs ({p.stderr.strip()})")
-    return p.returncode == 0
+    return run_deck(check, exe, work, name, text)
 
 
 def main():
-    exe, work = os.path.abspath(sys.argv[1]), sys.argv[2]
-    check = Checks()
-    work = os.path.join(work, "damage")
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
+    exe, check = os.path.abspath(sys.argv[1]), Checks()
+    work = fresh_work(sys.argv[2], "damage")
 
     # the brittle reference, K = 0 given, and K = 0 not given (the same bits)
     go(exe, work, "brittle", deck(0, 2), check)
@@ -206,13 +198,7 @@ def main():
               f"ledger_w spread {spread:.1e}")
 
     def bad(what, text, needles):
-        with open(os.path.join(work, "bad.nml"), "w") as f:
-            f.write(text)
-        p = run(exe, ["bad.nml", "-q"], work)
-        lines = p.stderr.strip().splitlines()
-        check(p.returncode == 2, f"{what}: exit 2 (got {p.returncode})")
-        check(len(lines) == 1 and all(n in p.stderr for n in needles),
-              f"{what}: one line naming {needles} ({p.stderr.strip()})")
+        expect_refused(check, exe, work, what, text, needles)
     bad("K < 0", deck(-1.0, 2), ["&segments", "damage_integral(2)", ">= 0"])
     bad("lambda = 0", deck(1.0, 0.0), ["&segments", "damage_exponent(2)", "> 0"])
     bad("lambda < 0", deck(1.0, -2.0), ["&segments", "damage_exponent(2)", "> 0"])

@@ -20,12 +20,11 @@ reading 'above' and 'below' (doc/gauges.md, "What a gauge reads"), against close
 usage: cli_gauge_side.py SPALLBAR WORKDIR
 """
 import os
-import shutil
 import sys
 
 import numpy as np
 
-from clitools import Checks, run
+from clitools import Checks, expect_refused, fresh_work, run_deck
 
 DT = 1.0e-5
 V0 = 10.0
@@ -63,24 +62,18 @@ def deck(young2, bottom, length2, gauges, t_end=1.0e-3):
 """
 
 
-def run_deck(exe, work, name, text, check):
-    with open(os.path.join(work, name + ".nml"), "w") as f:
-        f.write(text)
-    p = run(exe, [name + ".nml", "-q"], work)
-    check(p.returncode == 0, f"{name} runs ({p.stderr.strip()})")
+def gauge_rows(exe, work, name, text, check):
+    run_deck(check, exe, work, name, text)
     return rows_of(os.path.join(work, name + ".gau"))
 
 
 def main():
-    exe, work = os.path.abspath(sys.argv[1]), sys.argv[2]
-    check = Checks()
-    work = os.path.join(work, "gauge_side")
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
+    exe, check = os.path.abspath(sys.argv[1]), Checks()
+    work = fresh_work(sys.argv[2], "gauge_side")
 
     # the hammer: Z1 = 1e6, Z2 = 3e6 kg/(m^2 s), c1 = 1000 m/s, L1 = 0.1 m
     z1, z2, c1, l1 = 1.0e6, 3.0e6, 1000.0, 0.1
-    r = run_deck(exe, work, "hammer", deck(9.0e9, "transmit", 3.0,
+    r = gauge_rows(exe, work, "hammer", deck(9.0e9, "transmit", 3.0,
                                            "  x = 0.1, 0.1, 0.05\n"
                                            "  side = 'above', 'below', 'below'"), check)
     t = r[:, 0]
@@ -116,19 +109,19 @@ def main():
     check(np.abs(va[after] - mean).min() > 0.2 * V0 and np.abs(vb[after] - mean).min() > 0.2 * V0,
           f"neither side reads the mean of the two bodies ({mean} m/s)")
     # a gauge inside a cell reads the same with any side (interpolated in its cell)
-    r_in = run_deck(exe, work, "inside", deck(9.0e9, "transmit", 3.0,
+    r_in = gauge_rows(exe, work, "inside", deck(9.0e9, "transmit", 3.0,
                                               "  x = 0.05, 0.1, 0.1\n"
                                               "  side = 'above', 'above', 'below'"), check)
     check(np.array_equal(r_in[:, 1:4], r[:, 7:10]),
           "a gauge inside a cell: side changes nothing")
     # the default is 'above', bit for bit
-    r_def = run_deck(exe, work, "default", deck(9.0e9, "transmit", 3.0, "  x = 0.1"), check)
+    r_def = gauge_rows(exe, work, "default", deck(9.0e9, "transmit", 3.0, "  x = 0.1"), check)
     check(np.array_equal(r_def[:, 1:4], r[:, 1:4]), "no side given: the side above, to the bit")
 
     # two equal bars, free-free: the striker ends at rest, the target moves at v0
-    r = run_deck(exe, work, "equal", deck(1.0e9, "free", 0.1,
+    r = gauge_rows(exe, work, "equal", deck(1.0e9, "free", 0.1,
                                           "  x = 0.1, 0.1, 0.0, 0.2\n  side = 'below'"), check)
-    r2 = run_deck(exe, work, "equal_above", deck(1.0e9, "free", 0.1,
+    r2 = gauge_rows(exe, work, "equal_above", deck(1.0e9, "free", 0.1,
                                                  "  x = 0.1, 0.0, 0.2\n  side = 'above'"), check)
     t = r[:, 0]
     after = t > t_sep + 1.5 * DT
@@ -172,7 +165,7 @@ def main():
   every = 1
 /
 """
-    r = run_deck(exe, work, "cohesive", coh, check)
+    r = gauge_rows(exe, work, "cohesive", coh, check)
     held = r[:, 1] != 0.0
     check(np.array_equal(r[:, 1], r[:, 4]), "cohesive crack: both faces read the same stress")
     check(held.sum() >= 1 and np.all(r[held, 1] < 0.0) and np.all(r[held, 1] >= -5.0e6),
@@ -182,14 +175,7 @@ def main():
           "and apart")
 
     def bad(what, gauges, needles):
-        text = deck(1.0e9, "free", 0.1, gauges)
-        with open(os.path.join(work, "bad.nml"), "w") as f:
-            f.write(text)
-        p = run(exe, ["bad.nml", "-q"], work)
-        lines = p.stderr.strip().splitlines()
-        check(p.returncode == 2, f"{what}: exit 2 (got {p.returncode})")
-        check(len(lines) == 1 and all(n in p.stderr for n in needles),
-              f"{what}: one line naming {needles} ({p.stderr.strip()})")
+        expect_refused(check, exe, work, what, deck(1.0e9, "free", 0.1, gauges), needles)
     bad("a word not in the list", "  x = 0.1\n  side = 'left'", ["&gauges", "side(1)", "'left'"])
     bad("two sides for three gauges", "  x = 0.1, 0.1, 0.1\n  side = 'above', 'below'",
         ["&gauges", "side", "one per gauge (3), got 2"])

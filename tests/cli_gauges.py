@@ -29,7 +29,7 @@ import sys
 import h5py
 import numpy as np
 
-from clitools import Checks, run
+from clitools import Checks, expect_refused, run
 
 EVERY = 5
 
@@ -162,17 +162,7 @@ def main():
 
     # bad &gauges
     def bad(what, group, needles):
-        d = base + group
-        with open(os.path.join(work, "bad.nml"), "w") as f:
-            f.write(d)
-        p = run(exe, ["bad.nml", "-q"], work)
-        lines = p.stderr.strip().splitlines()
-        check(p.returncode == 2, f"{what}: exit 2 (got {p.returncode})")
-        check(len(lines) == 1 and all(n in p.stderr for n in needles),
-              f"{what}: one line naming {needles} ({p.stderr.strip()})")
-        left = [f for f in os.listdir(work) if f.startswith("bad.") and f != "bad.nml"
-                and f != "bad.lock"]
-        check(not left, f"{what}: no output file ({left})")
+        expect_refused(check, exe, work, what, base + group, needles)
     bad("negative x", "&gauges x = -0.1 /\n", ["&gauges", "x(1)", "outside the bar"])
     bad("x beyond the bar", "&gauges x = 0.1, 2.9 /\n", ["&gauges", "x(2)", "outside"])
     bad("101 gauges", "&gauges x = " + ", ".join(["0.5"] * 101) + " /\n",

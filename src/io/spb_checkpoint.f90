@@ -244,7 +244,14 @@ contains
          call field(ck, writing, '/state', 'base_contact_top', st%ends(face_top)%contact)
       end if
       call cohesive_fields(ck, st, writing)
-      call damage_fields(ck, st, writing)
+      ! time-dependent fracture (spb_state damage_t; only a run that has it, so a checkpoint
+      ! of a run without it is what it was before it existed)
+      if (.not. writing) st%dmg%on = h5_has_attr(ck%h5, '/state', 'dmg_d:size')
+      if (st%dmg%on) then
+         call array_field(ck, writing, 'dmg_k', st%dmg%k)
+         call array_field(ck, writing, 'dmg_lambda', st%dmg%lambda)
+         call array_field(ck, writing, 'dmg_d', st%dmg%d)
+      end if
       call array_field(ck, writing, 'ua', st%ua)
       call array_field(ck, writing, 'ub', st%ub)
       call array_field(ck, writing, 'dua', st%dua)
@@ -286,20 +293,6 @@ contains
       call array_field(ck, writing, 'coh_offset', st%coh%offset)
       call array_field(ck, writing, 'coh_active', st%coh%active)
    end subroutine cohesive_fields
-
-   !> Time-dependent fracture's part of the state (spb_state damage_t): only in a run that
-   !> has it, so a checkpoint of a run without it is what it was before it existed; read
-   !> back where the checkpoint has it.
-   subroutine damage_fields(ck, st, writing)
-      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
-      type(state_t), intent(inout) :: st   !! the state
-      logical, intent(in) :: writing       !! write (else read back)
-      if (.not. writing) st%dmg%on = h5_has_attr(ck%h5, '/state', 'dmg_d:size')
-      if (.not. st%dmg%on) return
-      call array_field(ck, writing, 'dmg_k', st%dmg%k)
-      call array_field(ck, writing, 'dmg_lambda', st%dmg%lambda)
-      call array_field(ck, writing, 'dmg_d', st%dmg%d)
-   end subroutine damage_fields
 
    !> A real attribute of group added after checkpoints existed: always written; read back
    !> (and counted in the checksum) only where the checkpoint has it, so that one written

@@ -681,26 +681,8 @@ contains
             else
                seg%strength(j) = -1.0_wp
             end if
-            if (is_set(seg%fracture_energy(j))) then
-               call need_positive(err, 'segments', 'fracture_energy' // sj, &
-                                  seg%fracture_energy(j), zero_ok=.true.)
-               if (.not. allocated(err) .and. seg%fracture_energy(j) > 0.0_wp .and. &
-                   .not. seg%strength(j) >= 0.0_wp) call make_error(err, '&segments: ' // &
-                  'fracture_energy' // sj // ' > 0 needs strength' // sj // ' >= 0 (an ' &
-                  // 'unbreakable segment opens no crack)')
-            else
-               seg%fracture_energy(j) = 0.0_wp
-            end if
-            if (is_set(seg%damage_integral(j))) then
-               call need_positive(err, 'segments', 'damage_integral' // sj, &
-                                  seg%damage_integral(j), zero_ok=.true.)
-               if (.not. allocated(err) .and. seg%damage_integral(j) > 0.0_wp .and. &
-                   .not. seg%strength(j) >= 0.0_wp) call make_error(err, '&segments: ' // &
-                  'damage_integral' // sj // ' > 0 needs strength' // sj // ' >= 0 (an ' &
-                  // 'unbreakable segment does not break)')
-            else
-               seg%damage_integral(j) = 0.0_wp
-            end if
+            call breaking_extra('fracture_energy', seg%fracture_energy(j), 'opens no crack')
+            call breaking_extra('damage_integral', seg%damage_integral(j), 'does not break')
             if (is_set(seg%damage_exponent(j))) then
                call need_positive(err, 'segments', 'damage_exponent' // sj, &
                                   seg%damage_exponent(j))
@@ -756,6 +738,22 @@ contains
       end do
       call need_impedance_ratio(seg, err)
    contains
+      !> A real of segment j that only a breakable segment uses (default 0): >= 0, and > 0
+      !> only where strength(j) >= 0; note says what an unbreakable segment does not do.
+      subroutine breaking_extra(name, x, note)
+         character(len=*), intent(in) :: name   !! variable name
+         real(wp), intent(inout) :: x   !! its value for the segment (default set)
+         character(len=*), intent(in) :: note   !! why an unbreakable segment needs none
+         if (.not. is_set(x)) then
+            x = 0.0_wp
+            return
+         end if
+         call need_positive(err, 'segments', name // sj, x, zero_ok=.true.)
+         if (.not. allocated(err) .and. x > 0.0_wp .and. .not. seg%strength(j) >= 0.0_wp) &
+            call make_error(err, '&segments: ' // name // sj // ' > 0 needs strength' // sj // &
+                            ' >= 0 (an unbreakable segment ' // note // ')')
+      end subroutine breaking_extra
+
       !> A value given for a segment beyond n is an error.
       subroutine beyond_n(name, x)
          character(len=*), intent(in) :: name   !! variable name

@@ -391,10 +391,9 @@ contains
       integer :: i, n, k, ja, jb
       real(wp) :: ra, rb
       n = mesh%n
-      st%dmg%on = .false.
-      if (.not. allocated(prob%damage_integral)) return
-      if (.not. any(prob%damage_integral > 0.0_wp)) return
-      st%dmg%on = .true.
+      st%dmg%on = allocated(prob%damage_integral)
+      if (st%dmg%on) st%dmg%on = any(prob%damage_integral > 0.0_wp)
+      if (.not. st%dmg%on) return
       allocate(st%dmg%k(0:n), st%dmg%d(0:n), source=0.0_wp)
       allocate(st%dmg%lambda(0:n), source=2.0_wp)
       do i = 1, n - 1
