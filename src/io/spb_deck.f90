@@ -749,9 +749,10 @@ contains
             return
          end if
          call need_positive(err, 'segments', name // sj, x, zero_ok=.true.)
-         if (.not. allocated(err) .and. x > 0.0_wp .and. .not. seg%strength(j) >= 0.0_wp) &
+         if (.not. allocated(err) .and. x > 0.0_wp .and. .not. seg%strength(j) >= 0.0_wp) then
             call make_error(err, '&segments: ' // name // sj // ' > 0 needs strength' // sj // &
                             ' >= 0 (an unbreakable segment ' // note // ')')
+         end if
       end subroutine breaking_extra
 
       !> A value given for a segment beyond n is an error.

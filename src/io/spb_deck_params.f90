@@ -130,15 +130,7 @@ contains
          call param(p, 'segments', 'fracture_energy', 'J/m^2', 'cohesive fracture ' &
                     // 'energies Gc (default 0: brittle)', ra=s%fracture_energy, count=n, &
                     sweep=.true.)
-         ! echoed by a deck that gives them (a deck of before has none: its echo stays as it was)
-         if (show_damage(deck, p%mode)) then
-            call param(p, 'segments', 'damage_integral', 'Pa^lambda s', 'Tuler-Butcher ' &
-                       // 'damage integral K: a section breaks when the integral of (S - R)' &
-                       // '^lambda dt over its tension S beyond its strength R reaches K ' &
-                       // '(default 0: at once)', ra=s%damage_integral, count=n, sweep=.true.)
-            call param(p, 'segments', 'damage_exponent', '-', 'Tuler-Butcher exponent ' &
-                       // 'lambda (default 2)', ra=s%damage_exponent, count=n, sweep=.true.)
-         end if
+         call damage_params(deck, p)
          call param(p, 'segments', 'interface', '', 'interface j between segments j and ' &
                     // 'j+1 (default ''bonded'')', ta=s%interface, count=n - 1, &
                     choices=interface_words)
@@ -193,19 +185,29 @@ contains
       if (pass%mode /= pass_echo .or. deck%impactor%on) call impactor_params(deck%impactor, pass)
    end subroutine deck_params
 
-   !> Whether a pass lists &segments damage_integral and damage_exponent: every pass but the
-   !> echo; the echo where the deck gives one of them or a K > 0.
-   logical function show_damage(deck, mode)
-      type(deck_t), intent(in) :: deck   !! the deck
-      integer, intent(in) :: mode        !! the pass's mode
-      show_damage = .true.
-      if (mode /= pass_echo) return
-      show_damage = has_var(deck%scan, 'segments', 'damage_integral') .or. &
-                    has_var(deck%scan, 'segments', 'damage_exponent')
-      if (show_damage .or. deck%seg%n < 1 .or. deck%seg%n > size(deck%seg%damage_integral)) &
-         return
-      show_damage = any(deck%seg%damage_integral(1:deck%seg%n) > 0.0_wp)
-   end function show_damage
+   !> &segments damage_integral and damage_exponent (time-dependent fracture): listed by
+   !> every pass but the echo, and echoed by a deck that gives one of them or a K > 0 (a
+   !> deck of before has none: its echo stays as it was).
+   subroutine damage_params(deck, p)
+      type(deck_t), intent(inout) :: deck     !! the deck
+      type(param_pass_t), intent(inout) :: p  !! what this pass does
+      logical :: show
+      integer :: n
+      n = deck%seg%n
+      show = p%mode /= pass_echo
+      if (.not. show) show = has_var(deck%scan, 'segments', 'damage_integral') .or. &
+                             has_var(deck%scan, 'segments', 'damage_exponent')
+      if (.not. show .and. n >= 1 .and. n <= size(deck%seg%damage_integral)) then
+         show = any(deck%seg%damage_integral(1:n) > 0.0_wp)
+      end if
+      if (.not. show) return
+      call param(p, 'segments', 'damage_integral', 'Pa^lambda s', 'Tuler-Butcher damage ' &
+                 // 'integral K: a section breaks when the integral of (S - R)^lambda dt ' &
+                 // 'over its tension S beyond its strength R reaches K (default 0: at once)', &
+                 ra=deck%seg%damage_integral, count=n, sweep=.true.)
+      call param(p, 'segments', 'damage_exponent', '-', 'Tuler-Butcher exponent lambda ' &
+                 // '(default 2)', ra=deck%seg%damage_exponent, count=n, sweep=.true.)
+   end subroutine damage_params
 
    !> &impactor's variables (optional group: a striking mass, doc/impactor.md).
    subroutine impactor_params(m, p)
