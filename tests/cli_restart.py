@@ -227,6 +227,10 @@ def main():
         "zmr": open(os.path.join(work, "zmr_bar.nml")).read(),
         # gauges on the top face, in a cell, on the interface and on the transmitting bottom,
         # every 4 steps (neither a divisor of the step count nor of history_every)
+        # time-dependent fracture (issue 35): sections part damaged at the checkpoint
+        "damage": open(os.path.join(work, "example2.nml")).read().replace(
+            "  strength = 1.2e6, 0.6e6, 2.5e6\n",
+            "  strength = 1.2e6, 0.6e6, 2.5e6\n  damage_integral = 5.0e7, 5.0e7, 5.0e7\n"),
         "gauges": open(os.path.join(work, "example2.nml")).read() +
         "&gauges\n  x = 0.0, 0.1, 0.84, 1.2, 2.89\n  every = 4\n/\n",
     }
@@ -248,6 +252,12 @@ def main():
             with h5py.File(os.path.join(work, name + ".ck.h5"), "r") as ck:
                 check(abs(ck["state"].attrs["u_credit"]) > 0.0,
                       f"{name}: the checkpoint holds the held bar's credit")
+        if name == "damage":
+            with h5py.File(os.path.join(work, name + ".ck.h5"), "r") as ck:
+                d = ck["state"]["dmg_d"][()]
+                check(np.any((d > 0.0) & (d < 1.0)),
+                      f"{name}: the checkpoint holds sections part damaged "
+                      f"({int(np.sum((d > 0.0) & (d < 1.0)))})")
         if name in ("cohesive", "zmr"):
             with h5py.File(os.path.join(work, name + ".ck.h5"), "r") as ck:
                 check(ck["state"].attrs["coh_n_active"] > 0 and

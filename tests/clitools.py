@@ -1,5 +1,6 @@
 """Small helpers shared by the command-line tests (cli_*.py)."""
 import os
+import shutil
 import subprocess
 
 
@@ -19,6 +20,14 @@ class Checks:
     def finish(self):
         print(f"{self.checks - self.failures} passed, {self.failures} failed")
         return 1 if self.failures else 0
+
+
+def fresh_work(work, name):
+    """WORK/name, emptied (made if missing): a test's own folder."""
+    path = os.path.join(work, name)
+    shutil.rmtree(path, ignore_errors=True)
+    os.makedirs(path)
+    return path
 
 
 def run(exe, args, cwd, timeout=600):
@@ -54,3 +63,18 @@ def history(path):
             elif line.startswith(" ") and line.strip():
                 rows.append([float(x) for x in line.split()])
     return {name: [r[k] for r in rows] for k, name in enumerate(names)}
+
+
+def expect_refused(check, exe, work, what, text, needles):
+    """Write text as WORK/bad.nml and run it: exit 2 with one stderr line that holds every
+    one of needles, and no output file left (checked)."""
+    with open(os.path.join(work, "bad.nml"), "w") as f:
+        f.write(text)
+    p = run(exe, ["bad.nml", "-q"], work)
+    lines = p.stderr.strip().splitlines()
+    check(p.returncode == 2, f"{what}: exit 2 (got {p.returncode})")
+    check(len(lines) == 1 and all(n in p.stderr for n in needles),
+          f"{what}: one line naming {needles} ({p.stderr.strip()})")
+    left = [f for f in os.listdir(work) if f.startswith("bad.") and f not in ("bad.nml",
+                                                                              "bad.lock")]
+    check(not left, f"{what}: no output file ({left})")

@@ -61,6 +61,7 @@ KINDS = {
     ("segments", "n"): "int", ("segments", "length"): "real", ("segments", "young"): "real",
     ("segments", "density"): "real", ("segments", "area"): "real",
     ("segments", "strength"): "real", ("segments", "fracture_energy"): "real",
+    ("segments", "damage_integral"): "real", ("segments", "damage_exponent"): "real",
     ("segments", "interface"): "word", ("segments", "velocity"): "real",
     ("segments", "gap"): "real",
     ("ends", "top"): "word", ("ends", "bottom"): "word", ("ends", "base_gap"): "real",
@@ -73,16 +74,17 @@ KINDS = {
     ("strength_field", "scale"): "real", ("strength_field", "seed"): "int",
     ("sweep", "realizations"): "int", ("sweep", "seed"): "int", ("sweep", "vary"): "text",
     ("sweep", "values"): "real", ("sweep", "distribution"): "word", ("sweep", "bins"): "int",
-    ("gauges", "x"): "real", ("gauges", "every"): "int",
+    ("gauges", "x"): "real", ("gauges", "every"): "int", ("gauges", "side"): "word",
     ("impactor", "face"): "word", ("impactor", "mass"): "real", ("impactor", "velocity"): "real",
     ("impactor", "gap"): "real", ("impactor", "cushion"): "real",
 }
 ARRAYS = {("run", "profile_times"): 100, ("segments", "length"): 100,
           ("segments", "young"): 100, ("segments", "density"): 100, ("segments", "area"): 100,
           ("segments", "strength"): 100, ("segments", "interface"): 100,
-          ("segments", "fracture_energy"): 100,
+          ("segments", "fracture_energy"): 100, ("segments", "damage_integral"): 100,
+          ("segments", "damage_exponent"): 100,
           ("segments", "velocity"): 100, ("segments", "gap"): 100, ("sweep", "values"): 1000,
-          ("gauges", "x"): 100}
+          ("gauges", "x"): 100, ("gauges", "side"): 100}
 
 # Valid base decks, small and short (a few steps of 20-40 cells). The units are scaled so
 # that a wave speed is ~1 m/s and a step ~0.1 s: an integer put into any real (t_end = 1)
@@ -98,14 +100,15 @@ BASES = [
         ("mesh", [("cells", "20"), ("ref_segment", "1"), ("fit", "'strict'")]),
         ("segments", [("n", "2"), ("length", "1.0, 0.5"), ("young", "250.0, 250.0"),
                       ("density", "1000.0, 1000.0"), ("area", "1.0, 0.5"),
-                      ("strength", "5.0, -1.0"),
+                      ("strength", "5.0, -1.0"), ("damage_integral", "0.5, 0.0"),
+                      ("damage_exponent", "2.0, 1.5"),
                       ("interface", "'bonded'"), ("velocity", "0.0, 0.0"), ("gap", "0.0")]),
         ("ends", [("top", "'free'"), ("bottom", "'free'"), ("base_gap", "0.0")]),
         ("load", [("kind", "'power'"), ("face", "'top'"), ("p0", "10.0"), ("t_k", "0.2"),
                   ("exponent", "1.0"), ("t_cut", "0.2")]),
         ("initial", [("state", "'unstressed'"), ("strain_rate", "0.0")]),
         ("strength_field", [("kind", "'uniform'"), ("seed", "1")]),
-        ("gauges", [("x", "0.5, 1.0, 1.2"), ("every", "1")]),
+        ("gauges", [("x", "0.5, 1.0, 1.2"), ("every", "1"), ("side", "'above', 'below', 'above'")]),
     ], {}, []),
     ("table_base_hdf5", [
         ("run", [("title", "'structural table'"), ("t_end", "0.4"), ("gravity", "9.81"),
@@ -388,9 +391,11 @@ def variable_cases(rng, variables):
                 exp, why = 2, "doc: unterminated strings are refused"
             elif (group, var) == ("run", "title") and title_ok:
                 exp, why = 0, "doc: a group's text ends at '/' outside strings; any title runs"
-            elif (group, var) == ("segments", "interface") and label == "empty":
-                # an interface element left empty is one not given: 'bonded' (doc/deck.md)
-                exp, why = None, "doc: an empty interface element is the default"
+            elif (group, var) in (("segments", "interface"), ("gauges", "side")) and \
+                    label == "empty":
+                # an interface element left empty is one not given: 'bonded' (doc/deck.md);
+                # a side left empty is one not given: a hole, or the default 'above'
+                exp, why = None, "doc: an empty element is one not given"
             elif kind == "word" and label not in ("unquoted",):
                 exp, why = 2, "doc: choices outside their lists are refused"
             else:

@@ -21,7 +21,7 @@ module spb_checkpoint
    use spb_deck, only: deck_record_t
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t, load_table
-   use spb_state, only: state_t
+   use spb_state, only: state_t, damage_t
    use spb_ends, only: face_top, face_bottom, define_ends, is_striker, striker_fields, &
       has_base
    use spb_field_io, only: field_io_t
@@ -84,8 +84,9 @@ module spb_checkpoint
 
    !> Deck variables added after checkpoints existed ('group:name'): not given, they keep the
    !> behaviour of before, and a checkpoint that predates them fits a deck that leaves them out.
-   character(len=*), parameter :: later_variables(3) = [character(len=24) :: 'segments:area', &
-      'segments:fracture_energy', 'ends:base_gap_top']
+   character(len=*), parameter :: later_variables(6) = [character(len=24) :: 'segments:area', &
+      'segments:fracture_energy', 'ends:base_gap_top', 'gauges:side', &
+      'segments:damage_integral', 'segments:damage_exponent']
 
 contains
 
@@ -243,6 +244,14 @@ contains
          call field(ck, writing, '/state', 'base_contact_top', st%ends(face_top)%contact)
       end if
       call cohesive_fields(ck, st, writing)
+      ! time-dependent fracture (spb_state damage_t; only a run that has it, so a checkpoint
+      ! of a run without it is what it was before it existed)
+      if (.not. writing) st%dmg%on = h5_has_attr(ck%h5, '/state', 'dmg_d:size')
+      if (st%dmg%on) then
+         call array_field(ck, writing, 'dmg_k', st%dmg%k)
+         call array_field(ck, writing, 'dmg_lambda', st%dmg%lambda)
+         call array_field(ck, writing, 'dmg_d', st%dmg%d)
+      end if
       call array_field(ck, writing, 'ua', st%ua)
       call array_field(ck, writing, 'ub', st%ub)
       call array_field(ck, writing, 'dua', st%dua)
@@ -726,6 +735,11 @@ contains
                bounds_are(st%coh%dmax, 0, n) .and. bounds_are(st%coh%q, 0, n) .and. &
                bounds_are(st%coh%offset, 0, n) .and. allocated(st%coh%active))) then
          why = 'is damaged: a cohesive crack array has other bounds than the mesh gives'
+      else if (st%dmg%on .and. .not. (bounds_are(st%dmg%k, 0, n) .and. &
+               bounds_are(st%dmg%lambda, 0, n) .and. bounds_are(st%dmg%d, 0, n))) then
+         why = 'is damaged: a damage array has other bounds than the mesh gives'
+      else if (.not. damage_fits(st%dmg)) then
+         why = 'is damaged: a damage integral, exponent or damage of its state is out of range'
       else if (.not. (allocated(st%split) .and. allocated(st%skip_test) .and. &
                       allocated(st%fm%cut))) then
          why = 'is damaged: a list of its state is missing'
@@ -783,6 +797,17 @@ contains
       end if
       end associate
    end function list_problem
+
+   !> Whether the damage read back (bounds checked) holds values a run can have: K >= 0,
+   !> lambda > 0 and finite, D/K >= 0 and finite (true without damage).
+   pure logical function damage_fits(dmg)
+      type(damage_t), intent(in) :: dmg   !! the damage read back
+      damage_fits = .true.
+      if (.not. dmg%on) return
+      damage_fits = all(ieee_is_finite(dmg%k)) .and. all(ieee_is_finite(dmg%lambda)) .and. &
+                    all(ieee_is_finite(dmg%d)) .and. all(dmg%k >= 0.0_wp) .and. &
+                    all(dmg%lambda > 0.0_wp) .and. all(dmg%d >= 0.0_wp)
+   end function damage_fits
 
    !> Whether a is allocated with bounds lo:hi.
    pure logical function bounds_are(a, lo, hi)

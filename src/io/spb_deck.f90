@@ -14,9 +14,10 @@ module spb_deck
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text, &
       group_preamble
    use spb_deck_types, only: deck_t, run_cfg, mesh_cfg, segments_cfg, ends_cfg, load_cfg, &
-      deck_record_t, echo_item_t, known_groups, is_set, timing_words, shift_words, &
+      deck_record_t, gauges_cfg, echo_item_t, known_groups, is_set, timing_words, shift_words, &
       events_words, model_words, fit_words, top_words, bottom_words, interface_words, &
-      kind_words, face_words, state_words, field_words, distribution_words, header_words
+      kind_words, face_words, state_words, field_words, distribution_words, header_words, &
+      side_words
    use spb_deck_params, only: param_pass_t, deck_params, pass_read, pass_echo, pass_find, &
       pass_set, pass_doc, huge_real
    use spb_random, only: weibull_log_min, weibull_log_max
@@ -51,6 +52,9 @@ contains
       prob%nseg = n
       allocate(prob%fracture_energy(n))
       prob%fracture_energy(:) = deck%seg%fracture_energy(1:n)
+      allocate(prob%damage_integral(n), prob%damage_exponent(n))
+      prob%damage_integral(:) = deck%seg%damage_integral(1:n)
+      prob%damage_exponent(:) = deck%seg%damage_exponent(1:n)
       allocate(prob%length(n), prob%young(n), prob%density(n), prob%strength(n), &
                prob%velocity(n), prob%dry(n), prob%gap(n), prob%area(n))
       prob%length(:) = deck%seg%length(1:n)
@@ -449,8 +453,38 @@ contains
          end if
          if (g%every < 1) call make_error(err, '&gauges: every must be >= 1, got ' // &
                                           itoa(g%every))
+         call validate_sides(g, err)
       end associate
    end subroutine validate_gauges
+
+   !> &gauges side: given in order from side(1), one value for all gauges or one per gauge,
+   !> each 'above' or 'below'; not given: 'above' for all (doc/gauges.md).
+   subroutine validate_sides(g, err)
+      type(gauges_cfg), intent(inout) :: g   !! &gauges values (n set)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer :: k
+      if (allocated(err)) return
+      g%n_side = 0
+      do k = 1, size(g%side)
+         if (len_trim(g%side(k)) > 0) g%n_side = k
+      end do
+      do k = 1, g%n_side
+         if (len_trim(g%side(k)) == 0) then
+            call make_error(err, '&gauges: side(' // itoa(g%n_side) // ') is given but side(' &
+                            // itoa(k) // ') is not: give one side for all gauges or one per gauge')
+            return
+         end if
+         call need_choice(err, 'gauges', 'side(' // itoa(k) // ')', g%side(k), side_words)
+         if (allocated(err)) return
+      end do
+      if (g%n_side == 0) then
+         g%side(1) = side_words(1)
+         g%n_side = 1
+      else if (g%n_side /= 1 .and. g%n_side /= g%n) then
+         call make_error(err, '&gauges: side: give one value for all gauges or one per ' // &
+                         'gauge (' // itoa(g%n) // '), got ' // itoa(g%n_side))
+      end if
+   end subroutine validate_sides
 
    !> Error unless x is a finite number; name is the variable as the user writes it.
    subroutine need_finite(err, group, name, x)
@@ -655,15 +689,13 @@ contains
             else
                seg%strength(j) = -1.0_wp
             end if
-            if (is_set(seg%fracture_energy(j))) then
-               call need_positive(err, 'segments', 'fracture_energy' // sj, &
-                                  seg%fracture_energy(j), zero_ok=.true.)
-               if (.not. allocated(err) .and. seg%fracture_energy(j) > 0.0_wp .and. &
-                   .not. seg%strength(j) >= 0.0_wp) call make_error(err, '&segments: ' // &
-                  'fracture_energy' // sj // ' > 0 needs strength' // sj // ' >= 0 (an ' &
-                  // 'unbreakable segment opens no crack)')
+            call breaking_extra('fracture_energy', seg%fracture_energy(j), 'opens no crack')
+            call breaking_extra('damage_integral', seg%damage_integral(j), 'does not break')
+            if (is_set(seg%damage_exponent(j))) then
+               call need_positive(err, 'segments', 'damage_exponent' // sj, &
+                                  seg%damage_exponent(j))
             else
-               seg%fracture_energy(j) = 0.0_wp
+               seg%damage_exponent(j) = 2.0_wp
             end if
             if (is_set(seg%velocity(j))) then
                call need_finite(err, 'segments', 'velocity' // sj, seg%velocity(j))
@@ -701,6 +733,8 @@ contains
             call beyond_n('density', seg%density(j))
             call beyond_n('strength', seg%strength(j))
             call beyond_n('fracture_energy', seg%fracture_energy(j))
+            call beyond_n('damage_integral', seg%damage_integral(j))
+            call beyond_n('damage_exponent', seg%damage_exponent(j))
             call beyond_n('velocity', seg%velocity(j))
             call beyond_n('area', seg%area(j))
             if (j >= seg%n) call beyond_n('gap', seg%gap(j))
@@ -712,6 +746,23 @@ contains
       end do
       call need_impedance_ratio(seg, err)
    contains
+      !> A real of segment j that only a breakable segment uses (default 0): >= 0, and > 0
+      !> only where strength(j) >= 0; note says what an unbreakable segment does not do.
+      subroutine breaking_extra(name, x, note)
+         character(len=*), intent(in) :: name   !! variable name
+         real(wp), intent(inout) :: x   !! its value for the segment (default set)
+         character(len=*), intent(in) :: note   !! why an unbreakable segment needs none
+         if (.not. is_set(x)) then
+            x = 0.0_wp
+            return
+         end if
+         call need_positive(err, 'segments', name // sj, x, zero_ok=.true.)
+         if (.not. allocated(err) .and. x > 0.0_wp .and. .not. seg%strength(j) >= 0.0_wp) then
+            call make_error(err, '&segments: ' // name // sj // ' > 0 needs strength' // sj // &
+                            ' >= 0 (an unbreakable segment ' // note // ')')
+         end if
+      end subroutine breaking_extra
+
       !> A value given for a segment beyond n is an error.
       subroutine beyond_n(name, x)
          character(len=*), intent(in) :: name   !! variable name
@@ -917,6 +968,12 @@ contains
                          // '(cohesive cracks open at nodes; the full-mass model breaks springs)')
          return
       end if
+      if (deck%run%model == 'full-mass' .and. &
+          any(deck%seg%damage_integral(1:deck%seg%n) > 0.0_wp)) then
+         call make_error(err, '&segments: damage_integral > 0 needs &run model = ''half-mass'' ' &
+                         // '(sections break at nodes; the full-mass model breaks springs)')
+         return
+      end if
       ! a cohesive crack opens at its strength: with none (and no strength field to draw one)
       ! the section could only break brittle, which would leave Gc unused without a word
       do j = 1, deck%seg%n
@@ -1052,6 +1109,7 @@ contains
    function deck_record(deck) result(rec)
       type(deck_t), intent(in) :: deck     !! the deck
       type(deck_record_t) :: rec
+      integer :: k
       rec%path = trim(deck%path)
       rec%title = trim(deck%run%title)
       rec%table = deck_file(deck, deck%load%table)
@@ -1065,6 +1123,10 @@ contains
       allocate(rec%gauge_x(deck%gauges%n))
       rec%gauge_x(:) = deck%gauges%x(1:deck%gauges%n)
       rec%gauge_every = max(deck%gauges%every, 1)
+      allocate(rec%gauge_below(deck%gauges%n))
+      do k = 1, deck%gauges%n
+         rec%gauge_below(k) = deck%gauges%side(min(k, max(deck%gauges%n_side, 1))) == 'below'
+      end do
    end function deck_record
 
    !> Every deck variable (spallbar --deck-help): group by group, its default as the echo

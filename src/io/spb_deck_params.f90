@@ -18,11 +18,12 @@ module spb_deck_params
    use, intrinsic :: ieee_exceptions, only: ieee_underflow, ieee_get_flag, ieee_set_flag
    use spb_kinds, only: wp, path_len
    use spb_error, only: spb_error_t, make_error
+   use spb_prescan, only: has_var
    use spb_strings, only: itoa, rtoa, ltoa, lower
    use spb_deck_types, only: deck_t, sweep_cfg, gauges_cfg, impactor_cfg, echo_item_t, is_set, timing_words, &
       shift_words, events_words, model_words, fit_words, top_words, bottom_words, &
       interface_words, kind_words, face_words, state_words, field_words, distribution_words, &
-      header_words
+      header_words, side_words
    implicit none
    private
    public :: param_pass_t, deck_params, pass_read, pass_echo, pass_find, pass_set, pass_doc, &
@@ -129,6 +130,7 @@ contains
          call param(p, 'segments', 'fracture_energy', 'J/m^2', 'cohesive fracture ' &
                     // 'energies Gc (default 0: brittle)', ra=s%fracture_energy, count=n, &
                     sweep=.true.)
+         call damage_params(deck, p)
          call param(p, 'segments', 'interface', '', 'interface j between segments j and ' &
                     // 'j+1 (default ''bonded'')', ta=s%interface, count=n - 1, &
                     choices=interface_words)
@@ -183,6 +185,30 @@ contains
       if (pass%mode /= pass_echo .or. deck%impactor%on) call impactor_params(deck%impactor, pass)
    end subroutine deck_params
 
+   !> &segments damage_integral and damage_exponent (time-dependent fracture): listed by
+   !> every pass but the echo, and echoed by a deck that gives one of them or a K > 0 (a
+   !> deck of before has none: its echo stays as it was).
+   subroutine damage_params(deck, p)
+      type(deck_t), intent(inout) :: deck     !! the deck
+      type(param_pass_t), intent(inout) :: p  !! what this pass does
+      logical :: show
+      integer :: n
+      n = deck%seg%n
+      show = p%mode /= pass_echo
+      if (.not. show) show = has_var(deck%scan, 'segments', 'damage_integral') .or. &
+                             has_var(deck%scan, 'segments', 'damage_exponent')
+      if (.not. show .and. n >= 1 .and. n <= size(deck%seg%damage_integral)) then
+         show = any(deck%seg%damage_integral(1:n) > 0.0_wp)
+      end if
+      if (.not. show) return
+      call param(p, 'segments', 'damage_integral', 'Pa^lambda s', 'Tuler-Butcher damage ' &
+                 // 'integral K: a section breaks when the integral of (S - R)^lambda dt ' &
+                 // 'over its tension S beyond its strength R reaches K (default 0: at once)', &
+                 ra=deck%seg%damage_integral, count=n, sweep=.true.)
+      call param(p, 'segments', 'damage_exponent', '-', 'Tuler-Butcher exponent lambda ' &
+                 // '(default 2)', ra=deck%seg%damage_exponent, count=n, sweep=.true.)
+   end subroutine damage_params
+
    !> &impactor's variables (optional group: a striking mass, doc/impactor.md).
    subroutine impactor_params(m, p)
       type(impactor_cfg), intent(inout) :: m  !! &impactor values
@@ -209,6 +235,9 @@ contains
                  // 'up to 100', ra=g%x, count=g%n, empty='(none)')
       call param(p, 'gauges', 'every', 'steps', 'steps between rows of PREFIX.gau (not ' &
                  // 'given: &run history_every)', i=g%every)
+      call param(p, 'gauges', 'side', '', 'at a node that splits, the side whose face a ' &
+                 // 'gauge reads: one value for all gauges or one per gauge (default ' &
+                 // '''above'')', ta=g%side, count=g%n_side, choices=side_words)
    end subroutine gauge_params
 
    !> &sweep's variables (a sweep deck only: read with --sweep).

@@ -14,7 +14,7 @@ module spb_deck_types
       strength_field_cfg, sweep_cfg, gauges_cfg, impactor_cfg, deck_record_t, echo_item_t, known_groups, unset, is_set
    public :: timing_words, shift_words, events_words, model_words, fit_words, top_words, &
       bottom_words, interface_words, kind_words, face_words, state_words, field_words, &
-      distribution_words, header_words
+      distribution_words, header_words, side_words
 
    real(wp), parameter :: unset = -huge(1.0_wp)   !! marks a real the deck did not give
 
@@ -40,6 +40,7 @@ module spb_deck_types
    character(len=*), parameter :: distribution_words(2) = [character(len=7) :: 'static', &
       'dynamic']
    character(len=*), parameter :: header_words(2) = [character(len=8) :: 'names', 'comments']
+   character(len=*), parameter :: side_words(2) = [character(len=5) :: 'above', 'below']
 
    character(len=16), parameter :: known_groups(10) = [character(len=16) :: 'run', 'mesh', &
       'segments', 'ends', 'load', 'initial', 'strength_field', 'sweep', 'gauges', 'impactor']
@@ -103,6 +104,9 @@ module spb_deck_types
       real(wp) :: strength(max_segments) = unset        !! tensile strength [Pa]; < 0 unbreakable
       real(wp) :: fracture_energy(max_segments) = unset !! cohesive fracture energy [J/m^2];
                                                         !! 0 (default): brittle
+      real(wp) :: damage_integral(max_segments) = unset !! Tuler-Butcher damage integral K
+                                                        !! [Pa^lambda s]; 0 (default): none
+      real(wp) :: damage_exponent(max_segments) = unset !! its exponent lambda [-] (default 2)
       character(len=name_len) :: interface(max_segments) = ''   !! 'bonded' | 'dry'
       real(wp) :: velocity(max_segments) = unset        !! initial rigid velocity [m/s]
       real(wp) :: gap(max_segments) = unset             !! initial gap at a dry interface [m]
@@ -164,6 +168,11 @@ module spb_deck_types
       integer :: n = 0                                 !! how many x were given
       integer :: every = 0                             !! steps between rows (not given:
                                                        !! &run history_every)
+      character(len=name_len) :: side(max_gauges + 1) = ''   !! at a node that splits, the
+                                                       !! side read: 'above' | 'below'; one
+                                                       !! for all gauges or one per gauge
+      integer :: n_side = 0                            !! how many side were given (after
+                                                       !! validation: 1 or n)
    end type gauges_cfg
 
    !> &impactor (optional): a rigid striking mass at one end (doc/impactor.md).
@@ -191,6 +200,8 @@ module spb_deck_types
       real(wp), allocatable :: profile_times(:)       !! &run profile_times given [s]
       real(wp), allocatable :: gauge_x(:)             !! &gauges x [m] (none: no PREFIX.gau)
       integer :: gauge_every = 1                      !! &gauges every [steps]
+      logical, allocatable :: gauge_below(:)          !! &gauges side: each gauge reads the
+                                                      !! side below a node that splits
       logical :: names_first = .true.                 !! &run header = 'names'
       character(len=:), allocatable :: restarted_from !! --restart-any-version: its program
    end type deck_record_t

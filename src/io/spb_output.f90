@@ -272,7 +272,7 @@ contains
       type(gauge_t) :: g(size(rec%gauge_x))
       character(len=:), allocatable :: where
       integer :: k
-      call locate_gauges(mesh, rec%gauge_x, g)
+      call locate_gauges(mesh, rec%gauge_x, g, rec%gauge_below)
       do k = 1, size(g)
          where = '# gauge ' // itoa(k) // ' at x = ' // rtoa(g(k)%x) // ' m '
          if (g(k)%node == 0) then
@@ -283,7 +283,9 @@ contains
                // 'support''s section stress (a free face: the load on it, its mean over the step)'
          else if (g(k)%node > 0) then
             write(u, '(a)') where // 'is on node ' // itoa(g(k)%node) // ': its section ' // &
-               'stress; at a crack it reports 0 and, for velocity and u, the mean of the two halves'
+               'stress; where the node splits, the face ' // trim(merge('below', 'above', &
+               g(k)%below)) // ' it (side = ''' // trim(merge('below', 'above', g(k)%below)) // &
+               '''): its velocity and u, the stress on it (0 free, a cohesive crack''s traction)'
          else
             write(u, '(a)') where // 'is inside cell ' // itoa(g(k)%cell) // ': its stress; ' // &
                'velocity and u interpolated linearly between nodes ' // itoa(g(k)%cell - 1) // &
@@ -291,7 +293,8 @@ contains
          end if
       end do
       write(u, '(a)') '# stress_k: at a node the section stress S (3.1)-(3.2) that holds over ' // &
-         'the step ending at t, 0 where the node is split; inside a cell the cell''s stress at t'
+         'the step ending at t, on a split node''s face what acts on it; inside a cell the ' // &
+         'cell''s stress at t'
       write(u, '(a)') '# velocity_k: du/dt over the step ending at t; u_k: displacement at t'
       write(u, '(a)') '# units: t [s]; stress_k [Pa] (compression > 0); velocity_k [m/s] ' // &
          'along +x (down); u_k [m]'

@@ -8,6 +8,7 @@ module spb_crack
    use spb_wave, only: fragment_characteristics, region_wave
    use spb_cohesive, only: cohesive_force, law_integral, dissipated
    use spb_fragments, only: fragment_span
+   use spb_damage, only: damage_reached
    use spb_columns, only: column_set_t, add_column
    implicit none
    private
@@ -42,7 +43,8 @@ contains
    end subroutine post_crack_columns
 
    !> Open a cohesive crack at t^n at every joined section with a fracture energy whose
-   !> section stress over the coming step, S^{n+1/2} (just computed), is beyond its strength:
+   !> section stress over the coming step, S^{n+1/2} (just computed), is beyond its strength
+   !> (and, with a damage integral K > 0, whose damage reaches K in this step, spb_damage):
    !> the tension a section carries over a step is what the step would transmit, so the crack
    !> must carry the step already (opened after it, a crack lets the step's excess through,
    !> which breaks the next section one step later, and so on down the bar). Nothing of the
@@ -65,6 +67,7 @@ contains
       real(wp), allocatable :: f(:), gw(:)
       real(wp) :: q(mesh%n), e_wave0, dt, eps
       integer :: m, i, j, k, r_top, r_bot
+      logical :: ready
       n_new = 0
       dt = mesh%dt
       eps = st%coh%eps_rel * st%s_scale
@@ -73,6 +76,9 @@ contains
          if (.not. st%coh%gc(i) > 0.0_wp .or. st%strength(i) < 0.0_wp) cycle
          if (.not. (st%section(i) < -st%strength(i) - eps)) cycle
          if (any(st%skip_test(1:st%n_skip) == i)) cycle
+         ! with a damage integral K > 0 the crack opens once the damage reaches K (spb_damage)
+         call damage_reached(mesh, st, i, ready)
+         if (.not. ready) cycle
          n_new = n_new + 1
          new(n_new) = i
       end do

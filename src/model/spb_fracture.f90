@@ -1,7 +1,8 @@
 !> Spall: fracture of a section (3.3)-(3.6) (doc/method.md, "Fracture").
 !>
 !> After each step, a joined interior node breaks at t^{n+1} when its section stress
-!> S^{n+1/2} < -R_i - eps, eps = eps_rel * (largest stress magnitude so far). How it breaks
+!> S^{n+1/2} < -R_i - eps, eps = eps_rel * (largest stress magnitude so far), and, where the
+!> section has a damage integral K > 0, once its damage has reached K (spb_damage). How it breaks
 !> is the rule set's, chosen here once per step: the paper's two-stage correction
 !> (spb_rules_paper) or the admissible break from the continuum state at t^n
 !> (spb_rules_admissible); every energy change is booked in e_fracture, so the ledger stays
@@ -21,6 +22,7 @@ module spb_fracture
    use spb_rules_paper, only: paper_breaks
    use spb_rules_admissible, only: admissible_breaks
    use spb_full_mass, only: full_mass_fracture
+   use spb_damage, only: damage_reached
    implicit none
    private
    public :: fracture_step, events_admissible, events_paper, first_overlap
@@ -73,6 +75,7 @@ contains
       integer :: cand(mesh%n)
       real(wp) :: e_wave0
       integer :: i, nb, j, k, r_top, r_bot
+      logical :: ready
       nb = 0
       do i = 1, mesh%n - 1
          if (.not. st%joined(i)) cycle
@@ -82,6 +85,9 @@ contains
             if (st%coh%gc(i) > 0.0_wp) cycle
          end if
          if (any(st%skip_test(1:st%n_skip) == i)) cycle
+         ! time-dependent fracture: the section breaks once its damage reaches K (spb_damage)
+         call damage_reached(mesh, st, i, ready)
+         if (.not. ready) cycle
          nb = nb + 1
          cand(nb) = i
       end do

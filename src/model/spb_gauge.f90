@@ -3,11 +3,17 @@
 !>
 !> At a node (x equal to the node's position to within 1e-9 of its cells' length) the
 !> stress is the section stress S of the node ((3.1)-(3.2), doc/method.md, "Section stresses
-!> at every node"): the stress a gauge on the section reads; 0 when the node is split (a
-!> crack, an open contact); at an end node the support's section stress, or on a free face
-!> the load on it (its mean over the step). Strictly inside a cell the stress is the cell's.
-!> Velocity and displacement are interpolated linearly between the cell's two nodes, each
-!> node by its half on the cell's side; at a node, the mean of its two halves.
+!> at every node"): the stress a gauge on the section reads; at an end node the support's
+!> section stress, or on a free face the load on it (its mean over the step). Strictly
+!> inside a cell the stress is the cell's. Velocity and displacement are interpolated
+!> linearly between the cell's two nodes, each node by its half on the cell's side.
+!>
+!> An interior node is read on one side, the gauge's `side` (&gauges side, doc/gauges.md):
+!> its upper half A_i ('above') or its lower half B_i ('below'). While the node is joined
+!> the two halves move as one and the side changes nothing (but a displacement a gap or a
+!> shift put between the halves); once split the gauge reads that side's face: its velocity,
+!> its displacement and the stress on it, 0 on a free face and the traction's mean over
+!> the step on the faces of an open cohesive crack (the same on both faces).
 !>
 !> The section stress of an interior node is kept by the step only where a node can break:
 !> the nodes gauges read are listed in mesh%watch, which the step keeps as well.
@@ -31,22 +37,27 @@ module spb_gauge
       integer :: node = -1          !! the node it is on (-1: inside a cell)
       integer :: cell = 0           !! the cell it is in (node gauges: 0)
       real(wp) :: w = 0.0_wp        !! (x - x_{cell-1}) / dx of the cell [-]
+      logical :: below = .false.    !! at an interior node: reads the lower half B_i (else
+                                    !! the upper half A_i)
    end type gauge_t
 
 contains
 
    !> The place of each position in the mesh. A position beyond the modelled bar (its
    !> length stretched by fit = 'stretch') reads the end node.
-   pure subroutine locate_gauges(mesh, x, gauges)
+   pure subroutine locate_gauges(mesh, x, gauges, below)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       real(wp), intent(in) :: x(:)         !! reference positions [m]
       type(gauge_t), intent(out) :: gauges(size(x))   !! where they are
+      logical, intent(in), optional :: below(:)   !! the side each reads at a node that
+                                                  !! splits (not given: above)
       integer :: k, lo, hi, mid, n
       real(wp) :: xk
       n = mesh%n
       do k = 1, size(x)
          xk = min(max(x(k), 0.0_wp), mesh%x(n))
          gauges(k)%x = x(k)
+         if (present(below)) gauges(k)%below = below(k)
          ! the cell k with x(k-1) <= xk <= x(k): bisection over the nodes
          lo = 0
          hi = n
@@ -115,10 +126,14 @@ contains
             velocity(k) = st%dua(n) / mesh%dt
             u(k) = st%ua(n)
          else if (i > 0) then
-            stress(k) = 0.0_wp
-            if (st%joined(i)) stress(k) = st%section(i)
-            velocity(k) = 0.5_wp * (st%dua(i) + st%dub(i)) / mesh%dt
-            u(k) = 0.5_wp * (st%ua(i) + st%ub(i))
+            stress(k) = face_stress(mesh, st, i)
+            if (gauges(k)%below) then
+               velocity(k) = st%dub(i) / mesh%dt
+               u(k) = st%ub(i)
+            else
+               velocity(k) = st%dua(i) / mesh%dt
+               u(k) = st%ua(i)
+            end if
          else
             associate (w => gauges(k)%w)
                stress(k) = st%s(c) / mesh%area(c)
@@ -130,4 +145,20 @@ contains
          if (i >= 0) stress(k) = stress(k) / node_area(mesh, i)
       end do
    end subroutine read_gauges
+
+   !> The stress on interior node i's section as a gauge on either side reads it (a force,
+   !> as the model's stresses): joined, its section stress; split, what acts on its faces:
+   !> an open cohesive crack's traction, its mean over the step ending at t (tension < 0),
+   !> else nothing (free faces).
+   pure real(wp) function face_stress(mesh, st, i) result(s)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      integer, intent(in) :: i             !! interior node
+      s = 0.0_wp
+      if (st%joined(i)) then
+         s = st%section(i)
+      else if (st%coh%on) then
+         if (st%coh%active(i)) s = -st%coh%q(i) / mesh%dt
+      end if
+   end function face_stress
 end module spb_gauge

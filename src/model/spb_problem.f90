@@ -40,6 +40,9 @@ module spb_problem
       real(wp), allocatable :: strength(:)         !! tensile strength [Pa]; < 0 unbreakable
       real(wp), allocatable :: fracture_energy(:)  !! cohesive fracture energy Gc [J/m^2]; 0:
                                                    !! brittle (the paper's fracture)
+      real(wp), allocatable :: damage_integral(:)  !! Tuler-Butcher damage integral K
+                                                   !! [Pa^lambda s]; 0: none (at once at R)
+      real(wp), allocatable :: damage_exponent(:)  !! Tuler-Butcher exponent lambda [-]
       real(wp), allocatable :: velocity(:)         !! initial rigid velocity [m/s]
       logical, allocatable :: dry(:)               !! interface below segment j is dry
       real(wp), allocatable :: gap(:)              !! initial gap at that dry interface [m]

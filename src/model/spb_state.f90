@@ -16,7 +16,7 @@ module spb_state
    use spb_columns, only: column_set_t, add_column
    implicit none
    private
-   public :: state_t, init_state, fragment_count, open_node, close_node, cell_strengths, &
+   public :: state_t, damage_t, init_state, fragment_count, open_node, close_node, cell_strengths, &
       separates
    public :: state_columns_t, register_state_columns, post_state_columns
 
@@ -63,6 +63,19 @@ module spb_state
       integer :: n_pending = 0                !! such cracks
    end type cohesive_t
 
+   !> Time-dependent fracture (Tuler-Butcher; doc/method.md, "Time-dependent fracture"): per
+   !> node, allocated only where some segment has a damage integral K > 0 (on). A section
+   !> whose K > 0 breaks when D = integral of (S - R)^lambda dt over the time its tension S
+   !> exceeds its strength R reaches K; the state keeps D/K.
+   type :: damage_t
+      logical :: on = .false.                 !! some section has K > 0 (the arrays exist)
+      real(wp), allocatable :: k(:)           !! (0:n) damage integral K of the section
+                                              !! [Pa^lambda s]; 0: breaks at once (brittle)
+      real(wp), allocatable :: lambda(:)      !! (0:n) its exponent lambda [-]
+      real(wp), allocatable :: d(:)           !! (0:n) damage so far, D/K [-]; the section
+                                              !! breaks in the step that takes it to 1
+   end type damage_t
+
    type :: state_t
       integer :: step = 0                     !! step index n: the state is at t^n = n dt
       real(wp), allocatable :: ua(:), ub(:)   !! displacements of the halves (0:n) [m]
@@ -95,6 +108,7 @@ module spb_state
       type(genealogy_t) :: gen                !! the fragments' ids and parents
       type(full_mass_t) :: fm                 !! the full-mass model's cut springs
       type(cohesive_t) :: coh                 !! cohesive cracks
+      type(damage_t) :: dmg                   !! time-dependent fracture (Tuler-Butcher)
    end type state_t
 
    !> The state's history columns (PREFIX.his, /history): their ids (spb_columns).
@@ -127,6 +141,7 @@ contains
       st%cell_strength = cell_strengths(prob, mesh)
       call init_strength(mesh, st)
       call init_cohesive(prob, mesh, st)
+      call init_damage(prob, mesh, st)
       allocate(st%fm%cut(16), source=0)
       st%fm%is_cut = .false.
       allocate(st%gen%frag_id(0:n), st%gen%frag_parent(0:n), st%gen%frag_birth(0:n))
@@ -234,6 +249,7 @@ contains
          st%cracked(i) = .true.
          st%strength(i) = 0.0_wp
          if (st%coh%on) st%coh%gc(i) = 0.0_wp
+         if (st%dmg%on) st%dmg%k(i) = 0.0_wp
          if (.not. split(i)) cycle
          va = prob%velocity(j)
          vb = prob%velocity(j + 1)
@@ -434,6 +450,44 @@ contains
       ! a section with no strength opens no cohesive crack
       where (.not. st%strength > 0.0_wp) st%coh%gc = 0.0_wp
    end subroutine init_cohesive
+
+   !> The sections' damage integrals K and exponents lambda (Tuler-Butcher): each node takes
+   !> those of the cell whose strength it took (spb_state init_strength: the weaker side of
+   !> a bonded interface; where both sides are as strong, the smaller K, then the smaller
+   !> lambda, so that a mirrored bar is the same; with a strength field, its cell's
+   !> segment). Only where some segment has K > 0; a dry interface has no bond.
+   subroutine init_damage(prob, mesh, st)
+      type(problem_t), intent(in) :: prob   !! the problem
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state (strengths set)
+      integer :: i, n, k, ja, jb
+      real(wp) :: ra, rb
+      n = mesh%n
+      st%dmg%on = allocated(prob%damage_integral)
+      if (st%dmg%on) st%dmg%on = any(prob%damage_integral > 0.0_wp)
+      if (.not. st%dmg%on) return
+      allocate(st%dmg%k(0:n), st%dmg%d(0:n), source=0.0_wp)
+      allocate(st%dmg%lambda(0:n), source=2.0_wp)
+      do i = 1, n - 1
+         ra = st%cell_strength(i)
+         rb = st%cell_strength(i + 1)
+         k = i
+         if (ra < 0.0_wp .or. (rb >= 0.0_wp .and. rb < ra)) k = i + 1
+         ja = mesh%seg(i)
+         jb = mesh%seg(i + 1)
+         if (ra >= 0.0_wp .and. .not. abs(ra - rb) > 0.0_wp .and. ja /= jb) then
+            ! two sides as strong: the smaller K, then the smaller lambda, whichever is up
+            k = i
+            if (prob%damage_integral(jb) < prob%damage_integral(ja) .or. &
+                (.not. abs(prob%damage_integral(jb) - prob%damage_integral(ja)) > 0.0_wp &
+                 .and. prob%damage_exponent(jb) < prob%damage_exponent(ja))) k = i + 1
+         end if
+         st%dmg%k(i) = prob%damage_integral(mesh%seg(k))
+         st%dmg%lambda(i) = prob%damage_exponent(mesh%seg(k))
+      end do
+      ! an unbreakable section has no K (a dry interface's is cleared where it is set open)
+      where (st%strength < 0.0_wp) st%dmg%k = 0.0_wp
+   end subroutine init_damage
 
    !> Tensile strength of every cell [Pa] (< 0 unbreakable): its segment's, or with
    !> &strength_field kind = 'weibull' a Weibull sample (spb_random, the deck's seed) for

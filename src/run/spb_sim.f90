@@ -155,7 +155,7 @@ contains
                        restart=restart, xt_rows=sim%opt%xt_rows)
       if (allocated(err)) return
       allocate(sim%gauges(size(sim%record%gauge_x)))
-      call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges)
+      call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges, sim%record%gauge_below)
       call watch_gauges(sim%mesh, sim%gauges)
       ! the model, chosen once: the half-mass model, or the full-mass comparison model, which
       ! sets up its own masses and state (spb_full_mass)
