@@ -682,6 +682,8 @@ contains
       write(u, '(a)') '# fragments at t_end; mean_fragment_length = mean reference length ' // &
          'of those fragments; max_reaction_bottom over every step'
       write(u, '(a)') '# units: ' // sweep_units
+      if (len_trim(deck%sweep%perturb) > 0) write(u, '(a)') '# value: the perturbed ' // &
+         trim(deck%sweep%perturb) // ' x (1 + spread u_i) of realization i (PREFIX.ens)'
       write(u, '(a)') '# ' // sweep_columns()
       table = sweep_table()
       do c = 1, size(rows, 2)
