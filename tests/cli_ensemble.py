@@ -34,28 +34,12 @@ shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 
 P0 = 1.0e5
-LINEAR = """&run
-  title = 'linear ensemble'
-  t_end = 0.05
-/
-&mesh
-  cells = 19
-/
-&segments
-  n = 1
-  length = 0.95
-  young = 20.0e6
-  density = 1765.8
-  strength = -1.0
-/
-&ends
-  top = 'free'
-  bottom = 'fixed'
-/
-&load
-  kind = 'power'
-  p0 = 1.0e5
-/
+LINEAR = """&run title = 'linear ensemble', t_end = 0.05 /
+&mesh cells = 19 /
+&segments n = 1, length = 0.95, young = 20.0e6, density = 1765.8, strength = -1.0 /
+&ends top = 'free', bottom = 'fixed' /
+&load kind = 'power',
+  p0 = 1.0e5 /
 """
 COLUMNS = ["reaction_bottom", "i_ends", "momentum"]
 SWEEP = """&sweep
