@@ -279,4 +279,17 @@ for k, (text, var) in enumerate(bad.items()):
     check(set(os.listdir(work)) - before == set(), f"{name}: no file left")
     print(f"{name}: {lines[0] if lines else ''}")
 
+# the ensemble's memory beyond the limit: refused before any case runs, naming history_every
+with open(os.path.join(work, "big.nml"), "w") as f:
+    f.write(lin_sweep.replace("realizations = 16", "realizations = 100000"))
+before = set(os.listdir(work))
+p = subprocess.run([exe, "--sweep", "big.nml"], cwd=work, capture_output=True, text=True,
+                   env=dict(os.environ, SPALLBAR_MEMORY_LIMIT="100000000"), timeout=600,
+                   stdin=subprocess.DEVNULL)
+lines = p.stderr.strip().splitlines()
+check(p.returncode == 2 and len(lines) == 1 and "ensemble_columns (3 at 108 history rows: "
+      "&run history_every = 1) need about 315.6 MB" in lines[0],
+      f"the ensemble's memory: exit {p.returncode}: {lines}")
+check(set(os.listdir(work)) - before == set(), "the ensemble's memory: no file left")
+
 sys.exit(check.finish())
