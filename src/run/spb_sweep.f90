@@ -195,7 +195,9 @@ contains
       if (size(ids) > 0) then
          call sim_run(sim, '', .false., summary, err, files=.false., sample_ids=ids, &
                       samples=samples)
-         if (size(samples) == size(series)) series = reshape(samples, [size(series)])
+         if (allocated(samples)) then
+            if (size(samples) == size(series)) series = reshape(samples, [size(series)])
+         end if
       else
          call sim_run(sim, '', .false., summary, err, files=.false.)
       end if
