@@ -9,6 +9,7 @@
 #   make bench     benchmarks (bench/run.py): table doc/benchmarks-latest.md, plot
 #   make event-study  the event layer's energy, momentum, invariance table (bench/event_study.py)
 #   make consistency  the event corrections under refinement: x_drift, e_lost_w (bench/consistency.py)
+#   make case2-ensemble  case 2's predictability horizons and ensemble statistics (bench/case2_ensemble.py)
 #   make blows     the striking mass's worked examples: doc/figures/{drop_hammer,striker}_blows.png
 #   make fragmentation  fragment size vs strain rate (doc/fragmentation.md): brittle Weibull bar
 #                  and the cohesive ZMR benchmark (plots/zmr_study.py): figures, tables
@@ -39,12 +40,12 @@ CMAKE_COMMON  := -G Ninja -DCMAKE_Fortran_COMPILER=gfortran $(CMAKE_FLAGS)
 
 PREFIX ?= /usr/local
 
-.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study consistency blows fragmentation golden archive-check rebaseline clean help
+.PHONY: install all setup build debug debug-configure run test test-translator figures bench event-study consistency case2-ensemble blows fragmentation golden archive-check rebaseline clean help
 
 all: build
 
 help:
-	@sed -n '1,18p' Makefile
+	@sed -n '1,20p' Makefile
 
 setup:
 	bash scripts/setup-debian.sh
@@ -89,6 +90,11 @@ bench: build
 consistency: build
 	$(PYTHON) bench/consistency.py --exe $(BUILD_RELEASE)/bin/spallbar --work $(BUILD_RELEASE)/consistency \
 	  --json $(BUILD_RELEASE)/consistency/results.json --case2-meshes 19,95,190,380
+
+# case 2 ensembles (issue 34): horizons per mesh and policy, mean +- std at 0.1, 0.3, 0.6 s
+case2-ensemble: build
+	$(PYTHON) bench/case2_ensemble.py --exe $(BUILD_RELEASE)/bin/spallbar --work $(BUILD_RELEASE)/case2-ensemble \
+	  --table $(BUILD_RELEASE)/case2-ensemble/tables.md
 
 # doc/benchmarks.md "The event study": the tables doc/validation.md summarises (wave measure)
 event-study: build

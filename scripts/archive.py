@@ -52,6 +52,13 @@ COMPARE = os.path.join(ROOT, "app", "spallbar_compare.py")
 #   the 'fragment' ones amplify it 300x, still below 1e-9 for round-off.
 RTOL = 1e-9
 T_MAX = {"example3_case2": 0.1}
+# Sweep decks of input/sweeps/ not archived, and why: an ensemble of Example 3 case 2 runs
+# each realization to 0.6 s, far into the chaos (above), and its table holds the end values
+# of those runs, which round-off from another compiler moves as much as a perturbation
+# would; T_MAX cannot cut a table of end values. What it computes is tested instead by
+# cli.ensemble (the statistics against a closed form, the same on any number of ranks) and
+# the case-2 decks above (their first 0.1 s).
+NOT_ARCHIVED = {"ensemble_case2.nml"}
 
 FIRST = ["example1", "example2", "example2_elastic", "example3_case1_accelerate",
          "example3_case1_delay", "example3_case1_min", "example3_case1_fixed"]
@@ -70,7 +77,8 @@ def decks():
     plain = sorted(found, key=lambda r: (order.get(r[:-4], len(FIRST)), r))
     out = [(r[:-4].replace(os.sep, "__"), r, False) for r in plain]
     out += [("sweeps__" + os.path.basename(p)[:-4], os.path.relpath(p, INPUT), True)
-            for p in sorted(glob.glob(os.path.join(INPUT, "sweeps", "*.nml")))]
+            for p in sorted(glob.glob(os.path.join(INPUT, "sweeps", "*.nml")))
+            if os.path.basename(p) not in NOT_ARCHIVED]
     return out
 
 

@@ -74,6 +74,8 @@ KINDS = {
     ("strength_field", "scale"): "real", ("strength_field", "seed"): "int",
     ("sweep", "realizations"): "int", ("sweep", "seed"): "int", ("sweep", "vary"): "text",
     ("sweep", "values"): "real", ("sweep", "distribution"): "word", ("sweep", "bins"): "int",
+    ("sweep", "perturb"): "text", ("sweep", "spread"): "real",
+    ("sweep", "ensemble_columns"): "text", ("sweep", "horizon_tol"): "real",
     ("gauges", "x"): "real", ("gauges", "every"): "int", ("gauges", "side"): "word",
     ("impactor", "face"): "word", ("impactor", "mass"): "real", ("impactor", "velocity"): "real",
     ("impactor", "gap"): "real", ("impactor", "cushion"): "real",
@@ -84,6 +86,7 @@ ARRAYS = {("run", "profile_times"): 100, ("segments", "length"): 100,
           ("segments", "fracture_energy"): 100, ("segments", "damage_integral"): 100,
           ("segments", "damage_exponent"): 100,
           ("segments", "velocity"): 100, ("segments", "gap"): 100, ("sweep", "values"): 1000,
+          ("sweep", "ensemble_columns"): 16,
           ("gauges", "x"): 100, ("gauges", "side"): 100}
 
 # Valid base decks, small and short (a few steps of 20-40 cells). The units are scaled so
@@ -167,6 +170,17 @@ BASES = [
                             ("seed", "3")]),
         ("sweep", [("realizations", "2"), ("seed", "7"), ("vary", "'p0'"),
                    ("values", "10.0, 20.0"), ("distribution", "'static'"), ("bins", "10")]),
+    ], {}, ["--sweep"]),
+    # an ensemble (issue 34): p0 perturbed, two history columns sampled
+    ("sweep_perturb", [
+        ("run", [("title", "'structural ensemble'"), ("t_end", "0.3")]),
+        ("mesh", [("cells", "20")]),
+        ("segments", [("length", "1.0"), ("young", "250.0"), ("density", "1000.0"),
+                      ("strength", "5.0")]),
+        ("load", [("kind", "'power'"), ("p0", "10.0"), ("t_k", "0.2"), ("exponent", "1.0")]),
+        ("sweep", [("perturb", "'p0'"), ("spread", "1.0e-3"), ("realizations", "2"),
+                   ("seed", "7"), ("ensemble_columns", "'reaction_bottom', 'e_wave'"),
+                   ("horizon_tol", "0.01")]),
     ], {}, ["--sweep"]),
 ]
 BASE = {b[0]: b for b in BASES}

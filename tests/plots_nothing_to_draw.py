@@ -7,7 +7,7 @@ without one fails this test. For each script:
 
   * on an output with nothing for it to draw (no profiles, no fragment blocks, a bar that
     never breaks, no gauges, no x-t field and no events, a zero base reaction, no fracture in
-    a fragmentation window), read from PREFIX.h5 and from the text files alone: exit status
+    a fragmentation window, an ensemble without rows in the time window), read from PREFIX.h5 and from the text files alone: exit status
     0, the line 'SCRIPT: warning: nothing to draw: ...' on stderr, and the PNG written;
   * on an output that has it: exit status 0, no warning on stderr, a PNG written.
 
@@ -114,6 +114,15 @@ def main():
     deck = open(os.path.join(indir, "example3_case1_accelerate.nml")).read()
     deck = re.sub(r"profile_times\s*=.*", "profile_times = 0.05", deck)
     ex3 = spallbar("ex3", deck.replace("t_end         = 1.0", "t_end         = 0.1"))
+    # an ensemble (plots/ensemble.py): 3 realizations of the bar of EMPTY under a pressure
+    ens_deck = EMPTY.format(extra="") + ("&load\n  kind = 'power'\n  p0 = 1.0e6\n/\n"
+                                         "&sweep\n  perturb = 'p0'\n  realizations = 3\n"
+                                         "  ensemble_columns = 'e_kin'\n/\n")
+    with open(os.path.join(work, "ens.nml"), "w") as f:
+        f.write(ens_deck)
+    r = run(exe, ["--sweep", "ens.nml", "-q"], work)
+    check(r.returncode == 0, f"spallbar --sweep ens: exit {r.returncode} {r.stderr.strip()}")
+    ens = os.path.join(work, "ens")
     # a striking mass on the bar of EMPTY: two blows' worth of contact
     struck = spallbar("struck", EMPTY.format(extra="") +
                       "&impactor\n  mass = 500.0\n  velocity = 2.0\n/\n")
@@ -131,6 +140,8 @@ def main():
         "xt": ([("h5", [empty], "x0"), ("text", [empty_text], "x1")], ([ex2], "x2")),
         "reaction": ([("h5", [empty], "r0"), ("text", [empty_text], "r1")], ([ex3], "r2")),
         "blows": ([("h5", [empty], "b0"), ("text", [empty_text], "b1")], ([struck], "b2")),
+        # an ensemble whose rows all lie before the time window
+        "ensemble": ([("no row in the window", [ens, "--t-min", "1"], "e0")], ([ens], "e1")),
         # the paper's Fig. 10 from decks whose bar never touches a base
         "figures": ([("no base reaction", ["--exe", exe, "--input", hanging, "--out",
                                            os.path.join(work, "fig_none"), "--only", "fig10"],

@@ -10,7 +10,7 @@
   * a missing output (no PREFIX.h5 and no PREFIX.his), a damaged PREFIX.h5, a text run
     without its PREFIX.evt, a PNG that cannot be written: exit 2 and exactly one line
     'SCRIPT.py: error: ...' on stderr, no traceback; a bad option value: exit 2;
-  * PREFIX.h5 given for PREFIX is read as the run.
+  * PREFIX.h5 given for PREFIX is read as the run (ensemble.py: a sweep's PREFIX_sweep.h5).
 
 usage: plots_options.py SPALLBAR INPUT_DIR PLOTS_DIR WORKDIR   (a Python with numpy,
 matplotlib, h5py: the project venv)
@@ -37,6 +37,30 @@ STRUCK = """&run
 """
 
 
+# an ensemble (plots/ensemble.py): a bar struck by a pressure p0 perturbed by 1e-3, 4
+# realizations, to 1 ms (the window above lies in it)
+ENSEMBLE = """&run
+  title = 'an ensemble'
+  t_end = 1.0e-3
+/
+&mesh cells = 20 /
+&segments n = 1, length = 1.0, young = 1.0e9, density = 1000.0, strength = 1.0e6 /
+&ends bottom = 'fixed' /
+&load kind = 'power', p0 = 2.0e6, t_k = 2.0e-4, exponent = 1.0 /
+&sweep perturb = 'p0', realizations = 4, ensemble_columns = 'reaction_bottom', 'e_kin' /
+"""
+
+
+def ensemble(check, exe, work):
+    """The sweep of ENSEMBLE in WORK; its prefix."""
+    with open(os.path.join(work, "ens.nml"), "w") as f:
+        f.write(ENSEMBLE)
+    r = subprocess.run([exe, "--sweep", "ens.nml", "-q"], cwd=work, capture_output=True,
+                       text=True, timeout=600, stdin=subprocess.DEVNULL)
+    check(r.returncode == 0, f"spallbar --sweep ens.nml: exit {r.returncode}: {r.stderr}")
+    return os.path.join(work, "ens")
+
+
 def per_run_scripts(plots):
     """The scripts that draw given runs: they take PREFIX ... -o PNG (their parser is
     _common.parser)."""
@@ -55,13 +79,14 @@ def png_ok(path):
         open(path, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
 
 
-def in_process(check, plots, ex2, struck):
+def in_process(check, plots, ex2, struck, ens):
     """Draw with the scripts' plot functions and look at what they drew."""
     sys.path.insert(0, plots)
     import numpy as np
     from matplotlib.collections import PathCollection
     import _common
     import blows
+    import ensemble
     import fragments
     import gauges
     import profiles
@@ -108,6 +133,18 @@ def in_process(check, plots, ex2, struck):
         unit = "kPa"        # the struck bar's area is 1: f_impactor is a stress
         check(f"[{unit}]" in axes[0].get_ylabel(), f"{name}: y label {axes[0].get_ylabel()!r}")
         plt.close(fig)
+    # ensemble: its rows in the window, the reaction's mean in kPa, e_kin in its own unit
+    e = ensemble.load(ens)
+    fig, axes = plt.subplots(2, 1)
+    ensemble.plot([e], ["ens"], axes, view)
+    rows = (e.t >= T_MIN) & (e.t <= T_MAX)
+    xs_in_window(axes[0].lines, "ensemble")
+    check(np.allclose(axes[0].lines[0].get_ydata(), e.stats["reaction_bottom"]["mean"][rows]
+                      / 1e3, rtol=0, atol=0), "ensemble: the reaction's mean in kPa")
+    check("[kPa]" in axes[0].get_ylabel() and "[J/m^2]" in axes[1].get_ylabel() and
+          axes[-1].get_xlabel() == "t [µs]", f"ensemble: labels {axes[0].get_ylabel()!r} "
+          f"{axes[1].get_ylabel()!r} {axes[-1].get_xlabel()!r}")
+    plt.close(fig)
     # x-t: field rows and events in the window, the time axis in us
     fig, ax = plt.subplots()
     xt.plot(runs["ex2"], ax, view)
@@ -177,6 +214,7 @@ def main():
                                         ("struck", STRUCK))):
         return check.finish()
     ex2, struck = os.path.join(work, "ex2"), os.path.join(work, "struck")
+    ens = ensemble(check, exe, work)
     # a text run without its .evt, a damaged PREFIX.h5
     for ext in (".his", ".prf", ".frg"):
         shutil.copy(ex2 + ext, os.path.join(work, "no_evt" + ext))
@@ -199,16 +237,21 @@ def main():
 
     jobs = []   # (script, what, args, expected exit, PNG or error words)
     for s in scripts:
-        prefix = struck if s == "blows" else ex2
+        prefix = {"blows": struck, "ensemble": ens}.get(s, ex2)
         extra = ["--gauges", "2"] if s == "gauges" else []
+        # ensemble.py draws a sweep's ensemble: PREFIX_sweep.h5 or PREFIX.ens
+        h5 = prefix + ("_sweep.h5" if s == "ensemble" else ".h5")
+        missing = ["no run output", "nothing_here.h5", "nothing_here.his"]
+        if s == "ensemble":
+            missing = ["no ensemble output", "nothing_here_sweep.h5", "nothing_here.ens"]
         jobs += [
             (s, "window, us and kPa", [prefix, "-o", png(s + "_w")] + WINDOW +
              ["--units", "us,kPa"] + extra, 0, png(s + "_w")),
             (s, "PREFIX.h5 for PREFIX, µs and MPa as two options",
-             [prefix + ".h5", "-o", png(s + "_m"), "--units", "µs", "--units", "MPa"], 0,
+             [h5, "-o", png(s + "_m"), "--units", "µs", "--units", "MPa"], 0,
              png(s + "_m")),
             (s, "a missing output", [os.path.join(work, "nothing_here"), "-o", png(s + "_x")],
-             2, ["no run output", "nothing_here.h5", "nothing_here.his"]),
+             2, missing),
         ]
     # the other failures, each by one script (they share _common's code)
     jobs += [
@@ -247,7 +290,7 @@ def main():
             check(all(w in r.stderr for w in expect), f"{name}: {expect} not in {r.stderr!r}")
         print(f"{name}: exit {r.returncode}" + (f": {r.stderr.strip().splitlines()[-1]}"
                                                  if r.returncode else ""))
-    in_process(check, plots, ex2, struck)
+    in_process(check, plots, ex2, struck, ens)
     return check.finish()
 
 

@@ -4,7 +4,7 @@ module spb_kinds
    implicit none
    private
    public :: wp, version, max_segments, max_profiles, name_len, path_len, max_sweep_values, &
-      max_realizations, max_gauges
+      max_realizations, max_gauges, max_ensemble_columns
 
    integer, parameter :: wp = real64                  !! working precision
    character(len=*), parameter :: version = '0.3.0'   !! program version: raised with every change of an output
@@ -13,6 +13,7 @@ module spb_kinds
    integer, parameter :: max_gauges = 100             !! &gauges positions a deck may hold
    integer, parameter :: max_sweep_values = 1000      !! &sweep values a deck may hold
    integer, parameter :: max_realizations = 1000000   !! &sweep realizations per value
+   integer, parameter :: max_ensemble_columns = 16    !! &sweep ensemble_columns a deck may hold
    integer, parameter :: name_len = 32                !! keyword values ('free', ...)
    integer, parameter :: path_len = 512               !! file names and titles
 end module spb_kinds

@@ -13,8 +13,8 @@ module spb_random
    use spb_kinds, only: wp
    implicit none
    private
-   public :: rng_t, rng_seed, rng_uniform, weibull, realization_seed, weibull_log_min, &
-      weibull_log_max
+   public :: rng_t, rng_seed, rng_uniform, weibull, realization_seed, realization_draw, &
+      weibull_log_min, weibull_log_max
 
    integer(int64), parameter :: m1 = 4294967087_int64, m2 = 4294944443_int64
    integer(int64), parameter :: a12 = 1403580_int64, a13n = 810728_int64
@@ -88,4 +88,17 @@ contains
       s = int(1_int64 + modulo(modulo(int(seed, int64), p) * 69621_int64 + &
                                int(i, int64) * 48271_int64, p - 1_int64))
    end function realization_seed
+
+   !> The perturbation of realization i (1, 2, ...) of a sweep with base seed `seed` (&sweep
+   !> perturb): 2 u - 1 for the first number u of the generator seeded with
+   !> realization_seed(seed, i), uniform in (-1, 1) and a function of (seed, i) alone [-].
+   pure real(wp) function realization_draw(seed, i) result(x)
+      integer, intent(in) :: seed   !! base seed of the sweep
+      integer, intent(in) :: i      !! realization (1, 2, ...)
+      type(rng_t) :: g
+      real(wp) :: u
+      g = rng_seed(realization_seed(seed, i))
+      call rng_uniform(g, u)
+      x = 2.0_wp * u - 1.0_wp
+   end function realization_draw
 end module spb_random

@@ -8,7 +8,7 @@
 module spb_deck
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp, max_segments, max_profiles, max_sweep_values, max_realizations, &
-      name_len, max_gauges
+      name_len, max_gauges, max_ensemble_columns
    use spb_error, only: spb_error_t, make_error
    use spb_strings, only: itoa, rtoa, lower
    use spb_prescan, only: deck_scan_t, scan_deck, has_group, has_var, assignment_text, &
@@ -21,6 +21,8 @@ module spb_deck
    use spb_deck_params, only: param_pass_t, deck_params, pass_read, pass_echo, pass_find, &
       pass_set, pass_doc, huge_real
    use spb_random, only: weibull_log_min, weibull_log_max
+   use spb_columns, only: column_set_t
+   use spb_history, only: history_set
    use spb_sys, only: fp_traps_off, fp_traps_restore
    use spb_mesh, only: mesh_fault_t, max_cells, max_steps, fault_cells, fault_segment_cells, &
       fault_not_whole, fault_short_segment, fault_mesh_cells, fault_short_run, fault_long_run
@@ -32,7 +34,7 @@ module spb_deck
    implicit none
    private
    public :: deck_t, deck_record_t, known_groups
-   public :: read_deck, validate_deck, write_echo, set_deck_value, problem_from_deck, &
+   public :: read_deck, validate_deck, write_echo, set_deck_value, deck_value, problem_from_deck, &
       deck_record, mesh_fault_message, write_deck_help, deck_file, deck_warnings
 
    !> The largest ratio of two segments' axial impedances rho a A a deck may hold: beyond it
@@ -166,6 +168,11 @@ contains
             if (.not. is_set(deck%sweep%values(k))) exit
             deck%sweep%n_values = k
          end do
+         deck%sweep%n_ensemble = 0
+         do k = 1, size(deck%sweep%ensemble_columns)
+            if (len_trim(deck%sweep%ensemble_columns(k)) == 0) exit
+            deck%sweep%n_ensemble = k
+         end do
          call validate_deck(deck, err)
       end if
       if (.not. allocated(err) .and. deck%is_sweep) call validate_sweep(deck, err)
@@ -263,7 +270,11 @@ contains
             return
          end if
          if (len_trim(sw%vary) == 0) then
-            if (sw%realizations == 0) then
+            if (sw%realizations == 0 .and. len_trim(sw%perturb) > 0) then
+               call make_error(err, '&sweep: perturb = ''' // trim(sw%perturb) // ''' needs ' &
+                               // 'realizations > 0 (the ensemble''s size)')
+               return
+            else if (sw%realizations == 0) then
                call make_error(err, '&sweep: nothing to sweep: give realizations > 0, or vary ' &
                                // 'and values')
                return
@@ -289,7 +300,10 @@ contains
             end do
             if (allocated(err)) return
          end if
-         if (sw%realizations > 0 .and. deck%field%kind /= 'weibull') then
+         call validate_ensemble(deck, err)
+         if (allocated(err)) return
+         if (sw%realizations > 0 .and. deck%field%kind /= 'weibull' .and. &
+             len_trim(sw%perturb) == 0) then
             call make_error(err, '&sweep: realizations need &strength_field kind = ''weibull'' ' &
                             // '(else every realization is the same run)')
             return
@@ -309,12 +323,148 @@ contains
       end associate
    end subroutine validate_sweep
 
+   !> &sweep perturb and ensemble_columns (doc/sweeps.md, "Ensembles"): realization i
+   !> perturbs one variable the deck sets (not 0), the only thing a realization changes
+   !> (no vary, no Weibull field), by a relative spread in [0, 1); the ensemble's columns
+   !> are history columns, each once, of an ensemble (realizations > 0, no vary); the
+   !> horizon's share is > 0. spread and horizon_tol are refused where nothing uses them.
+   subroutine validate_ensemble(deck, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      type(column_set_t) :: his
+      real(wp) :: base
+      integer :: k
+      character(len=:), allocatable :: what
+      associate (sw => deck%sweep)
+         if (len_trim(sw%perturb) > 0) then
+            what = '&sweep: perturb = ''' // trim(sw%perturb) // ''''
+            if (len_trim(sw%vary) > 0) then
+               call make_error(err, what // ' and vary = ''' // trim(sw%vary) // ''': a ' // &
+                  'sweep is one ensemble (perturb) or values of a variable (vary), not both')
+            else if (sw%realizations == 0) then
+               call make_error(err, what // ' needs realizations > 0 (the ensemble''s size)')
+            else if (deck%field%kind == 'weibull') then
+               call make_error(err, what // ' with &strength_field kind = ''weibull'': a ' // &
+                  'realization perturbs a variable or draws a strength field, not both')
+            else if (.not. (sw%spread >= 0.0_wp .and. sw%spread < 1.0_wp)) then
+               call make_error(err, '&sweep: spread must be in [0, 1), got ' // rtoa(sw%spread))
+            end if
+            if (allocated(err)) return
+            call deck_value(deck, sw%perturb, base, err)
+            if (allocated(err)) then
+               err%message = replace_word(err%message, 'vary', 'perturb')
+               return
+            end if
+            if (.not. is_set(base)) then
+               call make_error(err, what // ' is not set in this deck: nothing to perturb')
+            else if (.not. (abs(base) > 0.0_wp)) then
+               call make_error(err, what // ' is 0 in this deck: (1 + spread u) x 0 ' // &
+                               'perturbs nothing')
+            end if
+            if (allocated(err)) return
+         else if (has_var(deck%scan, 'sweep', 'spread')) then
+            call make_error(err, '&sweep: spread is given but perturb is not')
+            return
+         end if
+         if (sw%n_ensemble == 0 .and. .not. has_var(deck%scan, 'sweep', 'ensemble_columns')) then
+            if (has_var(deck%scan, 'sweep', 'horizon_tol')) call make_error(err, &
+               '&sweep: horizon_tol is given but ensemble_columns is not')
+            return
+         end if
+         do k = sw%n_ensemble + 1, size(sw%ensemble_columns)
+            if (len_trim(sw%ensemble_columns(k)) == 0) cycle
+            if (k > max_ensemble_columns) then
+               call make_error(err, '&sweep: ensemble_columns: at most ' // &
+                               itoa(max_ensemble_columns) // ' columns, got more')
+            else
+               call make_error(err, '&sweep: ensemble_columns(' // itoa(k) // ') is given ' // &
+                               'but ensemble_columns(' // itoa(sw%n_ensemble + 1) // ') is not')
+            end if
+            return
+         end do
+         if (sw%n_ensemble == 0) then
+            call make_error(err, '&sweep: ensemble_columns: give at least one history column')
+         else if (sw%n_ensemble > max_ensemble_columns) then
+            call make_error(err, '&sweep: ensemble_columns: at most ' // &
+                            itoa(max_ensemble_columns) // ' columns, got more')
+         else if (sw%realizations == 0) then
+            call make_error(err, '&sweep: ensemble_columns need realizations > 0 (the ' // &
+                            'ensemble: perturb, or a Weibull &strength_field)')
+         else if (len_trim(sw%vary) > 0) then
+            call make_error(err, '&sweep: ensemble_columns with vary = ''' // trim(sw%vary) // &
+                            ''': a sweep with an ensemble has one value (no vary)')
+         else if (.not. (sw%horizon_tol > 0.0_wp)) then
+            call make_error(err, '&sweep: horizon_tol must be > 0, got ' // rtoa(sw%horizon_tol))
+         end if
+         if (allocated(err)) return
+         his = history_set()
+         do k = 1, sw%n_ensemble
+            if (.not. any(his%col%name == sw%ensemble_columns(k))) then
+               call make_error(err, '&sweep: ensemble_columns(' // itoa(k) // ') = ''' // &
+                  trim(sw%ensemble_columns(k)) // ''' is not a history column (' // &
+                  column_list(his) // ')')
+            else if (any(sw%ensemble_columns(:k - 1) == sw%ensemble_columns(k))) then
+               call make_error(err, '&sweep: ensemble_columns(' // itoa(k) // ') = ''' // &
+                  trim(sw%ensemble_columns(k)) // ''' is given twice')
+            end if
+            if (allocated(err)) return
+         end do
+      end associate
+   contains
+      !> The history's column names, ', '-separated.
+      pure function column_list(set) result(text)
+         type(column_set_t), intent(in) :: set   !! the history's columns
+         character(len=:), allocatable :: text
+         integer :: j
+         text = trim(set%col(1)%name)
+         do j = 2, size(set%col)
+            text = text // ', ' // trim(set%col(j)%name)
+         end do
+      end function column_list
+      !> text with its first ' old ' ('&sweep: vary = ...') made ' new '.
+      pure function replace_word(text, old, new) result(out)
+         character(len=*), intent(in) :: text   !! a message
+         character(len=*), intent(in) :: old    !! a word of it
+         character(len=*), intent(in) :: new    !! what it becomes
+         character(len=:), allocatable :: out
+         integer :: i
+         out = text
+         i = index(out, ' ' // old // ' ')
+         if (i > 0) out = out(:i) // new // out(i + len(old) + 1:)
+      end function replace_word
+   end subroutine validate_ensemble
+
+   !> The value the deck holds of a variable a sweep may vary (name as set_deck_value
+   !> takes it; unset, the "not given" marker: is_set false).
+   subroutine deck_value(deck, name, value, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      character(len=*), intent(in) :: name   !! variable name
+      real(wp), intent(out) :: value       !! its value
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      type(deck_t) :: copy
+      copy = deck
+      call sweep_variable(copy, name, .false., value, err)
+   end subroutine deck_value
+
    !> Set the deck variable a sweep varies: name as in the deck, 'p0' or 'velocity(2)'
    !> (the reals deck_params marks sweep=.true.).
    subroutine set_deck_value(deck, name, value, err)
       type(deck_t), intent(inout) :: deck   !! the deck
       character(len=*), intent(in) :: name   !! variable name
       real(wp), intent(in) :: value        !! the value to set
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      real(wp) :: x
+      x = value
+      call sweep_variable(deck, name, .true., x, err)
+   end subroutine set_deck_value
+
+   !> Find the deck variable a sweep varies (name as in the deck, 'p0' or 'velocity(2)': the
+   !> reals deck_params marks sweep=.true.), and set it to value (set) or read its value.
+   subroutine sweep_variable(deck, name, set, value, err)
+      type(deck_t), intent(inout) :: deck   !! the deck
+      character(len=*), intent(in) :: name   !! variable name
+      logical, intent(in) :: set           !! set it (else read it)
+      real(wp), intent(inout) :: value     !! the value to set, or the value read
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       character(len=:), allocatable :: base
       type(param_pass_t) :: pass
@@ -335,7 +485,7 @@ contains
          end if
          base = base(:p - 1)
       end if
-      pass = param_pass_t(mode=pass_find, name=base)
+      pass = param_pass_t(mode=pass_find, name=base, index=j)
       call deck_params(deck, pass)
       if (pass%indexed .and. j == 0) then
          call make_error(err, '&sweep: vary = ''' // base // ''' needs a segment index, ' // &
@@ -346,11 +496,13 @@ contains
       else if (.not. pass%found) then
          call make_error(err, '&sweep: vary = ''' // trim(name) // ''' is not a variable a ' &
                          // 'sweep can vary (' // pass%sweepable // ')')
-      else
+      else if (set) then
          pass = param_pass_t(mode=pass_set, name=base, index=j, value=value)
          call deck_params(deck, pass)
+      else
+         value = pass%value
       end if
-   end subroutine set_deck_value
+   end subroutine sweep_variable
 
    ! ---------------------------------------------------------------- validation
 

@@ -45,7 +45,8 @@ module spb_deck_params
       character(len=:), allocatable :: name              !! read, find, set: the variable
       character(len=:), allocatable :: record            !! read: '&group name... = value /'
       integer :: index = 0                               !! set: element (0: a scalar)
-      real(wp) :: value = 0.0_wp                         !! set: the value
+      real(wp) :: value = 0.0_wp                         !! set: the value; find: the value
+                                                         !! the deck holds (element pass%index)
       logical :: found = .false.                         !! read, find, set: a call answered
       logical :: indexed = .false.                       !! find: the variable is an array
       character(len=:), allocatable :: sweepable         !! find: every name a sweep may vary
@@ -255,6 +256,20 @@ contains
       call param(p, 'sweep', 'distribution', '', 'cases over MPI ranks', t=sw%distribution, &
                  choices=distribution_words)
       call param(p, 'sweep', 'bins', '', 'fragment-length histogram bins', i=sw%bins)
+      ! echoed only by an ensemble's deck: the tables of every other sweep stay as they were
+      if (p%mode /= pass_echo .or. len_trim(sw%perturb) > 0 .or. sw%n_ensemble > 0) then
+         call param(p, 'sweep', 'perturb', '', 'the deck variable realization i multiplies ' &
+                    // 'by 1 + spread u_i, u_i uniform in [-1, 1] (a name vary accepts)', &
+                    t=sw%perturb)
+         call param(p, 'sweep', 'spread', '-', 'the perturbation''s relative half-width, ' &
+                    // 'in [0, 1)', r=sw%spread)
+         call param(p, 'sweep', 'ensemble_columns', '', 'history columns whose mean, std, ' &
+                    // 'min, max over the realizations PREFIX.ens holds, up to 16', &
+                    ta=sw%ensemble_columns, count=sw%n_ensemble, empty='(none)')
+         call param(p, 'sweep', 'horizon_tol', '-', 'predictability horizon: the std of ' &
+                    // 'the 1 ms window means above this share of their largest |mean|', &
+                    r=sw%horizon_tol)
+      end if
    end subroutine sweep_params
 
    !> One deck variable: the one call that reads, echoes, sets (a sweep) and documents it.
@@ -588,6 +603,7 @@ contains
       if (p%name /= name) return
       p%found = .true.
       p%indexed = indexed
+      if (p%mode == pass_find) p%value = x
       if (p%mode == pass_set) x = p%value
    end subroutine sweep_target
 

@@ -6,7 +6,7 @@
 module spb_deck_types
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use spb_kinds, only: wp, max_segments, max_profiles, name_len, path_len, max_sweep_values, &
-      max_gauges
+      max_gauges, max_ensemble_columns
    use spb_prescan, only: deck_scan_t
    implicit none
    private
@@ -158,6 +158,15 @@ module spb_deck_types
       integer :: n_values = 0                          !! how many values were given
       character(len=name_len) :: distribution = 'static'  !! 'static' | 'dynamic' over ranks
       integer :: bins = 50                             !! fragment-length histogram bins
+      !> ensembles (doc/sweeps.md, "Ensembles"): realization i multiplies perturb by
+      !> 1 + spread u_i, u_i uniform in [-1, 1] from (seed, i)
+      character(len=name_len) :: perturb = ''          !! deck variable to perturb ('': none)
+      real(wp) :: spread = 1.0e-3_wp                   !! relative half-width of the perturbation [-]
+      !> history columns of PREFIX.ens (one slot more than max_ensemble_columns, so that a
+      !> deck giving too many is told so by name)
+      character(len=name_len) :: ensemble_columns(max_ensemble_columns + 1) = ''
+      integer :: n_ensemble = 0                        !! how many ensemble_columns were given
+      real(wp) :: horizon_tol = 0.01_wp                !! predictability horizon's share [-]
    end type sweep_cfg
 
    !> &gauges (optional): stress, velocity and displacement at reference positions, written

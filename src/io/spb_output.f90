@@ -624,32 +624,39 @@ contains
       if (ios == 0) close(u, status='delete')
    end subroutine remove_file
 
-   !> A sweep's claim_outputs, before any case runs: PREFIX.sweep, PREFIX_sweep.h5 and the
-   !> .part files they are written as can be written (none is a folder, none an input of the
+   !> A sweep's claim_outputs, before any case runs: PREFIX.sweep, PREFIX_sweep.h5 (and
+   !> with an ensemble PREFIX.ens) and the .part files they are written as can be written (none is a folder, none an input of the
    !> sweep), PREFIX.lock held.
-   subroutine claim_sweep_outputs(prefix, rec, err)
+   subroutine claim_sweep_outputs(prefix, rec, err, ensemble)
       character(len=*), intent(in) :: prefix       !! output path prefix
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, table)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
-      character(len=*), parameter :: tails(5) = [character(len=14) :: '.sweep', &
-         '.sweep.part', '_sweep.h5', '_sweep.h5.part', '.lock']
-      integer :: k
+      logical, intent(in), optional :: ensemble    !! PREFIX.ens is written too
+      character(len=*), parameter :: tails(6) = [character(len=14) :: '.sweep', &
+         '.sweep.part', '_sweep.h5', '_sweep.h5.part', '.ens', '.ens.part']
+      integer :: k, n
+      n = 4   ! the files written: without an ensemble the first four
+      if (present(ensemble)) then
+         if (ensemble) n = 6
+      end if
       if (sys_is_directory(prefix)) then
          call make_error(err, '--output: ''' // prefix // ''' is a folder; give a prefix ' // &
                          'such as ''' // prefix // '/run''')
          return
       end if
       ! none of them (nor the lock) may be the deck or its load table (issue 32)
-      do k = 1, size(tails)
+      do k = 1, n
          call not_an_input('--output: ''' // prefix // trim(tails(k)) // '''', &
                            prefix // trim(tails(k)), rec, err)
          if (allocated(err)) return
       end do
+      call not_an_input('--output: ''' // prefix // '.lock''', prefix // '.lock', rec, err)
+      if (allocated(err)) return
       ! the lock first, then the probes (see claim_outputs)
       block
          logical :: made, lockless
          call hold_lock(prefix // '.lock', '--output: ''' // prefix // '''', made, lockless, err)
-         do k = 1, size(tails) - 1
+         do k = 1, n
             if (allocated(err)) exit
             call check_writable('--output', prefix // trim(tails(k)), err)
          end do

@@ -95,7 +95,7 @@ contains
       type(deck_t) :: deck
       type(sweep_summary_t) :: ssum
       type(spb_error_t), allocatable :: err
-      integer :: rank
+      integer :: rank, k
       call par_init()
       rank = par_rank()
       call read_deck(cli%deck, deck, err, sweep=.true.)
@@ -115,7 +115,13 @@ contains
             ssum%wall, ' s wall'
          write(output_unit, '(a,i0,a,i0,a,i0,a)') '  cases done: ', ssum%done, ', went wrong: ', &
             ssum%failed, ', not run: ', ssum%not_run, '; wrote ' // cli%prefix // '.sweep, ' // &
-            cli%prefix // '_sweep.h5'
+            cli%prefix // '_sweep.h5' // trim(merge(', ' // cli%prefix // '.ens', &
+            repeat(' ', len(cli%prefix) + 6), ssum%ensemble))
+         if (allocated(ssum%horizons)) then
+            do k = 1, size(ssum%horizons)
+               write(output_unit, '(a)') '  horizon ' // trim(ssum%horizons(k))
+            end do
+         end if
       end if
       flush(output_unit)
       if (ssum%signal /= 0) then

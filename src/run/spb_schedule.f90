@@ -8,7 +8,7 @@ module spb_schedule
    use, intrinsic :: iso_fortran_env, only: int64
    implicit none
    private
-   public :: schedule_t, schedule_every, schedule_at, is_due, next_due
+   public :: schedule_t, schedule_every, schedule_at, is_due, next_due, row_count, row_index
    public :: act_row, act_check, act_field, act_checkpoint, act_progress, act_gauge
 
    !> The actions: a history row; the finiteness and energy-guard check between rows; a
@@ -69,4 +69,26 @@ contains
       end if
       m = int(m8)
    end function next_due
+
+   !> Rows of an action due every `every` steps of a run of n_end steps, with the row at
+   !> step 0 and the last step's (a history: spb_sim's rows) [-].
+   pure integer function row_count(every, n_end) result(rows)
+      integer, intent(in) :: every         !! steps between rows (>= 1)
+      integer, intent(in) :: n_end         !! the last step
+      rows = n_end / every + 1
+      if (mod(n_end, every) /= 0) rows = rows + 1
+   end function row_count
+
+   !> The place of step n's row among those row_count counts (0: step n has none).
+   pure integer function row_index(every, n_end, n) result(k)
+      integer, intent(in) :: every         !! steps between rows (>= 1)
+      integer, intent(in) :: n_end         !! the last step
+      integer, intent(in) :: n             !! the step
+      k = 0
+      if (mod(n, every) == 0) then
+         k = n / every + 1
+      else if (n == n_end) then
+         k = n_end / every + 2
+      end if
+   end function row_index
 end module spb_schedule

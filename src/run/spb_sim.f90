@@ -23,7 +23,8 @@ module spb_sim
    use spb_fragments, only: fragment_span
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
    use spb_diag, only: energies_t, energies, frag_info_t, fragment_list
-   use spb_history, only: measure, post_history, length_defect
+   use spb_history, only: measure, post_history, length_defect, history_ids_t, register_history
+   use spb_columns, only: column_set_t
    use spb_events, only: event_list_t
    use spb_summary, only: run_summary_t, summary_start, summary_row, summary_guard, &
       summary_reaction, summary_events, summary_checkpoint, summary_end
@@ -38,7 +39,7 @@ module spb_sim
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_estimate, only: progress_period
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
-      act_check, act_field, act_checkpoint, act_progress, act_gauge
+      act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
@@ -74,6 +75,17 @@ module spb_sim
    real(wp), parameter :: replay_time_bytes = 48.0_wp      !! per cell and time [bytes]
    integer, parameter :: xt_rows_max = 64                  !! x-t times buffered at most
 
+   !> Columns of the history kept in memory at its history_every rows (a sweep's ensemble,
+   !> spb_sweep: its cases write no files): samples(:, k) holds the columns ids at the k-th
+   !> row (spb_schedule row_index), whether or not PREFIX.his is written.
+   type :: sampler_t
+      logical :: on = .false.                        !! columns are kept
+      integer, allocatable :: ids(:)                 !! the columns (places in history_set)
+      type(history_ids_t) :: his_id                  !! the history's ids (post_history)
+      integer :: width = 0                           !! the history's columns
+      real(wp), allocatable :: samples(:, :)         !! (column, row)
+   end type sampler_t
+
    !> What a run carries from step to step besides the simulation: its outputs, the
    !> events of the step, the schedule, and the clock.
    type :: run_t
@@ -90,6 +102,7 @@ module spb_sim
       integer :: next_profile = 1                    !! index of the next profile in sched%at
       integer(int64) :: c0 = 0, c_last = 0, rate = 1 !! system_clock at the start, at the
                                                      !! last progress line; ticks per second
+      type(sampler_t) :: sampler                     !! history columns kept at the rows
    end type run_t
 
    !> What the run loop does besides stepping (the deck's &run settings).
@@ -318,7 +331,8 @@ contains
    !> outputs continuing those of the run that wrote it (bit-identical to one run).
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
    !> signal stops the run. What happens between steps is the schedule's (spb_schedule).
-   subroutine sim_run(sim, prefix, progress, summary, err, files, resume, batch_seconds, notes)
+   subroutine sim_run(sim, prefix, progress, summary, err, files, resume, batch_seconds, notes, &
+                      sample_ids, samples)
       type(sim_t), intent(inout) :: sim    !! the simulation
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! show a progress line on stderr (a terminal)
@@ -332,6 +346,12 @@ contains
       character(len=*), intent(in), optional :: notes(:)   !! lines for stderr once the run
                                                            !! is sure to start (warnings): a
                                                            !! refusal stays one line
+      integer, intent(in), optional :: sample_ids(:)   !! history columns to keep (their places
+                                                       !! in spb_history history_set)
+      real(wp), allocatable, intent(out), optional :: samples(:, :)   !! with sample_ids: those
+                                                       !! columns at the history_every rows,
+                                                       !! (column, row: spb_schedule row_index);
+                                                       !! a row the run did not reach is 0
       type(run_t) :: run
       integer(int64) :: c_now
       logical :: stop_now
@@ -340,6 +360,8 @@ contains
       if (present(files)) run%to_files = files
       run%progress = progress
       if (present(batch_seconds)) run%batch_seconds = batch_seconds
+      if (present(sample_ids)) call start_sampler(run%sampler, sample_ids, &
+         row_count(max(sim%opt%history_every, 1), sim%mesh%nsteps))
       call start_run(sim, run, summary, prefix, err, resume)
       if (allocated(err)) return
       if (present(notes)) then
@@ -377,7 +399,21 @@ contains
       end if
       call summary_end(summary, sim%st%step, &
                        real(c_now - run%c0, wp) / real(max(run%rate, 1_int64), wp))
+      if (present(samples) .and. run%sampler%on) call move_alloc(run%sampler%samples, samples)
    end subroutine sim_run
+
+   !> Keep the history columns ids at each of rows rows.
+   pure subroutine start_sampler(sampler, ids, rows)
+      type(sampler_t), intent(out) :: sampler   !! the columns kept
+      integer, intent(in) :: ids(:)        !! the columns (places in history_set)
+      integer, intent(in) :: rows          !! the rows (spb_schedule row_count)
+      type(column_set_t) :: set
+      sampler%on = .true.
+      sampler%ids = ids
+      call register_history(set, sampler%his_id)
+      sampler%width = size(set%col)
+      allocate(sampler%samples(size(ids), rows), source=0.0_wp)
+   end subroutine start_sampler
 
    !> Open (or resume) the outputs, check the checkpoint path, and lay out the schedule.
    subroutine start_run(sim, run, summary, prefix, err, resume)
@@ -636,6 +672,18 @@ contains
             v = 0.0_wp
             call post_history(run%out%his_id, sim%mesh, sim%load, sim%st, g, e, wv, w_w, e_l, v)
             call write_history_row(run%out, v)
+         end block
+      end if
+      i = 0
+      if (run%sampler%on) i = row_index(max(sim%opt%history_every, 1), sim%mesh%nsteps, &
+                                        sim%st%step)
+      if (i > 0) then
+         block
+            real(wp) :: v(run%sampler%width)   ! the row, as PREFIX.his would have it
+            v = 0.0_wp
+            call post_history(run%sampler%his_id, sim%mesh, sim%load, sim%st, g, e, wv, w_w, &
+                              e_l, v)
+            run%sampler%samples(:, i) = v(run%sampler%ids)
          end block
       end if
       call guard(sim, summary, e, wv, w_w, err)

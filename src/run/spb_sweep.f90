@@ -13,11 +13,11 @@ module spb_sweep
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
    use spb_sys, only: stop_signal, sys_rename, sys_file_size, sys_memory_limit, sys_write_trouble
-   use spb_deck, only: deck_t, validate_deck, set_deck_value, write_echo, deck_record
+   use spb_deck, only: deck_t, validate_deck, set_deck_value, deck_value, write_echo, deck_record
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t
    use spb_problem, only: problem_t
-   use spb_random, only: realization_seed
+   use spb_random, only: realization_seed, realization_draw
    use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings, &
       sweep_estimate
    use spb_sim, only: sim_t, sim_setup, sim_run, setup_model, memory_text, run_base_bytes
@@ -26,7 +26,12 @@ module spb_sweep
    use spb_events, only: ev_fracture, event_kinds
    use spb_cohesive, only: dissipated
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
-   use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs, program_line
+   use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs, program_line, &
+      bar_units
+   use spb_columns, only: column_set_t
+   use spb_history, only: history_set
+   use spb_ensemble, only: ensemble_t, ensemble_setup, ensemble_reduce, ensemble_columns_line, &
+      ensemble_row, ensemble_notes, ensemble_h5, horizon_text
    use spb_par, only: par_rank, par_size, par_send, par_recv, par_wtime, par_max, par_any, &
       par_kind
    implicit none
@@ -95,6 +100,10 @@ module spb_sweep
       integer :: signal = 0
       real(wp) :: wall = 0.0_wp          !! [s]
       character(len=16) :: distribution = ''
+      !> with &sweep ensemble_columns: PREFIX.ens is written, and each column's horizon
+      !> ('column: horizon', doc/sweeps.md "Ensembles")
+      logical :: ensemble = .false.
+      character(len=400), allocatable :: horizons(:)
    end type sweep_summary_t
 
 
@@ -138,18 +147,32 @@ contains
          realization = mod(c - 1, nrep) + 1
          cdeck%field%seed = realization_seed(deck%sweep%seed, realization)
       end if
+      if (len_trim(deck%sweep%perturb) > 0) then
+         ! (doc/sweeps.md, "Ensembles") the deck's value x (1 + spread u_i)
+         call deck_value(deck, deck%sweep%perturb, value, err)
+         if (allocated(err)) return
+         value = value * (1.0_wp + deck%sweep%spread * &
+                          realization_draw(deck%sweep%seed, realization))
+         call set_deck_value(cdeck, deck%sweep%perturb, value, err)
+         if (allocated(err)) return
+      end if
       call validate_deck(cdeck, err)
    end subroutine case_deck
 
    !> Run case c without files: its table row and fragment-length histogram over
-   !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin).
-   subroutine run_case(deck, c, nbins, l_hist, row, hist)
+   !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin),
+   !> and the ensemble's history columns at its rows (series: (column, row) in column order).
+   subroutine run_case(deck, c, nbins, l_hist, ids, row, hist, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: c               !! case number
       integer, intent(in) :: nbins           !! histogram bins
       real(wp), intent(in) :: l_hist         !! histogram range [m]
+      integer, intent(in) :: ids(:)          !! the ensemble's columns (history_set places;
+                                             !! none: no ensemble)
       real(wp), intent(out) :: row(n_columns)   !! the case's table row (sweep_table columns)
       integer, intent(out) :: hist(nbins)    !! fragments per length bin
+      real(wp), intent(out) :: series(:)     !! the ensemble's columns at the history rows
+      real(wp), allocatable :: samples(:, :)
       type(deck_t) :: cdeck
       type(sim_t) :: sim
       type(run_summary_t) :: summary
@@ -159,6 +182,7 @@ contains
       integer :: realization, f, b, k
       row = 0.0_wp
       hist = 0
+      series = 0.0_wp
       row(col_id) = real(c, wp)
       row(col_status) = real(status_not_run, wp)
       call case_deck(deck, c, cdeck, value, realization, err)
@@ -168,7 +192,15 @@ contains
       if (allocated(err)) return              ! checked before any case runs
       call sim_setup(cdeck, sim, err, files=.false.)
       if (allocated(err)) return
-      call sim_run(sim, '', .false., summary, err, files=.false.)
+      if (size(ids) > 0) then
+         call sim_run(sim, '', .false., summary, err, files=.false., sample_ids=ids, &
+                      samples=samples)
+         if (allocated(samples)) then
+            if (size(samples) == size(series)) series = reshape(samples, [size(series)])
+         end if
+      else
+         call sim_run(sim, '', .false., summary, err, files=.false.)
+      end if
       row(col_status) = 0.0_wp
       if (allocated(err)) row(col_status) = real(err%code, wp)
       call fragment_list(sim%mesh, sim%st, list)
@@ -211,7 +243,8 @@ contains
       logical, intent(in), optional :: echo    !! rank 0: the estimate on stdout (its
                                                !! warnings go to stderr all the same)
       type(estimate_t), allocatable :: est_values(:)
-      real(wp), allocatable :: rows(:, :)
+      type(ensemble_t) :: ens
+      real(wp), allocatable :: rows(:, :), series(:, :)
       integer, allocatable :: hists(:, :)
       real(wp) :: l_hist, t0, tables
       integer :: nc, nbins, rank, nranks, c
@@ -227,16 +260,18 @@ contains
       rank = par_rank()
       nranks = par_size()
       call check_tables(deck, tables, err)
-      if (.not. allocated(err)) call check_cases(deck, tables, l_hist, est_values, err)
+      if (.not. allocated(err)) call check_cases(deck, tables, l_hist, est_values, ens, err)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
       if (rank == 0) call tell_estimate(deck, sweep_estimate(est_values, &
                                         deck%sweep%realizations, nranks), echo)
       ! the outputs once every rank can run the cases (PREFIX.lock is made last)
-      if (rank == 0) call claim_sweep_outputs(prefix, deck_record(deck), err)
+      if (rank == 0) call claim_sweep_outputs(prefix, deck_record(deck), err, &
+                                              ensemble=ens%n_cols > 0)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
-      allocate(rows(n_columns, nc), hists(nbins, nc))
+      allocate(rows(n_columns, nc), hists(nbins, nc), &
+               series(ens%n_cols * ens%n_rows, nc))
       do c = 1, nc
          rows(:, c) = 0.0_wp
          rows(col_id, c) = real(c, wp)
@@ -248,11 +283,11 @@ contains
       summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
-         call run_static(deck, 1, 0, l_hist, meter, rows, hists)
+         call run_static(deck, 1, 0, l_hist, ens%ids, meter, rows, hists, series)
       else if (deck%sweep%distribution == 'dynamic') then
-         call run_dynamic(deck, rank, nranks, l_hist, meter, rows, hists)
+         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, meter, rows, hists, series)
       else
-         call run_static(deck, nranks, rank, l_hist, meter, rows, hists)
+         call run_static(deck, nranks, rank, l_hist, ens%ids, meter, rows, hists, series)
       end if
       summary%wall = par_wtime() - t0
       ! every rank learns whether one was stopped (and waits here until all are done)
@@ -261,73 +296,111 @@ contains
       summary%done = count(nint(rows(col_status, :)) == 0)
       summary%not_run = count(nint(rows(col_status, :)) == status_not_run)
       summary%failed = nc - summary%done - summary%not_run
+      summary%ensemble = ens%n_cols > 0
+      if (summary%ensemble) then
+         ! the realizations done, in realization order, on this rank alone (spb_ensemble)
+         call ensemble_reduce(ens, series, nint(rows(col_status, :)) == 0)
+         allocate(summary%horizons(ens%n_cols))
+         do c = 1, ens%n_cols
+            summary%horizons(c) = trim(ens%names(c)) // ': ' // horizon_text(ens, c)
+         end do
+      end if
       call write_table(deck, prefix, rows, err)
-      if (.not. allocated(err)) call write_h5(deck, prefix, rows, hists, l_hist, err)
+      if (.not. allocated(err)) call write_h5(deck, prefix, rows, hists, l_hist, ens, err)
+      if (.not. allocated(err) .and. summary%ensemble) call write_ensemble(deck, prefix, ens, err)
       if (allocated(err)) return
       if (summary%signal /= 0) then
          call make_error(err, 'sweep: stopped by signal ' // itoa(summary%signal) // ' with ' // &
             itoa(summary%not_run) // ' of ' // itoa(nc) // ' cases not run (status -1); ' // &
-            prefix // '.sweep and ' // prefix // '_sweep.h5 are written', &
-            code=128 + summary%signal)
+            prefix // '.sweep and ' // prefix // '_sweep.h5 are written' // &
+            trim(merge(' (and ' // prefix // '.ens)', repeat(' ', len(prefix) + 11), &
+                       summary%ensemble)), code=128 + summary%signal)
       else if (summary%failed > 0) then
          call make_error(err, 'sweep: ' // itoa(summary%failed) // ' of ' // itoa(nc) // &
             ' cases went wrong (status column); ' // prefix // '.sweep and ' // prefix // &
-            '_sweep.h5 are written', code=exit_runtime)
+            '_sweep.h5 are written' // trim(merge(' (and ' // prefix // '.ens)', &
+            repeat(' ', len(prefix) + 11), summary%ensemble)), code=exit_runtime)
       end if
    end subroutine run_sweep
 
    !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
    !> case order (rank 0 receives in the same order: no deadlock).
-   subroutine run_static(deck, k, me, l_hist, meter, rows, hists)
+   subroutine run_static(deck, k, me, l_hist, ids, meter, rows, hists, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: k                 !! ranks
       integer, intent(in) :: me                !! this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
+      integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
+      real(wp), intent(inout) :: series(:, :)  !! (the ensemble's columns at the rows, case)
       integer :: c, done, nc, nbins
-      real(wp) :: buf(n_columns + size(hists, 1))
+      real(wp), allocatable :: buf(:)
       nc = size(rows, 2)
       nbins = size(hists, 1)
       done = 0
       do c = me + 1, nc, k
          if (stop_signal() /= 0) exit
-         call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
+         call run_case(deck, c, nbins, l_hist, ids, rows(:, c), hists(:, c), series(:, c))
          done = done + 1
          if (me == 0) call show(meter, done * k, nc)
       end do
       if (k == 1) return
+      allocate(buf(n_columns + nbins + size(series, 1)))
       if (me /= 0) then
          do c = me + 1, nc, k
-            buf(1:n_columns) = rows(:, c)
-            buf(n_columns + 1:) = real(hists(:, c), wp)
+            call pack_case(rows(:, c), hists(:, c), series(:, c), buf)
             call par_send(buf, 0, c)
          end do
       else
          do c = 1, nc
             if (mod(c - 1, k) == 0) cycle
             call par_recv(buf, mod(c - 1, k), c)
-            rows(:, c) = buf(1:n_columns)
-            hists(:, c) = nint(buf(n_columns + 1:))
+            call unpack_case(buf, rows(:, c), hists(:, c), series(:, c))
          end do
       end if
    end subroutine run_static
 
+   !> A case's row, histogram and ensemble series in one message to rank 0.
+   pure subroutine pack_case(row, hist, series, buf)
+      real(wp), intent(in) :: row(:)       !! its row
+      integer, intent(in) :: hist(:)       !! its histogram
+      real(wp), intent(in) :: series(:)    !! its ensemble columns
+      real(wp), intent(out) :: buf(:)      !! the message
+      buf(1:size(row)) = row
+      buf(size(row) + 1:size(row) + size(hist)) = real(hist, wp)
+      buf(size(row) + size(hist) + 1:) = series
+   end subroutine pack_case
+
+   !> The row, histogram and ensemble series of a message (pack_case).
+   pure subroutine unpack_case(buf, row, hist, series)
+      real(wp), intent(in) :: buf(:)       !! the message
+      real(wp), intent(out) :: row(:)      !! its row
+      integer, intent(out) :: hist(:)      !! its histogram
+      real(wp), intent(out) :: series(:)   !! its ensemble columns
+      row = buf(1:size(row))
+      hist = nint(buf(size(row) + 1:size(row) + size(hist)))
+      series = buf(size(row) + size(hist) + 1:)
+   end subroutine unpack_case
+
    !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
    !> the other ranks compute. Case 0 means stop.
-   subroutine run_dynamic(deck, rank, nranks, l_hist, meter, rows, hists)
+   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, meter, rows, hists, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: rank              !! this rank
       integer, intent(in) :: nranks            !! ranks
       real(wp), intent(in) :: l_hist           !! histogram range [m]
+      integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
+      real(wp), intent(inout) :: series(:, :)  !! (the ensemble's columns at the rows, case)
       integer :: c, next, active, worker, finished, nc, nbins
-      real(wp) :: buf(n_columns + size(hists, 1))
+      real(wp), allocatable :: buf(:)
       nc = size(rows, 2)
       nbins = size(hists, 1)
+      allocate(buf(n_columns + nbins + size(series, 1)))
       if (rank == 0) then
          next = 1
          active = nranks - 1
@@ -336,8 +409,7 @@ contains
             call par_recv(c, par_any, tag_request, got_source=worker)
             if (c > 0) then
                call par_recv(buf, worker, c)
-               rows(:, c) = buf(1:n_columns)
-               hists(:, c) = nint(buf(n_columns + 1:))
+               call unpack_case(buf, rows(:, c), hists(:, c), series(:, c))
                finished = finished + 1
                call show(meter, finished, nc)
             end if
@@ -354,13 +426,12 @@ contains
          do
             call par_send(c, 0, tag_request)
             if (c > 0) then
-               buf(1:n_columns) = rows(:, c)
-               buf(n_columns + 1:) = real(hists(:, c), wp)
+               call pack_case(rows(:, c), hists(:, c), series(:, c), buf)
                call par_send(buf, 0, c)
             end if
             call par_recv(c, 0, tag_work)
             if (c == 0) exit
-            call run_case(deck, c, nbins, l_hist, rows(:, c), hists(:, c))
+            call run_case(deck, c, nbins, l_hist, ids, rows(:, c), hists(:, c), series(:, c))
          end do
       end if
    end subroutine run_dynamic
@@ -387,38 +458,107 @@ contains
       flush(error_unit)
    end subroutine show
 
-   !> Every value's deck and mesh must build (bad input: exit 2 before anything runs); the
-   !> histogram range is the longest bar of the cases.
-   subroutine check_cases(deck, tables, l_hist, est_values, err)
+   !> Every value's deck and mesh must build (bad input: exit 2 before anything runs), and
+   !> with perturb every realization's; the histogram range is the longest bar of the cases.
+   !> With ensemble_columns: the ensemble (its rows: every realization's history times,
+   !> which must be the same), and its memory beside the tables'.
+   subroutine check_cases(deck, tables, l_hist, est_values, ens, err)
       type(deck_t), intent(in) :: deck     !! the deck
       real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
       real(wp), intent(out) :: l_hist      !! histogram range: the longest bar of the cases [m]
       type(estimate_t), allocatable, intent(out) :: est_values(:)   !! the work of a case of
                                                                     !! each value
+      type(ensemble_t), intent(out) :: ens !! the ensemble (none: n_cols = 0, no ids)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(deck_t) :: cdeck
       type(mesh_t) :: mesh
       type(load_t) :: load
       type(problem_t) :: prob
       character(len=200), allocatable :: report(:)
-      real(wp) :: value
-      integer :: iv, realization, nrep
+      real(wp) :: value, extra
+      integer :: c, iv, realization, nrep, n_cases
       nrep = max(1, deck%sweep%realizations)
       l_hist = 0.0_wp
-      allocate(est_values(max(1, deck%sweep%n_values)))
-      do iv = 1, max(1, deck%sweep%n_values)
-         call case_deck(deck, (iv - 1) * nrep + 1, cdeck, value, realization, err)
+      extra = tables
+      allocate(est_values(max(1, deck%sweep%n_values)), ens%ids(0))
+      ! the cases whose decks differ: the first realization of each value, or (perturb)
+      ! every realization of the one value
+      n_cases = max(1, deck%sweep%n_values)
+      if (len_trim(deck%sweep%perturb) > 0) n_cases = nrep
+      do iv = 1, n_cases
+         c = (iv - 1) * nrep + 1
+         if (len_trim(deck%sweep%perturb) > 0) c = iv
+         call case_deck(deck, c, cdeck, value, realization, err)
          if (.not. allocated(err)) call setup_model(cdeck, prob, mesh, load, report, err, &
-                                                    files=.false., extra=tables)
+                                                    files=.false., extra=extra)
          if (allocated(err)) then
             if (deck%sweep%n_values > 0) err%message = '&sweep: values(' // itoa(iv) // ') = ' &
                // rtoa(value) // ' for ' // trim(deck%sweep%vary) // ': ' // err%message
+            if (len_trim(deck%sweep%perturb) > 0) err%message = '&sweep: perturb = ''' // &
+               trim(deck%sweep%perturb) // ''': realization ' // itoa(iv) // ' gives ' // &
+               rtoa(value) // ': ' // err%message
             return
          end if
          l_hist = max(l_hist, mesh%x(mesh%n) - mesh%x(0))
-         est_values(iv) = estimate_run(cdeck, mesh%n, mesh%nsteps, mesh%dt, 0, .false.)
+         if (iv <= size(est_values)) est_values(iv) = estimate_run(cdeck, mesh%n, mesh%nsteps, &
+                                                                  mesh%dt, 0, .false.)
+         if (deck%sweep%n_ensemble == 0) cycle
+         if (iv == 1) then
+            call start_ensemble(deck, mesh, tables, ens, extra, err)
+         else if (mesh%nsteps /= ens%nsteps .or. abs(mesh%dt - ens%dt) > 0.0_wp) then
+            call make_error(err, '&sweep: perturb = ''' // trim(deck%sweep%perturb) // &
+               ''': realization ' // itoa(iv) // ' has other history times (dt = ' // &
+               rtoa(mesh%dt) // ' s, ' // itoa(mesh%nsteps) // ' steps) than realization 1 ' // &
+               '(dt = ' // rtoa(ens%dt) // ' s, ' // itoa(ens%nsteps) // ' steps); the ' // &
+               'ensemble''s realizations share them: perturb a variable that leaves the ' // &
+               'time step alone')
+         end if
+         if (allocated(err)) return
       end do
    end subroutine check_cases
+
+   !> The ensemble of a sweep with ensemble_columns, its realizations on mesh (the first
+   !> realization's): refused when its memory, beside the tables' (and the runs' checked
+   !> with them), is more than this process may use. extra: the memory both need [bytes].
+   subroutine start_ensemble(deck, mesh, tables, ens, extra, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      type(mesh_t), intent(in) :: mesh     !! the first realization's mesh
+      real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
+      type(ensemble_t), intent(out) :: ens !! the ensemble
+      real(wp), intent(out) :: extra       !! memory of the tables and the ensemble [bytes]
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      type(column_set_t) :: his
+      character(len=16) :: units(deck%sweep%n_ensemble)
+      real(wp) :: limit
+      integer :: j, k
+      his = history_set()
+      do j = 1, size(units)
+         do k = 1, size(his%col)
+            if (his%col(k)%name == deck%sweep%ensemble_columns(j)) units(j) = &
+               bar_units(trim(his%col(k)%unit), mesh)
+         end do
+      end do
+      call ensemble_setup(ens, deck%sweep%ensemble_columns(1:size(units)), units, &
+                          deck%run%history_every, mesh%nsteps, mesh%dt, deck%sweep%horizon_tol, &
+                          deck%sweep%realizations)
+      extra = tables + ensemble_bytes(ens%n_cols, ens%n_rows, sweep_case_count(deck))
+      limit = real(sys_memory_limit(), wp)
+      if (run_base_bytes + extra > limit) call make_error(err, '&sweep: realizations = ' // &
+         itoa(deck%sweep%realizations) // ' and ensemble_columns (' // itoa(ens%n_cols) // &
+         ' at ' // itoa(ens%n_rows) // ' history rows: &run history_every = ' // &
+         itoa(deck%run%history_every) // ') need about ' // memory_text(run_base_bytes + extra) &
+         // ' of memory; the limit here is ' // memory_text(limit))
+   end subroutine start_ensemble
+
+   !> Memory of an ensemble of n_cols columns at n_rows rows over cases realizations
+   !> [bytes]: every rank holds each case's series (8 bytes a value, as the table's rows),
+   !> and besides them a case's samples, its message and rank 0's statistics (4 a value).
+   pure real(wp) function ensemble_bytes(n_cols, n_rows, cases) result(bytes)
+      integer, intent(in) :: n_cols        !! ensemble columns
+      integer, intent(in) :: n_rows        !! history rows
+      integer, intent(in) :: cases         !! realizations
+      bytes = 8.0_wp * real(n_cols, wp) * real(n_rows, wp) * (real(cases, wp) + 6.0_wp)
+   end function ensemble_bytes
 
    !> The sweep's estimate: its line on stdout (echo), its warnings on stderr.
    subroutine tell_estimate(deck, est, echo)
@@ -528,17 +668,9 @@ contains
       character(len=24) :: cell
       character(len=:), allocatable :: line
       type(column_t) :: table(n_columns)
-      integer :: u, ios, c, k
-      integer(int64) :: wrote, have
-      logical :: ok
-      character(len=256) :: msg
-      open(newunit=u, file=prefix // '.sweep.part', status='replace', action='write', &
-           iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // trim(msg), &
-                         code=exit_runtime)
-         return
-      end if
+      integer :: u, c, k
+      call open_part(prefix // '.sweep', u, err)
+      if (allocated(err)) return
       if (deck%run%header == 'names') write(u, '(a)') sweep_columns()
       write(u, '(a)') '# ' // program_line() // ' -- sweep: one row per case, in case order'
       write(u, '(a)') '# title: ' // trim(deck%run%title)
@@ -552,6 +684,8 @@ contains
       write(u, '(a)') '# fragments at t_end; mean_fragment_length = mean reference length ' // &
          'of those fragments; max_reaction_bottom over every step'
       write(u, '(a)') '# units: ' // sweep_units
+      if (len_trim(deck%sweep%perturb) > 0) write(u, '(a)') '# value: the perturbed ' // &
+         trim(deck%sweep%perturb) // ' x (1 + spread u_i) of realization i (PREFIX.ens)'
       write(u, '(a)') '# ' // sweep_columns()
       table = sweep_table()
       do c = 1, size(rows, 2)
@@ -567,34 +701,89 @@ contains
          end do
          write(u, '(a)') line
       end do
+      call close_part(prefix // '.sweep', u, err)
+   end subroutine write_table
+
+   !> PREFIX.ens (doc/sweeps.md, "Ensembles"): header (deck echo, the ensemble, the
+   !> horizons, units, columns), one row per history time; written to PREFIX.ens.part and
+   !> renamed when complete. No rows when no realization was done.
+   subroutine write_ensemble(deck, prefix, ens, err)
+      type(deck_t), intent(in) :: deck     !! the deck
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(ensemble_t), intent(in) :: ens  !! the ensemble (reduced)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer :: u, k
+      call open_part(prefix // '.ens', u, err)
+      if (allocated(err)) return
+      if (deck%run%header == 'names') write(u, '(a)') ensemble_columns_line(ens)
+      write(u, '(a)') '# ' // program_line() // ' -- ensemble: one row per history time, ' // &
+         'statistics over the realizations'
+      write(u, '(a)') '# title: ' // trim(deck%run%title)
+      call write_echo(u, deck_record(deck), '# ')
+      associate (notes => ensemble_notes(ens, deck%sweep%perturb, deck%sweep%spread))
+         do k = 1, size(notes)
+            write(u, '(a)') '# ' // trim(notes(k))
+         end do
+      end associate
+      write(u, '(a)') '# ' // ensemble_columns_line(ens)
+      if (ens%members > 0) then
+         do k = 1, ens%n_rows
+            write(u, '(a)') ensemble_row(ens, k)
+         end do
+      end if
+      call close_part(prefix // '.ens', u, err)
+   end subroutine write_ensemble
+
+   !> Open path.part for a table (replacing one there).
+   subroutine open_part(path, u, err)
+      character(len=*), intent(in) :: path   !! the table (PREFIX.sweep, PREFIX.ens)
+      integer, intent(out) :: u            !! its unit
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer :: ios
+      character(len=256) :: msg
+      open(newunit=u, file=path // '.part', status='replace', action='write', &
+           iostat=ios, iomsg=msg)
+      if (ios /= 0) call make_error(err, '--output: cannot write ''' // path // ''': ' // &
+                                    trim(msg), code=exit_runtime)
+   end subroutine open_part
+
+   !> Close a table's path.part and rename it path, once all of it reached the disk (else it
+   !> is left as path.part).
+   subroutine close_part(path, u, err)
+      character(len=*), intent(in) :: path   !! the table (PREFIX.sweep, PREFIX.ens)
+      integer, intent(in) :: u             !! its unit (open_part)
+      type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
+      integer(int64) :: wrote, have
+      integer :: ios
+      logical :: ok
       ! gfortran reports no error on a full disk: compare what reached it before renaming
       flush(u)
       inquire(unit=u, size=wrote)
-      have = sys_file_size(prefix // '.sweep.part')
+      have = sys_file_size(path // '.part')
       close(u, iostat=ios)
       if (have < wrote) then
-         call make_error(err, '--output: cannot write ''' // prefix // '.sweep'': ' // &
+         call make_error(err, '--output: cannot write ''' // path // ''': ' // &
             itoa(max(have, 0_int64)) // ' of ' // itoa(wrote) // ' bytes reached the disk ' // &
-            '(' // sys_write_trouble(prefix // '.sweep.part') // '); the cut table is left as ' // &
-            prefix // '.sweep.part', &
+            '(' // sys_write_trouble(path // '.part') // '); the cut table is left as ' // &
+            path // '.part', &
             code=exit_runtime)
          return
       end if
-      call sys_rename(prefix // '.sweep.part', prefix // '.sweep', ok)
+      call sys_rename(path // '.part', path, ok)
       if (ios /= 0 .or. .not. ok) call make_error(err, code=exit_runtime, message= &
-         '--output: cannot write ''' // prefix // &
-         '.sweep''')
-   end subroutine write_table
+         '--output: cannot write ''' // path // '''')
+   end subroutine close_part
 
    !> PREFIX_sweep.h5: the deck (attributes), /cases/<column> (one dataset per column of
    !> the table), /histogram/edges [m] and /histogram/counts (bins x cases; h5py: cases x
    !> bins). Written to PREFIX_sweep.h5.part and renamed when complete.
-   subroutine write_h5(deck, prefix, rows, hists, l_hist, err)
+   subroutine write_h5(deck, prefix, rows, hists, l_hist, ens, err)
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
       real(wp), intent(in) :: rows(:, :)       !! (column, case)
       integer, intent(in) :: hists(:, :)       !! (bin, case)
       real(wp), intent(in) :: l_hist           !! histogram range [m]
+      type(ensemble_t), intent(in) :: ens      !! the ensemble (n_cols = 0: none)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(h5file_t) :: h5
       real(wp) :: col(size(rows, 2))
@@ -624,6 +813,7 @@ contains
                    't_end, bins of equal width on (0, l_hist]; the last bin also holds longer ones')
       call h5_write(h5, '/histogram/edges', [(l_hist * real(k, wp) / real(nb, wp), k = 0, nb)], 'm')
       call h5_write(h5, '/histogram/counts', hists, '-')
+      if (ens%n_cols > 0) call ensemble_h5(h5, ens)
       call h5_close(h5)
       if (allocated(h5%error)) then
          call make_error(err, h5%error, code=exit_runtime)
