@@ -70,6 +70,7 @@ module spb_checkpoint
       procedure :: int_field => io_int
       procedure :: real_field => io_real
       procedure :: has => io_has
+      procedure :: later_reals => io_later_reals
    end type ck_file_t
 
    integer(int64), parameter :: fletcher_prime = 4294967291_int64
@@ -366,6 +367,17 @@ contains
       character(len=*), intent(in) :: name   !! field name
       io_has = h5_has_attr(io%h5, group, name)
    end function io_has
+
+   !> field_io_t's real array added later: the dataset /state/NAME (array_reals), read back
+   !> only where the checkpoint has it.
+   subroutine io_later_reals(io, name, a)
+      class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
+      character(len=*), intent(in) :: name   !! field name
+      real(wp), allocatable, intent(inout) :: a(:)   !! the array
+      if (io%writing .or. h5_has_attr(io%h5, '/state', name // ':size')) then
+         call array_reals(io, io%writing, name, a)
+      end if
+   end subroutine io_later_reals
 
    !> An array of /state: the dataset /state/NAME with the attributes NAME:lbound and
    !> NAME:size of /state (an unallocated array is not written; read back, a missing or
