@@ -36,7 +36,7 @@ import sys
 import h5py
 import numpy as np
 
-from clitools import Checks, run
+from clitools import Checks, history as table, run
 
 E, RHO, L = 35.0e9, 2350.0, 1.0
 C = math.sqrt(E / RHO)
@@ -108,25 +108,6 @@ TWO = """&run
   gap = 1.0e-4
 /
 """
-
-
-def table(path):
-    """The rows of PREFIX.spl or .imp: {column: [values]}, words kept as text."""
-    names, rows = None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                names = line[1:].split()
-            elif line.startswith(" ") and line.strip():
-                rows.append(line.split())
-    out = {}
-    for k, name in enumerate(names):
-        col = [r[k] for r in rows]
-        try:
-            out[name] = [float(x) for x in col]
-        except ValueError:
-            out[name] = col
-    return out
 
 
 def deck(work, name, text):

@@ -26,6 +26,7 @@ module spb_checkpoint
       has_base
    use spb_field_io, only: field_io_t
    use spb_summary, only: run_summary_t, summary_fields, summary_problem
+   use spb_diagnostics, only: diag_problem
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
       h5_write, h5_get, h5_get_attr, h5_has_attr
@@ -620,6 +621,7 @@ contains
       if (len(why) == 0) why = list_problem(ck%st, mesh%n)
       if (len(why) == 0) why = marks_problem(ck%marks, text_count(rec))
       if (len(why) == 0) why = summary_problem(ck%summary)
+      if (len(why) == 0) why = diag_problem(ck%summary%diag, mesh%n)
       if (len(why) == 0 .and. .not. all(ieee_is_finite(times))) then
          why = 'is damaged: /identity/profile_times holds a value that is not finite'
       else if (len(why) == 0 .and. any(abs(times) > 1.0e60_wp)) then

@@ -4,6 +4,7 @@
 !> what a checkpoint keeps of it (summary_fields, written and read back through a
 !> field_io_t, the checkpoint's file: doc/outputs.md `/run`) and the end-of-run text.
 module spb_summary
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use spb_kinds, only: wp
    use spb_strings, only: itoa
    use spb_field_io, only: field_io_t
@@ -277,6 +278,8 @@ contains
       do side = 1, 2
          if (.not. d%ends(side)%on) cycle
          v(1:10) = spall_row(d%ends(side))
+         ! an end with neither a peak nor a fracture has no line (PREFIX.spl has its row)
+         if (ieee_is_nan(v(2)) .and. d%ends(side)%node < 0) cycle
          write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4,a,es11.4,a)') '  spall, ' // &
             trim(end_names(side)) // ' end: peak ', v(2), ' m/s at ', v(1), ' s, pull-back ', &
             v(4), ' m/s at ', v(3), ' s, sigma_novikov ', v(6), ' Pa'

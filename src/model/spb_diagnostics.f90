@@ -8,7 +8,7 @@
 !> modules do not know of it. The picking of the peak and the pull-back is the pure kernel
 !> pick_sample. What a checkpoint keeps of the record is the one list diag_fields.
 module spb_diagnostics
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
    use spb_kinds, only: wp
    use spb_field_io, only: field_io_t
    use spb_mesh, only: mesh_t
@@ -21,7 +21,7 @@ module spb_diagnostics
    private
    public :: pick_t, pick_sample, significant, spall_end_t, impact_t, diag_t, diag_start, diag_step, &
       diag_end_samples, diag_fields, diag_close, imp_kind_names, imp_fragments, imp_base, &
-      imp_impactor, pick_fraction, end_names, spall_row, impact_row, spall_columns, &
+      imp_impactor, pick_fraction, diag_problem, end_names, spall_row, impact_row, spall_columns, &
       impact_columns, spall_units, impact_units, first_impacts
 
    !> The share of the swing that confirms a peak or a pull-back minimum (doc/outputs.md,
@@ -432,6 +432,58 @@ contains
       end if
    end function impact_row
 
+   !> Why a record read back from a checkpoint cannot be continued on a mesh of n cells (''
+   !> when it can): every node, kind and phase in range, every value finite but the NaN-free
+   !> defaults.
+   pure function diag_problem(d, n) result(why)
+      type(diag_t), intent(in) :: d        !! the record read back
+      integer, intent(in) :: n             !! cells of the mesh
+      character(len=:), allocatable :: why
+      integer :: side, k
+      why = ''
+      if (d%n_open < 0) then
+         why = 'is damaged: its count of open contact episodes is out of range'
+         return
+      end if
+      do side = face_top, face_bottom
+         associate (e => d%ends(side))
+            if (e%pick%phase < phase_rise .or. e%pick%phase > phase_done .or. e%node < -1 &
+                .or. e%node > n .or. .not. all(ieee_is_finite([e%pick%w0, e%pick%w_max, &
+                e%pick%t_max, e%pick%w_min, e%pick%t_min, e%pick%swing, e%z, e%x_end, &
+                e%spall_x, e%spall_t, e%scab_v]))) then
+               why = 'is damaged: its spall record of the ' // trim(end_names(side)) // &
+                     ' end is out of range'
+               return
+            end if
+         end associate
+      end do
+      do k = 1, d%n_open + d%n_done
+         if (k <= d%n_open) then
+            if (bad(d%open(k))) why = 'is damaged: an open contact episode is out of range'
+         else
+            if (bad(d%done(k - d%n_open))) why = 'is damaged: a contact episode is out of range'
+         end if
+         if (len(why) > 0) return
+      end do
+   contains
+      !> The episode's kind or node out of range.
+      pure logical function bad(e)
+         type(impact_t), intent(in) :: e   !! the episode
+         bad = e%kind < imp_fragments .or. e%kind > imp_impactor .or. e%node < 0 .or. e%node > n
+         if (e%kind /= imp_fragments) bad = bad .or. (e%node /= 0 .and. e%node /= n)
+      end function bad
+   end function diag_problem
+
+   !> A whole number read back as a real: x when it is one within the integers' range, else
+   !> -huge (what range checks then refuse).
+   elemental integer function whole(x) result(i)
+      real(wp), intent(in) :: x            !! the value
+      i = -huge(1)
+      if (ieee_is_finite(x)) then
+         if (abs(x) < real(huge(1), wp)) i = nint(x)
+      end if
+   end function whole
+
    !> The one list of what a checkpoint keeps of the record (attributes of group, the
    !> episodes one array), written or read back (io%writing); all of it added later: a
    !> checkpoint of a version without it restarts with the record as at t = 0 (diag_start).
@@ -440,7 +492,7 @@ contains
       class(field_io_t), intent(inout) :: io   !! the checkpoint file
       character(len=*), intent(in) :: group    !! its group ('/run')
       integer, parameter :: nf = 13        ! values per episode
-      integer :: side, k
+      integer :: side, k, n_open
       real(wp) :: r
       real(wp), allocatable :: a(:)
       character(len=:), allocatable :: p
@@ -449,7 +501,7 @@ contains
          associate (e => d%ends(side))
             r = real(e%pick%phase, wp)
             call io%later(group, p // 'phase', r)
-            e%pick%phase = nint(r)
+            e%pick%phase = whole(r)
             r = merge(1.0_wp, 0.0_wp, e%on)
             call io%later(group, p // 'on', r)
             e%on = r > 0.5_wp
@@ -463,7 +515,7 @@ contains
             call io%later(group, p // 'swing', e%pick%swing)
             r = real(e%node, wp)
             call io%later(group, p // 'node', r)
-            e%node = nint(r)
+            e%node = whole(r)
             call io%later(group, p // 'spall_x', e%spall_x)
             call io%later(group, p // 'spall_t', e%spall_t)
             call io%later(group, p // 'scab_v', e%scab_v)
@@ -485,8 +537,13 @@ contains
       if (size(a) < 1) return
       d%n_open = 0
       d%n_done = 0
+      n_open = whole(a(1))
+      if (n_open < 0 .or. n_open > (size(a) - 1) / nf) then
+         d%n_open = -1                     ! damaged: diag_problem says so
+         return
+      end if
       do k = 1, (size(a) - 1) / nf
-         if (k <= nint(a(1))) then
+         if (k <= n_open) then
             call push(d%open, d%n_open, unpacked(a(2 + nf * (k - 1):1 + nf * k)))
          else
             call push(d%done, d%n_done, unpacked(a(2 + nf * (k - 1):1 + nf * k)))
@@ -504,7 +561,7 @@ contains
       pure function unpacked(v) result(e)
          real(wp), intent(in) :: v(nf)    !! the values
          type(impact_t) :: e
-         e = impact_t(nint(v(1)), nint(v(2)), v(3), v(4), v(5), v(6), v(7), v(8:11))
+         e = impact_t(whole(v(1)), whole(v(2)), v(3), v(4), v(5), v(6), v(7), v(8:11))
       end function unpacked
    end subroutine diag_fields
 end module spb_diagnostics
