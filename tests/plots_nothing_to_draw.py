@@ -114,6 +114,9 @@ def main():
     deck = open(os.path.join(indir, "example3_case1_accelerate.nml")).read()
     deck = re.sub(r"profile_times\s*=.*", "profile_times = 0.05", deck)
     ex3 = spallbar("ex3", deck.replace("t_end         = 1.0", "t_end         = 0.1"))
+    # the spall test of input/ to 0.4 ms: a gauge on the rear face, its .spl row
+    deck = open(os.path.join(indir, "spall_test.nml")).read()
+    spall = spallbar("spall", deck.replace("t_end         = 6.0e-4", "t_end         = 4.0e-4"))
     # a striking mass on the bar of EMPTY: two blows' worth of contact
     struck = spallbar("struck", EMPTY.format(extra="") +
                       "&impactor\n  mass = 500.0\n  velocity = 2.0\n/\n")
@@ -131,6 +134,8 @@ def main():
         "xt": ([("h5", [empty], "x0"), ("text", [empty_text], "x1")], ([ex2], "x2")),
         "reaction": ([("h5", [empty], "r0"), ("text", [empty_text], "r1")], ([ex3], "r2")),
         "blows": ([("h5", [empty], "b0"), ("text", [empty_text], "b1")], ([struck], "b2")),
+        # no gauge on an end (and, from the text files alone, no .spl either)
+        "spall": ([("h5", [empty], "sp0"), ("text", [empty_text], "sp1")], ([spall], "sp2")),
         # the paper's Fig. 10 from decks whose bar never touches a base
         "figures": ([("no base reaction", ["--exe", exe, "--input", hanging, "--out",
                                            os.path.join(work, "fig_none"), "--only", "fig10"],

@@ -295,13 +295,13 @@ contains
          'kind, peak force, impulse; ' // prefix // '.imp):'
       do k = 1, min(d%n_done, first_impacts)
          v = impact_row(d%done(k))
-         write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4)') '    t = ', v(1), ' s for ', &
+         write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4)') '    from t = ', v(1), ' s for ', &
             v(3), ' s, ' // trim(imp_kind_names(d%done(k)%kind)) // ', peak ', v(6), &
             ', impulse ', v(7)
          write(unit, '(a)') trim(line)
       end do
       if (d%n_done > first_impacts) write(unit, '(a)') '    ... and ' // &
-         itoa(d%n_done - first_impacts) // ' more'
+         itoa(d%n_done - first_impacts) // ' more episodes'
    end subroutine write_diag_summary
 
    !> The events by kind for the summary's events line, 'fractures 3, collisions 1, ...':
