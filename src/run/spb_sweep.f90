@@ -9,7 +9,7 @@
 !> same for any number of ranks and either distribution.
 module spb_sweep
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
@@ -43,7 +43,7 @@ module spb_sweep
       'e_fracture (the fracture corrections'' energy) [J/m^2]; mean_fracture_stress [Pa] ' // &
       '(mean |section stress| at the fractures, 0: none); cracks [-] (cohesive cracks opened), ' // &
       'e_cohesive [J/m^2] (energy they dissipated); sigma_novikov_* [Pa], spall_x_*, ' // &
-      'scab_thickness_* [m] (PREFIX.spl of the top and bottom end; NaN: none)'
+      'scab_thickness_* [m] (PREFIX.spl of the top and bottom end; -1: none)'
    !> PREFIX.sweep and /cases: the one list of the sweep table's columns, in order
    !> (sweep_table), but the event kinds' counts: those follow spb_events event_kinds, each
    !> under its column name, the core kinds' after status, the others' after e_fracture.
@@ -212,7 +212,9 @@ contains
    end subroutine run_case
 
    !> The spall columns of a case: sigma_novikov, spall_x, scab_thickness of the top and the
-   !> bottom end (spb_diagnostics spall_row; NaN where an end has none).
+   !> bottom end (spb_diagnostics spall_row); -1 where an end has none (PREFIX.spl's NaN: the
+   !> table stays finite for spallbar-compare, as first_fracture_t's -1; none of the three is
+   !> ever negative).
    pure function spall_cells(d) result(v)
       type(diag_t), intent(in) :: d        !! the case's record
       real(wp) :: v(size(spall_columns))
@@ -220,9 +222,10 @@ contains
       integer :: side
       do side = 1, 2
          r = spall_row(d%ends(side))
-         if (.not. d%ends(side)%on) r = ieee_value(1.0_wp, ieee_quiet_nan)
          v(3 * side - 2:3 * side) = [r(6), r(7), r(9)]
+         if (.not. d%ends(side)%on) v(3 * side - 2:3 * side) = -1.0_wp
       end do
+      where (ieee_is_nan(v)) v = -1.0_wp
    end function spall_cells
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
