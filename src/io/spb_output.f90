@@ -239,13 +239,24 @@ contains
          character(len=*), intent(in) :: what   !! what the file holds (its first line)
          integer, intent(in) :: k          !! text file (text_extensions)
          if (rec%names_first) write(u, '(a)') text_columns(k, size(rec%gauge_x))
-         write(u, '(a)') '# ' // program_line() // ' -- ' // what
-         if (len(foreign(rec)) > 0) write(u, '(a)') '# ' // foreign(rec)
-         write(u, '(a)') '# title: ' // rec%title
-         call write_echo(u, rec, '# ')
-         call write_mesh_summary(u, mesh, report, '# ')
+         call header_lines(u, rec, mesh, report, what)
       end subroutine header
    end subroutine open_outputs
+
+   !> The '#' lines every text output starts with after its column-name first line: the
+   !> program and what the file holds, the title, the echoed deck, the mesh as built.
+   subroutine header_lines(u, rec, mesh, report, what)
+      integer, intent(in) :: u             !! open formatted unit
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      character(len=*), intent(in) :: report(:)     !! mesh fit report lines
+      character(len=*), intent(in) :: what   !! what the file holds (its first '#' line)
+      write(u, '(a)') '# ' // program_line() // ' -- ' // what
+      if (len(foreign(rec)) > 0) write(u, '(a)') '# ' // foreign(rec)
+      write(u, '(a)') '# title: ' // rec%title
+      call write_echo(u, rec, '# ')
+      call write_mesh_summary(u, mesh, report, '# ')
+   end subroutine header_lines
 
    !> The program as every header's first line names it: its identity and where its sources
    !> came from, 'spallbar 0.3.0 (source 1a2b3c4d5e6f) built from git b82964e1a2b3'.
@@ -1493,7 +1504,8 @@ contains
       call open_text('.spl', u)
       if (allocated(err)) return
       if (rec%names_first) write(u, '(a)') cols
-      call head(u, 'spall: one row per free end of the bar (top, bottom)')
+      call header_lines(u, rec, mesh, report, 'spall: one row per free end of the bar (top, ' &
+                        // 'bottom)')
       write(u, '(a)') '# v_*: the end''s velocity along its outward normal (up at the top, ' &
          // 'down at the bottom); the peak is the first maximum confirmed by a fall of ' // &
          trim(adjustl(frac)) // ' of its rise, the pull-back the minimum after it confirmed ' // &
@@ -1520,8 +1532,8 @@ contains
       call open_text('.imp', u)
       if (allocated(err)) return
       if (rec%names_first) write(u, '(a)') cols
-      call head(u, 'impacts: one row per contact episode (fragments, base, impactor), ' // &
-         'in the order they end')
+      call header_lines(u, rec, mesh, report, 'impacts: one row per contact episode ' // &
+                        '(fragments, base, impactor), in the order they end')
       write(u, '(a)') '# t_start, t_end: the events that begin and end it (PREFIX.evt); ' // &
          'peak_force, impulse: of the contact force (compression > 0) over its steps'
       write(u, '(a)') '# v_*: centre-of-mass velocities of the two sides along +x (down); ' // &
@@ -1561,16 +1573,6 @@ contains
          if (ios /= 0) call make_error(err, 'run: cannot write ''' // prefix // ext // ''': ' &
                                        // trim(msg), code=exit_runtime)
       end subroutine open_text
-      !> The header lines every text output starts with (open_outputs' header).
-      subroutine head(unit, what)
-         integer, intent(in) :: unit       !! open formatted unit
-         character(len=*), intent(in) :: what   !! what the file holds
-         write(unit, '(a)') '# ' // program_line() // ' -- ' // what
-         if (len(foreign(rec)) > 0) write(unit, '(a)') '# ' // foreign(rec)
-         write(unit, '(a)') '# title: ' // rec%title
-         call write_echo(unit, rec, '# ')
-         call write_mesh_summary(unit, mesh, report, '# ')
-      end subroutine head
    end subroutine write_diag_text
 
    !> The same as /spall and /impacts of PREFIX.h5 (before it is closed): columns as in the
