@@ -100,6 +100,8 @@ contains
       type(pick_t), intent(inout) :: p     !! the picking
       real(wp), intent(in) :: t            !! the sample's time [s]
       real(wp), intent(in) :: w            !! the outward velocity then [m/s]
+      ! a state that is not finite ends the run at its next check (spb_sim): no sample
+      if (.not. ieee_is_finite(w)) return
       p%swing = max(p%swing, abs(w - p%w0))
       select case (p%phase)
       case (phase_rise)
@@ -118,6 +120,8 @@ contains
          else if (w - p%w_min > pick_fraction * (p%w_max - p%w_min)) then
             p%phase = phase_done
          end if
+      case default
+         ! phase_done: the row is fixed
       end select
    end subroutine pick_sample
 
@@ -200,7 +204,13 @@ contains
                call begin(d, mesh, st, imp_impactor, ev%node, ev%t)
             case (ev_separation, ev_release)
                k = open_at(d, ev%node, ev%kind == ev_release)
+               ! a striking mass's contact integral of the step covers its contact up to the
+               ! release; a section's stress of the step it opens is the pull that opened it
+               if (k > 0 .and. ev%kind == ev_release) call add_force(d%open(k), &
+                  contact_force(mesh, st, d%open(k)), mesh%dt)
                if (k > 0) call finish(d, mesh, st, k, ev%t)
+            case default
+               ! cracks starting: no episode, no spall plane yet (their fracture is)
             end select
          end associate
       end do
@@ -294,6 +304,7 @@ contains
       type(impact_t), intent(inout) :: e   !! the episode
       real(wp), intent(in) :: f            !! the step's contact force [N A]
       real(wp), intent(in) :: dt           !! the step [s]
+      if (.not. ieee_is_finite(f)) return   ! the run ends at its next check (spb_sim)
       e%peak = max(e%peak, f)
       e%impulse = e%impulse + f * dt
    end subroutine add_force
