@@ -56,6 +56,8 @@ module spb_diagnostics
       real(wp) :: w_min = 0.0_wp           !! smallest since the peak [m/s]
       real(wp) :: t_min = -1.0_wp          !! its time (-1: none) [s]
       real(wp) :: swing = 0.0_wp           !! largest |w - w0| so far [m/s]
+      real(wp) :: floor = 0.0_wp           !! the bar's velocity scale at the last sample:
+                                           !! the largest |w0| and swing of either end [m/s]
    end type pick_t
 
    !> One end's record (a row of PREFIX.spl).
@@ -86,6 +88,8 @@ module spb_diagnostics
    !> The whole record of a run.
    type :: diag_t
       type(spall_end_t) :: ends(2)         !! face_top, face_bottom
+      real(wp) :: scale = 0.0_wp           !! the bar's velocity scale so far: the largest
+                                           !! |w0| and |w - w0| of either end [m/s]
       type(impact_t), allocatable :: open(:)   !! episodes under way, first n_open used
       integer :: n_open = 0
       type(impact_t), allocatable :: done(:)   !! episodes ended, first n_done used
@@ -96,13 +100,16 @@ contains
 
    !> One sample w at time t of an end's outward velocity into its picking (doc/outputs.md,
    !> "How the peak and the pull-back are picked").
-   elemental subroutine pick_sample(p, t, w)
+   elemental subroutine pick_sample(p, t, w, floor)
       type(pick_t), intent(inout) :: p     !! the picking
       real(wp), intent(in) :: t            !! the sample's time [s]
       real(wp), intent(in) :: w            !! the outward velocity then [m/s]
+      real(wp), intent(in), optional :: floor   !! the bar's velocity scale (both ends' |w0|
+                                                !! and swings) [m/s]
       ! a state that is not finite ends the run at its next check (spb_sim): no sample
       if (.not. ieee_is_finite(w)) return
       p%swing = max(p%swing, abs(w - p%w0))
+      if (present(floor)) p%floor = max(p%floor, floor)
       select case (p%phase)
       case (phase_rise)
          if (w > p%w_max + plateau_tol * p%swing) then
@@ -126,11 +133,13 @@ contains
    end subroutine pick_sample
 
    !> The largest outward velocity so far is a peak's candidate: it rose above the velocity
-   !> at t = 0 by more than pick_fraction of the largest swing |w - w0| seen (round-off and
-   !> ringing about a resting end are not).
+   !> at t = 0 by more than pick_fraction of the largest swing |w - w0| seen, and of the bar's
+   !> velocity scale (floor: round-off at an end the waves have not reached yet, and ringing
+   !> about a resting end, are not).
    elemental logical function significant(p)
       type(pick_t), intent(in) :: p        !! the picking
-      significant = p%t_max >= 0.0_wp .and. p%w_max - p%w0 > pick_fraction * p%swing
+      significant = p%t_max >= 0.0_wp .and. p%w_max - p%w0 > pick_fraction * &
+                    max(p%swing, p%floor)
    end function significant
 
    !> The record at t = 0: which ends have rows, their velocities then.
@@ -173,9 +182,14 @@ contains
       real(wp) :: w(2)
       do t = 1, size(du, 2)
          w = outward(mesh, du(face_top, t), du(face_bottom, t))
+         ! the bar's velocity scale: both ends' velocities at t = 0 and swings since
+         do side = face_top, face_bottom
+            if (ieee_is_finite(w(side))) d%scale = max(d%scale, abs(d%ends(side)%pick%w0), &
+                                                       abs(w(side) - d%ends(side)%pick%w0))
+         end do
          do side = face_top, face_bottom
             if (d%ends(side)%on) call pick_sample(d%ends(side)%pick, &
-                                                  real(n0 + t, wp) * mesh%dt, w(side))
+                                                  real(n0 + t, wp) * mesh%dt, w(side), d%scale)
          end do
       end do
    end subroutine diag_end_samples
@@ -406,7 +420,9 @@ contains
       real(wp) :: nan
       nan = ieee_value(1.0_wp, ieee_quiet_nan)
       v = nan
-      if (significant(e%pick)) then
+      ! a confirmed peak stays one when a later, larger swing (a pull the other way) would
+      ! make it small
+      if (e%pick%phase /= phase_rise .or. significant(e%pick)) then
          v(1) = e%pick%t_max
          v(2) = e%pick%w_max
       end if
@@ -460,7 +476,8 @@ contains
          associate (e => d%ends(side))
             if (e%pick%phase < phase_rise .or. e%pick%phase > phase_done .or. e%node < -1 &
                 .or. e%node > n .or. .not. all(ieee_is_finite([e%pick%w0, e%pick%w_max, &
-                e%pick%t_max, e%pick%w_min, e%pick%t_min, e%pick%swing, e%z, e%x_end, &
+                e%pick%t_max, e%pick%w_min, e%pick%t_min, e%pick%swing, e%pick%floor, e%z, &
+                e%x_end, &
                 e%spall_x, e%spall_t, e%scab_v]))) then
                why = 'is damaged: its spall record of the ' // trim(end_names(side)) // &
                      ' end is out of range'
@@ -524,6 +541,7 @@ contains
             call io%later(group, p // 'w_min', e%pick%w_min)
             call io%later(group, p // 't_min', e%pick%t_min)
             call io%later(group, p // 'swing', e%pick%swing)
+            call io%later(group, p // 'floor', e%pick%floor)
             r = real(e%node, wp)
             call io%later(group, p // 'node', r)
             e%node = whole(r)
@@ -532,6 +550,7 @@ contains
             call io%later(group, p // 'scab_v', e%scab_v)
          end associate
       end do
+      call io%later(group, 'spl_scale', d%scale)
       ! the episodes, open ones first: n_open, then nf values each
       if (io%writing) then
          allocate(a(1 + nf * (d%n_open + d%n_done)))
