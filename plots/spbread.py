@@ -6,8 +6,11 @@
     run.profiles   list of dict(t, x, u, v, stress)       half-node rows (doc/outputs.md)
     run.fragments  list of dict(t, id, x_top, x_bottom, mass, velocity, ...)
     run.xt         dict(t, x, u, v, stress) with arrays (snapshots, rows), or None
-    run.gauges     dict(t, x, stress, velocity, u): t (rows), x (gauges), the others arrays
-                   (rows, gauges), or None without &gauges (PREFIX.gau, /gauges)
+    run.gauges     dict(t, x, stress, velocity, u, end): t (rows), x (gauges), the others
+                   arrays (rows, gauges), end per gauge 'top' or 'bottom' on an end node,
+                   else ''; or None without &gauges (PREFIX.gau, /gauges)
+    run.spall      dict of PREFIX.spl's columns (end as 'top'/'bottom'; NaN: no value), or
+                   None (no /spall, no PREFIX.spl: a run before issue 35 or not complete)
     run.source     'hdf5' or 'text'
     run.deck       {group: {name: value}} from /deck of PREFIX.h5 (empty from the text files):
                    reals float, integers int, logicals bool, texts str, lists numpy arrays
@@ -59,6 +62,7 @@ class Run:
         self.history, self.events, self.profiles, self.fragments = {}, {}, [], []
         self.xt, self.title, self.deck = None, "", {}
         self.gauges = None
+        self.spall = None
         if os.path.exists(prefix + ".h5"):
             self._read_h5()
         else:
@@ -112,6 +116,16 @@ class Run:
                 g = f["gauges"]
                 self.gauges = dict(t=g["t"][:], x=np.asarray(g.attrs["x"], dtype=float),
                                    stress=g["stress"][:], velocity=g["velocity"][:], u=g["u"][:])
+                x = f["mesh"]["x"][:]
+                tol = 1e-9 * (x[-1] - x[0]) / max(1, len(x) - 1)
+                self.gauges["end"] = ["top" if gx <= x[0] + tol else
+                                      "bottom" if gx >= x[-1] - tol else ""
+                                      for gx in self.gauges["x"]]
+            if "spall" in f:
+                g = f["spall"]
+                self.spall = {k: g[k][:] for k in g}
+                self.spall["end"] = np.array([{1: "top", 2: "bottom"}[int(e)]
+                                              for e in self.spall["end"]], dtype=object)
 
     # ------------------------------------------------------------------ text
     def _read_text(self):
@@ -140,19 +154,23 @@ class Run:
                     break
         if os.path.exists(self.prefix + ".gau"):
             self.gauges = _gauges(self.prefix + ".gau")
+        if os.path.exists(self.prefix + ".spl"):
+            self.spall = _columns(self.prefix + ".spl", words=("end",))
 
 
 def _gauges(path):
     """PREFIX.gau: t, the gauges' x (from the '# gauge k at x = X m' lines) and their columns."""
     cols = _columns(path)
-    x = []
+    x, end = [], []
     for line in _lines(path):
         if not line.startswith("#"):
             break
         if line.startswith("# gauge ") and " at x = " in line:
             x.append(float(line.split(" at x = ")[1].split()[0]))
+            end.append("top" if ", the top end" in line else
+                       "bottom" if ", the bottom end" in line else "")
     n = len(x)
-    out = dict(t=cols["t"], x=np.array(x))
+    out = dict(t=cols["t"], x=np.array(x), end=end)
     for q in ("stress", "velocity", "u"):
         out[q] = np.column_stack([cols[f"{q}_{k}"] for k in range(1, n + 1)]) if n else \
             np.zeros((len(cols["t"]), 0))
@@ -178,8 +196,9 @@ def _lines(path):
             yield line
 
 
-def _columns(path, kinds=False):
-    """Columns of a text table by the names on its last header line."""
+def _columns(path, kinds=False, words=()):
+    """Columns of a text table by the names on its last header line (kinds: .evt's kind
+    column, and the columns named in words, as text)."""
     names, rows = None, []
     for line in _lines(path):
         if line.startswith("#"):
@@ -189,7 +208,7 @@ def _columns(path, kinds=False):
     out = {}
     for k, n in enumerate(names):
         col = [r[k] for r in rows]
-        if kinds and n == "kind":
+        if (kinds and n == "kind") or n in words:
             out[n] = np.array(col, dtype=object)
         else:
             out[n] = np.array(col, dtype=float)

@@ -79,10 +79,11 @@ def rest_sum(h):
 
 
 def resign(path):
-    """Write the checksum of the checkpoint at path again, its rest recomputed."""
+    """Write the checksum of the checkpoint at path again, its rest recomputed (its fields
+    part kept byte for byte: latin-1, so a damaged one, not UTF-8, stays as damaged)."""
     with h5py.File(path, "r+") as h:
-        fields = _bytes(h.attrs["checksum"]).decode()[:16]
-        h.attrs["checksum"] = np.bytes_((fields + rest_sum(h)).encode())
+        fields = _bytes(h.attrs["checksum"]).decode("latin-1")[:16]
+        h.attrs["checksum"] = np.bytes_((fields + rest_sum(h)).encode("latin-1"))
 
 
 def set_program(path, program, sign=True):
@@ -91,8 +92,8 @@ def set_program(path, program, sign=True):
     with h5py.File(path, "r+") as h:
         h["identity"].attrs["program"] = np.bytes_(program.encode())
         if sign:
-            fields = _bytes(h.attrs["checksum"]).decode()[:16]
-            h.attrs["checksum"] = np.bytes_((fields + rest_sum(h)).encode())
+            fields = _bytes(h.attrs["checksum"]).decode("latin-1")[:16]
+            h.attrs["checksum"] = np.bytes_((fields + rest_sum(h)).encode("latin-1"))
 
 
 def checksum_matches(path):

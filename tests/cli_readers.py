@@ -2,7 +2,7 @@
 """Every output read by the usual tools, without the project's reader (issue 21, item 5).
 
 A run of Example 2 with gauges, profiles, HDF5 and x-t fields, and a small sweep. Each text
-output (.his .prf .evt .frg .gau .sweep) must be read as it is by
+output (.his .prf .evt .frg .gau .spl .imp .sweep) must be read as it is by
 
     numpy.genfromtxt(f, names=True, dtype=None, encoding=None)
     pandas.read_csv(f, comment='#', sep=r'\\s+')
@@ -51,7 +51,7 @@ def deck(src, dst, run_lines):
 
 def readers(path, text_cols=()):
     """(names, genfromtxt array, DataFrame, loadtxt array) of one text output."""
-    g = np.genfromtxt(path, names=True, dtype=None, encoding=None)
+    g = np.atleast_1d(np.genfromtxt(path, names=True, dtype=None, encoding=None))  # 1 row: 0-d
     d = pd.read_csv(path, comment="#", sep=r"\s+") if pd is not None else None
     names = list(g.dtype.names)
     use = [k for k, n in enumerate(names) if n not in text_cols]
@@ -76,9 +76,10 @@ def same_numbers(path, text_cols=()):
     for j, k in enumerate(use):
         n = names[k]
         gv = np.asarray(g[n], dtype=float)
-        ok = np.array_equal(gv, a[:, j])
+        # NaN: no value (.spl, .imp), the same NaN from every reader
+        ok = np.array_equal(gv, a[:, j], equal_nan=True)
         if d is not None:
-            ok = ok and np.array_equal(d[n].to_numpy(dtype=float), gv)
+            ok = ok and np.array_equal(d[n].to_numpy(dtype=float), gv, equal_nan=True)
         check(ok, f"{path}: column {n} the same from every reader")
     return names, g
 
@@ -202,6 +203,20 @@ def main():
             d = pd.read_csv(p + ".evt", comment="#", sep=r"\s+")
             check(pd.api.types.is_string_dtype(d["kind"]) and set(d["kind"]) <= set(kinds.values()),
                   f"pandas: kind as text {sorted(set(d['kind']))}")
+        # PREFIX.spl and .imp (issue 35): a word column (end, kind) and NaN where no value
+        for ext, group, word, codes in ((".spl", "spall", "end", {"top": 1, "bottom": 2}),
+                                        (".imp", "impacts", "kind",
+                                         {"fragments": 1, "base": 2, "impactor": 3})):
+            names, g = same_numbers(p + ext, text_cols=(word,))
+            check(len(np.atleast_1d(g)) > 0, f"{ext}: rows")
+            for n in names:
+                h = f[group][n][:]
+                if n == word:
+                    check([codes[str(w)] for w in np.atleast_1d(g[n])] == list(h),
+                          f"{ext} {n} = /{group}/{n} as codes")
+                else:
+                    check(np.allclose(np.atleast_1d(g[n]).astype(float), h, rtol=1e-12, atol=0,
+                                      equal_nan=True), f"{ext} {n} = /{group}/{n}")
         for ext in (".prf", ".frg"):
             names, g = same_numbers(p + ext)
             check(names[-1] == "t" and np.allclose(g["t"], blocks_t(p + ext), rtol=1e-12, atol=0),

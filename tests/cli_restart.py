@@ -48,6 +48,8 @@ from checkpoint_tools import resign
 from clitools import Checks, run
 
 EXTS = [".his", ".prf", ".evt", ".frg"]
+# written once at the end of a run (not set aside by a restart), compared all the same
+DIAG_EXTS = [".spl", ".imp"]
 
 WEIBULL = """&run
   title = 'Weibull strength, restart'
@@ -165,6 +167,7 @@ def h5_differences(a_path, b_path):
 
 def same_outputs(check, what, work, u, r, hdf5=True):
     exts = EXTS + [".gau"] if os.path.exists(os.path.join(work, u + ".gau")) else EXTS
+    exts = exts + DIAG_EXTS
     for ext in exts:
         a, b = os.path.join(work, u + ext), os.path.join(work, r + ext)
         check(os.path.exists(b) and sha(a) == sha(b), f"{what}: {r}{ext} equals {u}{ext}")

@@ -60,6 +60,14 @@ cols, ref_rows = rows(ref)
 check(len(ref_rows) == 12, f"12 cases, got {len(ref_rows)}")
 check(cols[:5] == ["id", "fragments", "mean_fragment_length", "max_reaction_bottom",
                    "first_fracture_t"], f"doc/sweeps.md's first columns: {cols[:5]}")
+# the experiment diagnostics of each end, last (doc/sweeps.md; -1 where an end has none):
+# every case of this spall sweep has a spall plane and a pull-back at the bottom end
+spall_cols = ["sigma_novikov_top", "spall_x_top", "scab_thickness_top", "sigma_novikov_bottom",
+              "spall_x_bottom", "scab_thickness_bottom"]
+check(cols[-6:] == spall_cols, f"the spall columns last: {cols[-6:]}")
+bottom = [[float(r[cols.index(n)]) for r in ref_rows] for n in spall_cols[3:]]
+check(all(x > 0 for x in np.ravel(bottom)) and all(0 < x < 1 for x in bottom[1]),
+      f"a spall plane and sigma_novikov at the bottom of every case: {bottom}")
 others = []
 if mpiexec != "-":
     others = [sweep("np1", 1), sweep("np2_static", 2),

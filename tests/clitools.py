@@ -52,16 +52,25 @@ def run_decks(check, exe, work, decks):
     return all(run_deck(check, exe, work, name, text) for name, text in decks)
 
 
+def _value(word):
+    """A field of a text output: a float, or the word itself."""
+    try:
+        return float(word)
+    except ValueError:
+        return word
+
+
 def history(path):
-    """The columns of a text output (PREFIX.his, ...) by name, as lists of floats: the names
-    are those of the last '#' header line, the rows the lines that start with a blank."""
+    """The columns of a text output (PREFIX.his, ...) by name, as lists of floats (a word, as
+    .spl's end or .imp's kind, stays text; NaN, no value, is a float): the names are those of
+    the last '#' header line, the rows the lines that start with a blank."""
     names, rows = None, []
     with open(path) as f:
         for line in f:
             if line.startswith("#"):
                 names = line[1:].split()
             elif line.startswith(" ") and line.strip():
-                rows.append([float(x) for x in line.split()])
+                rows.append([_value(x) for x in line.split()])
     return {name: [r[k] for r in rows] for k, name in enumerate(names)}
 
 

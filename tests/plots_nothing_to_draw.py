@@ -123,6 +123,9 @@ def main():
     r = run(exe, ["--sweep", "ens.nml", "-q"], work)
     check(r.returncode == 0, f"spallbar --sweep ens: exit {r.returncode} {r.stderr.strip()}")
     ens = os.path.join(work, "ens")
+    # the spall test of input/ to 0.4 ms: a gauge on the rear face, its .spl row
+    deck = open(os.path.join(indir, "spall_test.nml")).read()
+    spall = spallbar("spall", deck.replace("t_end         = 6.0e-4", "t_end         = 4.0e-4"))
     # a striking mass on the bar of EMPTY: two blows' worth of contact
     struck = spallbar("struck", EMPTY.format(extra="") +
                       "&impactor\n  mass = 500.0\n  velocity = 2.0\n/\n")
@@ -142,6 +145,8 @@ def main():
         "blows": ([("h5", [empty], "b0"), ("text", [empty_text], "b1")], ([struck], "b2")),
         # an ensemble whose rows all lie before the time window
         "ensemble": ([("no row in the window", [ens, "--t-min", "1"], "e0")], ([ens], "e1")),
+        # no gauge on an end (and, from the text files alone, no .spl either)
+        "spall": ([("h5", [empty], "sp0"), ("text", [empty_text], "sp1")], ([spall], "sp2")),
         # the paper's Fig. 10 from decks whose bar never touches a base
         "figures": ([("no base reaction", ["--exe", exe, "--input", hanging, "--out",
                                            os.path.join(work, "fig_none"), "--only", "fig10"],

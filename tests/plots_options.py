@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The plot scripts' options (issue 35; doc/outputs.md, "Plots"), on the paper's Example 2
-(x-t field, events, profiles, fragments, two gauges) and a striking mass's run:
+(x-t field, events, profiles, fragments, two gauges), a striking mass's run and the spall
+test of input/ (spall.py):
 
   * the per-run scripts (every script of plots/ that takes PREFIX ... -o PNG) accept
     --t-min/--t-max (seconds or with a unit), --units (s, ms, us, µs; Pa, kPa, MPa, GPa),
@@ -79,7 +80,7 @@ def png_ok(path):
         open(path, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
 
 
-def in_process(check, plots, ex2, struck, ens):
+def in_process(check, plots, ex2, struck, ens, spall_run):
     """Draw with the scripts' plot functions and look at what they drew."""
     sys.path.insert(0, plots)
     import numpy as np
@@ -91,9 +92,11 @@ def in_process(check, plots, ex2, struck, ens):
     import gauges
     import profiles
     import reaction
+    import spall
     import xt
     plt = _common.plt
-    runs = {"ex2": _common.load(ex2), "struck": _common.load(struck)}
+    runs = {"ex2": _common.load(ex2), "struck": _common.load(struck),
+            "spall": _common.load(spall_run)}
     view = _common.View(time="us", stress="kPa", t_min=T_MIN, t_max=T_MAX, gauges=[2])
     lo, hi = T_MIN * 1e6, T_MAX * 1e6
 
@@ -174,6 +177,17 @@ def in_process(check, plots, ex2, struck, ens):
               [g.split(",")[0] for g in got] == want,
               f"{module.__name__}: legend {got} for {want}")
         plt.close(fig)
+    # spall: the rear face's velocity in the window, in us, its peak and pull-back marked
+    fig, ax = plt.subplots()
+    n = spall.plot([runs["spall"]], ["spall"], ax, view)
+    curves = [ln for ln in ax.lines if len(ln.get_xdata()) > 1 and
+              not ln.get_label().startswith("_")]         # not the axhline of v = 0
+    marks = [ln.get_label() for ln in ax.lines if len(ln.get_xdata()) == 1]
+    check(n == 1 and ax.get_xlabel() == "t [µs]" and
+          any("peak" in m for m in marks) and any("pull-back" in m for m in marks),
+          f"spall: one end drawn ({n}), {ax.get_xlabel()!r}, marks {marks}")
+    xs_in_window(curves, "spall")
+    plt.close(fig)
     # the default: ms everywhere
     default = _common.View()
     labels = {}
@@ -195,6 +209,9 @@ def in_process(check, plots, ex2, struck, ens):
     fig, ax = plt.subplots()
     fragments.plot(runs["ex2"], ax, default)
     labels["fragments"] = ax.get_legend().get_texts()[0].get_text()
+    fig, ax = plt.subplots()
+    spall.plot([runs["spall"]], ["spall"], ax, default)
+    labels["spall"] = ax.get_xlabel()
     plt.close("all")
     check(all("ms" in v and "µs" not in v for v in labels.values()),
           f"the default time unit of every script is ms: {labels}")
@@ -210,11 +227,16 @@ def main():
     deck = deck.replace("&run", "&run\n  hdf5 = .true.\n  field_every = 4", 1)
     deck = deck.replace("t_end         = 2.0e-3", "t_end         = 1.2e-3")
     deck = deck.replace(", 1.4e-3, 1.6e-3, 1.8e-3, 2.0e-3", "")
+    # the spall test of input/ (a gauge on the rear face): its pull-back lies in the window
+    spall_deck = text(indir, "spall_test.nml").replace("t_end         = 6.0e-4",
+                                                       "t_end         = 4.0e-4")
+    spall_deck = spall_deck.replace("&run", "&run\n  hdf5 = .true.", 1)
     if not run_decks(check, exe, work, (("ex2", deck + "&gauges\n  x = 0.3, 1.0\n/\n"),
-                                        ("struck", STRUCK))):
+                                        ("struck", STRUCK), ("spall", spall_deck))):
         return check.finish()
     ex2, struck = os.path.join(work, "ex2"), os.path.join(work, "struck")
     ens = ensemble(check, exe, work)
+    spall_run = os.path.join(work, "spall")
     # a text run without its .evt, a damaged PREFIX.h5
     for ext in (".his", ".prf", ".frg"):
         shutil.copy(ex2 + ext, os.path.join(work, "no_evt" + ext))
@@ -237,7 +259,7 @@ def main():
 
     jobs = []   # (script, what, args, expected exit, PNG or error words)
     for s in scripts:
-        prefix = {"blows": struck, "ensemble": ens}.get(s, ex2)
+        prefix = {"blows": struck, "ensemble": ens, "spall": spall_run}.get(s, ex2)
         extra = ["--gauges", "2"] if s == "gauges" else []
         # ensemble.py draws a sweep's ensemble: PREFIX_sweep.h5 or PREFIX.ens
         h5 = prefix + ("_sweep.h5" if s == "ensemble" else ".h5")
@@ -290,7 +312,7 @@ def main():
             check(all(w in r.stderr for w in expect), f"{name}: {expect} not in {r.stderr!r}")
         print(f"{name}: exit {r.returncode}" + (f": {r.stderr.strip().splitlines()[-1]}"
                                                  if r.returncode else ""))
-    in_process(check, plots, ex2, struck, ens)
+    in_process(check, plots, ex2, struck, ens, spall_run)
     return check.finish()
 
 

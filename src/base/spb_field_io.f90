@@ -15,6 +15,7 @@ module spb_field_io
       procedure(int_field), deferred :: int_field     !! an integer field
       procedure(real_field), deferred :: real_field   !! a real field
       procedure(has_field), deferred :: has           !! the file holds the field
+      procedure(reals_field), deferred :: later_reals !! a real array added later
       !> A field named name of group, written or read back into v.
       generic :: field => int_field, real_field
       procedure :: later => later_real
@@ -39,6 +40,15 @@ module spb_field_io
          character(len=*), intent(in) :: name     !! field name
          real(wp), intent(inout) :: v             !! the value
       end subroutine real_field
+      !> A real array named name added after files existed: always written (when allocated);
+      !> read back only where the file has it (a stays unallocated otherwise).
+      subroutine reals_field(io, name, a)
+         import :: field_io_t, wp
+         implicit none
+         class(field_io_t), intent(inout) :: io   !! the file
+         character(len=*), intent(in) :: name     !! field name
+         real(wp), allocatable, intent(inout) :: a(:)   !! the array
+      end subroutine reals_field
       !> True when the file (being read) holds the field name of group.
       logical function has_field(io, group, name)
          import :: field_io_t

@@ -26,6 +26,7 @@ module spb_checkpoint
       has_base
    use spb_field_io, only: field_io_t
    use spb_summary, only: run_summary_t, summary_fields, summary_problem
+   use spb_diagnostics, only: diag_problem
    use spb_output, only: output_marks_t, h5_deck_header, text_extensions, tail_len, text_count
    use spb_hdf5, only: h5file_t, h5_create, h5_open_read, h5_close, h5_group, h5_attr, &
       h5_write, h5_get, h5_get_attr, h5_has_attr
@@ -70,6 +71,7 @@ module spb_checkpoint
       procedure :: int_field => io_int
       procedure :: real_field => io_real
       procedure :: has => io_has
+      procedure :: later_reals => io_later_reals
    end type ck_file_t
 
    integer(int64), parameter :: fletcher_prime = 4294967291_int64
@@ -376,6 +378,17 @@ contains
       io_has = h5_has_attr(io%h5, group, name)
    end function io_has
 
+   !> field_io_t's real array added later: the dataset /state/NAME (array_reals), read back
+   !> only where the checkpoint has it.
+   subroutine io_later_reals(io, name, a)
+      class(ck_file_t), intent(inout) :: io   !! the checkpoint file and its checksum
+      character(len=*), intent(in) :: name   !! field name
+      real(wp), allocatable, intent(inout) :: a(:)   !! the array
+      if (io%writing .or. h5_has_attr(io%h5, '/state', name // ':size')) then
+         call array_reals(io, io%writing, name, a)
+      end if
+   end subroutine io_later_reals
+
    !> An array of /state: the dataset /state/NAME with the attributes NAME:lbound and
    !> NAME:size of /state (an unallocated array is not written; read back, a missing or
    !> inconsistent one is an error in h5%error). Integers come back through float64 (HDF5
@@ -617,6 +630,7 @@ contains
       if (len(why) == 0) why = list_problem(ck%st, mesh%n)
       if (len(why) == 0) why = marks_problem(ck%marks, text_count(rec))
       if (len(why) == 0) why = summary_problem(ck%summary)
+      if (len(why) == 0) why = diag_problem(ck%summary%diag, mesh%n)
       if (len(why) == 0 .and. .not. all(ieee_is_finite(times))) then
          why = 'is damaged: /identity/profile_times holds a value that is not finite'
       else if (len(why) == 0 .and. any(abs(times) > 1.0e60_wp)) then

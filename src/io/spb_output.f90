@@ -27,8 +27,11 @@ module spb_output
    use spb_gauge, only: gauge_t, locate_gauges
    use spb_columns, only: column_t, column_set_t, column_fault, column_names
    use spb_history, only: history_ids_t, register_history, history_set
+   use spb_diagnostics, only: diag_t, spall_row, impact_row, spall_columns, impact_columns, &
+      spall_units, impact_units, end_names, imp_kind_names, pick_fraction
    implicit none
    private
+   public :: write_diag_text, write_diag_h5, diag_unit
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, column_t, column_names
@@ -236,13 +239,24 @@ contains
          character(len=*), intent(in) :: what   !! what the file holds (its first line)
          integer, intent(in) :: k          !! text file (text_extensions)
          if (rec%names_first) write(u, '(a)') text_columns(k, size(rec%gauge_x))
-         write(u, '(a)') '# ' // program_line() // ' -- ' // what
-         if (len(foreign(rec)) > 0) write(u, '(a)') '# ' // foreign(rec)
-         write(u, '(a)') '# title: ' // rec%title
-         call write_echo(u, rec, '# ')
-         call write_mesh_summary(u, mesh, report, '# ')
+         call header_lines(u, rec, mesh, report, what)
       end subroutine header
    end subroutine open_outputs
+
+   !> The '#' lines every text output starts with after its column-name first line: the
+   !> program and what the file holds, the title, the echoed deck, the mesh as built.
+   subroutine header_lines(u, rec, mesh, report, what)
+      integer, intent(in) :: u             !! open formatted unit
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      character(len=*), intent(in) :: report(:)     !! mesh fit report lines
+      character(len=*), intent(in) :: what   !! what the file holds (its first '#' line)
+      write(u, '(a)') '# ' // program_line() // ' -- ' // what
+      if (len(foreign(rec)) > 0) write(u, '(a)') '# ' // foreign(rec)
+      write(u, '(a)') '# title: ' // rec%title
+      call write_echo(u, rec, '# ')
+      call write_mesh_summary(u, mesh, report, '# ')
+   end subroutine header_lines
 
    !> The program as every header's first line names it: its identity and where its sources
    !> came from, 'spallbar 0.3.0 (source 1a2b3c4d5e6f) built from git b82964e1a2b3'.
@@ -1458,4 +1472,151 @@ contains
       end if
    end function unquote
 
+   !> The unit of a column of PREFIX.spl or .imp for this bar: forces in Pa and impulses in
+   !> Pa s when every area is 1 (per unit area), else N and N s.
+   pure function diag_unit(unit, mesh) result(out)
+      character(len=*), intent(in) :: unit   !! the unit of the whole bar ('N', 'N s', ...)
+      type(mesh_t), intent(in) :: mesh       !! the mesh
+      character(len=:), allocatable :: out
+      out = trim(unit)
+      if (.not. per_unit_area(mesh)) return
+      if (out == 'N') out = 'Pa'
+      if (out == 'N s') out = 'Pa s'
+   end function diag_unit
+
+   !> The words of a column list, blank-separated.
+   pure function joined_names(names) result(line)
+      character(len=*), intent(in) :: names(:)   !! the names
+      character(len=:), allocatable :: line
+      integer :: k
+      line = trim(names(1))
+      do k = 2, size(names)
+         line = line // ' ' // trim(names(k))
+      end do
+   end function joined_names
+
+   !> PREFIX.spl (one row per free end) and PREFIX.imp (one row per contact episode), written
+   !> once at the end of a run (doc/outputs.md), with the header every text output has.
+   subroutine write_diag_text(prefix, rec, mesh, report, d, err)
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      type(deck_record_t), intent(in) :: rec   !! the deck's record
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      character(len=*), intent(in) :: report(:)     !! mesh fit report lines
+      type(diag_t), intent(in) :: d        !! the record
+      type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      integer :: u, k, side
+      real(wp) :: v(11)
+      character(len=:), allocatable :: line, cols
+      character(len=10) :: frac
+      write(frac, '(f10.2)') pick_fraction
+      ! PREFIX.spl
+      cols = 'end ' // joined_names(spall_columns())
+      call open_text('.spl', u)
+      if (allocated(err)) return
+      if (rec%names_first) write(u, '(a)') cols
+      call header_lines(u, rec, mesh, report, 'spall: one row per free end of the bar (top, ' &
+                        // 'bottom)')
+      write(u, '(a)') '# v_*: the end''s velocity along its outward normal (up at the top, ' &
+         // 'down at the bottom); the peak is the first maximum confirmed by a fall of ' // &
+         trim(adjustl(frac)) // ' of its rise, the pull-back the minimum after it confirmed ' // &
+         'by a rise of ' // trim(adjustl(frac)) // ' of the drop (doc/outputs.md)'
+      write(u, '(a)') '# sigma_novikov = rho c dv_pullback / 2 of the end cell; spall_x: ' // &
+         'reference position of the fracture nearest the end (m from the top); ' // &
+         'scab_*: the piece between it and the end when it broke (velocity outward)'
+      write(u, '(a)') '# NaN: no value (no peak, no pull-back, no fracture)'
+      write(u, '(a)') '# units: t_* [s]; v_*, dv_pullback, scab_velocity [m/s]; sigma_novikov ' &
+         // '[Pa]; spall_x, scab_thickness [m]'
+      write(u, '(a)') '# ' // cols
+      do side = 1, 2
+         if (.not. d%ends(side)%on) cycle
+         v(1:10) = spall_row(d%ends(side))
+         line = ' ' // end_names(side)
+         do k = 1, 10
+            line = line // ' ' // num(v(k))
+         end do
+         write(u, '(a)') line
+      end do
+      close(u)
+      ! PREFIX.imp
+      cols = joined_names(impact_columns())
+      call open_text('.imp', u)
+      if (allocated(err)) return
+      if (rec%names_first) write(u, '(a)') cols
+      call header_lines(u, rec, mesh, report, 'impacts: one row per contact episode ' // &
+                        '(fragments, base, impactor), in the order they end')
+      write(u, '(a)') '# t_start, t_end: the events that begin and end it (PREFIX.evt); ' // &
+         'peak_force, impulse: of the contact force (compression > 0) over its steps'
+      write(u, '(a)') '# v_*: centre-of-mass velocities of the two sides along +x (down); ' // &
+         'the base is at rest; an episode open at t_end has NaN for t_end, duration, v_*_after'
+      write(u, '(a)') '# units: t_start, t_end, duration [s]; kind [-]; x [m] (reference); ' // &
+         'peak_force [' // diag_unit('N', mesh) // ']; impulse [' // diag_unit('N s', mesh) // &
+         ']; v_* [m/s]'
+      write(u, '(a)') '# ' // cols
+      do k = 1, d%n_done
+         v = impact_row(d%done(k))
+         line = ''
+         do side = 1, 11
+            if (side == 4) then
+               line = line // ' ' // adjustr(imp_kind_names(d%done(k)%kind) // '       ')
+            else
+               line = line // ' ' // num(v(side))
+            end if
+         end do
+         write(u, '(a)') line
+      end do
+      close(u)
+   contains
+      !> A value in 1x,es20.12e3 (NaN as 'NaN', right-aligned).
+      function num(x) result(text)
+         real(wp), intent(in) :: x         !! the value
+         character(len=20) :: text
+         write(text, '(es20.12e3)') x
+      end function num
+      !> Open PREFIX.ext for writing.
+      subroutine open_text(ext, unit)
+         character(len=*), intent(in) :: ext   !! the extension
+         integer, intent(out) :: unit      !! its unit
+         integer :: ios
+         character(len=256) :: msg
+         open(newunit=unit, file=prefix // ext, status='replace', action='write', iostat=ios, &
+              iomsg=msg)
+         if (ios /= 0) call make_error(err, 'run: cannot write ''' // prefix // ext // ''': ' &
+                                       // trim(msg), code=exit_runtime)
+      end subroutine open_text
+   end subroutine write_diag_text
+
+   !> The same as /spall and /impacts of PREFIX.h5 (before it is closed): columns as in the
+   !> text files, end and kind as codes (1 top, 2 bottom; 1 fragments, 2 base, 3 impactor).
+   subroutine write_diag_h5(out, mesh, d)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(diag_t), intent(in) :: d        !! the record
+      character(len=14) :: names(11)
+      character(len=8) :: units(11)
+      logical :: whole(11)
+      real(wp) :: v(11)
+      integer :: h, side, k
+      if (.not. out%hdf5) return
+      names = [character(len=14) :: 'end', spall_columns()]
+      units = [character(len=8) :: '-', spall_units()]
+      whole = .false.
+      whole(1) = .true.
+      call h5_table(out%h5, '/spall', names, units, whole, h)
+      do side = 1, 2
+         if (.not. d%ends(side)%on) cycle
+         v(1) = real(side, wp)
+         v(2:11) = spall_row(d%ends(side))
+         call h5_append(out%h5, h, v)
+      end do
+      names = impact_columns()
+      units = impact_units()
+      units(6) = diag_unit('N', mesh)
+      units(7) = diag_unit('N s', mesh)
+      whole = .false.
+      whole(4) = .true.
+      call h5_table(out%h5, '/impacts', names, units, whole, h)
+      do k = 1, d%n_done
+         call h5_append(out%h5, h, impact_row(d%done(k)))
+      end do
+   end subroutine write_diag_h5
 end module spb_output

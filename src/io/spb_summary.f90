@@ -4,12 +4,15 @@
 !> what a checkpoint keeps of it (summary_fields, written and read back through a
 !> field_io_t, the checkpoint's file: doc/outputs.md `/run`) and the end-of-run text.
 module spb_summary
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use spb_kinds, only: wp
    use spb_strings, only: itoa
    use spb_field_io, only: field_io_t
    use spb_diag, only: energies_t, frag_info_t
    use spb_wave, only: wave_t
    use spb_events, only: event_list_t, ev_fracture, event_kinds, n_event_kinds
+   use spb_diagnostics, only: diag_t, diag_fields, spall_row, impact_row, end_names, &
+      imp_kind_names, first_impacts
    implicit none
    private
    public :: run_summary_t, first_fractures, summary_start, summary_row, summary_guard
@@ -48,6 +51,8 @@ module spb_summary
       real(wp) :: fracture_t(first_fractures) = 0.0_wp    !! the first fractures: time [s],
       real(wp) :: fracture_x(first_fractures) = 0.0_wp    !! reference position [m],
       real(wp) :: fracture_s(first_fractures) = 0.0_wp    !! section stress [Pa]
+      type(diag_t) :: diag                 !! the experiment diagnostics (spb_diagnostics:
+                                           !! PREFIX.spl, .imp)
    end type run_summary_t
 
 contains
@@ -203,6 +208,7 @@ contains
          call io%later(group, 'fracture_x_' // itoa(k), summary%fracture_x(k))
          call io%later(group, 'fracture_stress_' // itoa(k), summary%fracture_s(k))
       end do
+      call diag_fields(summary%diag, io, group)
    end subroutine summary_fields
 
    !> Why the run summary read back cannot be continued ('' when it can): its counts not
@@ -256,8 +262,47 @@ contains
       end do
       if (size(list) > 5) write(unit, '(a)') '    ... and ' // itoa(size(list) - 5) // &
          ' more (' // prefix // '.frg lists them all at a profile time equal to t_end)'
+      call write_diag_summary(unit, summary%diag, prefix)
       write(unit, '(a)') '  wrote ' // files
    end subroutine write_summary
+
+   !> The experiment diagnostics' lines of the run summary: each free end's peak, pull-back,
+   !> Novikov strength and spall plane (PREFIX.spl), the first contact episodes (PREFIX.imp).
+   subroutine write_diag_summary(unit, d, prefix)
+      integer, intent(in) :: unit          !! where (standard output)
+      type(diag_t), intent(in) :: d        !! the record
+      character(len=*), intent(in) :: prefix   !! output path prefix
+      integer :: side, k
+      real(wp) :: v(11)
+      character(len=240) :: line
+      do side = 1, 2
+         if (.not. d%ends(side)%on) cycle
+         v(1:10) = spall_row(d%ends(side))
+         ! an end with neither a peak nor a fracture has no line (PREFIX.spl has its row)
+         if (ieee_is_nan(v(2)) .and. d%ends(side)%node < 0) cycle
+         write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4,a,es11.4,a)') '  spall, ' // &
+            trim(end_names(side)) // ' end: peak ', v(2), ' m/s at ', v(1), ' s, pull-back ', &
+            v(4), ' m/s at ', v(3), ' s, sigma_novikov ', v(6), ' Pa'
+         write(unit, '(a)') trim(line)
+         if (d%ends(side)%node >= 0) then
+            write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4,a)') '    spall plane x = ', &
+               v(7), ' m at ', v(8), ' s; scab ', v(9), ' m thick, ', v(10), ' m/s outward'
+            write(unit, '(a)') trim(line)
+         end if
+      end do
+      if (d%n_done == 0) return
+      write(unit, '(a)') '  contact episodes: ' // itoa(d%n_done) // ' (start, duration, ' // &
+         'kind, peak force, impulse; ' // prefix // '.imp):'
+      do k = 1, min(d%n_done, first_impacts)
+         v = impact_row(d%done(k))
+         write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4)') '    from t = ', v(1), ' s for ', &
+            v(3), ' s, ' // trim(imp_kind_names(d%done(k)%kind)) // ', peak ', v(6), &
+            ', impulse ', v(7)
+         write(unit, '(a)') trim(line)
+      end do
+      if (d%n_done > first_impacts) write(unit, '(a)') '    ... and ' // &
+         itoa(d%n_done - first_impacts) // ' more episodes'
+   end subroutine write_diag_summary
 
    !> The events by kind for the summary's events line, 'fractures 3, collisions 1, ...':
    !> every kind with a plural in event_kinds, a core kind's even when 0.

@@ -293,7 +293,8 @@ contains
    !> t - 1, and the block above has already taken them there). The end nodes' bookkeeping
    !> is recorded per step and booked in step order at the end. s_old is not kept: the
    !> caller ends with an ordinary step (a history row reads s^{n-1}).
-   pure subroutine advance_joined(mesh, load, g, st, nsteps, block_nodes, max_sec_bottom)
+   pure subroutine advance_joined(mesh, load, g, st, nsteps, block_nodes, max_sec_bottom, &
+                                  face_du)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: g                     !! gravity along +x [m/s^2]
@@ -301,6 +302,8 @@ contains
       integer, intent(in) :: nsteps                 !! steps to take
       integer, intent(in), optional :: block_nodes  !! nodes per block (default 2048)
       real(wp), intent(out), optional :: max_sec_bottom  !! largest sec(n) of these steps [Pa]
+      real(wp), intent(out), optional :: face_du(2, nsteps)   !! increments of the face halves
+                                                              !! (B_0, A_n) of each step [m]
       type(face_step_t) :: r(2, nsteps)
       real(wp) :: rho_top, rho_bot
       integer :: n, n0, bw, nblk, kb, lo, hi, t, a, e, i, k
@@ -386,6 +389,7 @@ contains
       do t = 1, nsteps
          call book_end_nodes(mesh, g, st, r(:, t))
          if (present(max_sec_bottom)) max_sec_bottom = max(max_sec_bottom, st%section(n))
+         if (present(face_du)) face_du(:, t) = r(:, t)%du
       end do
       st%step = n0 + nsteps
       st%n_skip = 0

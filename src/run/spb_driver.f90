@@ -74,6 +74,7 @@ contains
       character(len=:), allocatable :: files
       call fragment_list(sim%mesh, sim%st, list)
       files = prefix // '.his, ' // prefix // '.prf, ' // prefix // '.evt, ' // prefix // '.frg'
+      files = files // ', ' // prefix // '.spl, ' // prefix // '.imp'
       if (allocated(sim%record%gauge_x)) then
          if (size(sim%record%gauge_x) > 0) files = files // ', ' // prefix // '.gau'
       end if

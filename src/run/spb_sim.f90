@@ -34,10 +34,12 @@ module spb_sim
    use spb_output, only: outputs_t, open_outputs, close_outputs, write_history_row, write_profile, &
       bar_units, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
-      claim_outputs, check_written, write_gauge_row, publish_outputs, where_outputs
+      claim_outputs, check_written, write_gauge_row, publish_outputs, where_outputs, &
+      write_diag_text, write_diag_h5
    use spb_restart, only: resume_outputs, drop_set_aside
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_estimate, only: progress_period
+   use spb_diagnostics, only: diag_start, diag_step, diag_end_samples, diag_close
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index
    implicit none
@@ -386,15 +388,21 @@ contains
           .and. .not. is_due(run%sched, act_gauge, sim%mesh%nsteps)) call gauge_row(sim, run)
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
+      ! the episodes still open at the end of a complete run (doc/outputs.md, PREFIX.imp)
+      if (.not. allocated(err) .and. sim%st%step == sim%mesh%nsteps) call diag_close(summary%diag)
       if (run%to_files) then
          block
             type(spb_error_t), allocatable :: err_close
+            if (.not. allocated(err)) call write_diag_h5(run%out, sim%mesh, summary%diag)
             call close_outputs(run%out, err_close)
             if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
             ! the outputs of a complete run replace the previous ones; a run that failed
             ! leaves them as they were and says where its own are (doc/outputs.md)
             if (.not. allocated(err)) call publish_outputs(run%out, err)
             if (allocated(err)) err%message = err%message // where_outputs(run%out)
+            ! PREFIX.spl and .imp: written once the others are published
+            if (.not. allocated(err)) call write_diag_text(prefix, sim%record, sim%mesh, &
+                                                           sim%report, summary%diag, err)
          end block
       end if
       call summary_end(summary, sim%st%step, &
@@ -482,6 +490,7 @@ contains
       type(wave_t) :: w0
       real(wp) :: w_w, e_l, scale
       e0 = energies(sim%mesh, sim%st, sim%prob%gravity)
+      call diag_start(summary%diag, sim%mesh, sim%st)
       call measure(sim%mesh, sim%load, sim%st, sim%prob%gravity, e0, w0, w_w, e_l, scale)
       call summary_start(summary, e0, w0, w_w, e_l, scale, &
                          sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
@@ -500,17 +509,22 @@ contains
       type(sim_t), intent(inout) :: sim    !! the simulation
       type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
-      integer :: k, j
+      integer :: k, j, n0
       real(wp) :: sec_max
+      real(wp), allocatable :: face_du(:, :)
       k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
       if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
+         allocate(face_du(2, k - 1))
+         n0 = sim%st%step
          call advance_joined(sim%mesh, sim%load, sim%prob%gravity, sim%st, k - 1, &
-                             max_sec_bottom=sec_max)
+                             max_sec_bottom=sec_max, face_du=face_du)
          call summary_reaction(summary, sec_max / sim%mesh%area(sim%mesh%n))
+         call diag_end_samples(summary%diag, sim%mesh, n0, face_du)
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
       call summary_reaction(summary, sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
+      call diag_step(summary%diag, sim%mesh, sim%st, run%events)
       if (run%events%n == 0) return
       ! the events' section forces as stresses over their sections (spb_mesh)
       do j = 1, run%events%n

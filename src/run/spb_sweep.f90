@@ -9,6 +9,7 @@
 !> same for any number of ranks and either distribution.
 module spb_sweep
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
    use spb_strings, only: itoa, rtoa
@@ -25,6 +26,7 @@ module spb_sweep
    use spb_diag, only: frag_info_t, fragment_list
    use spb_events, only: ev_fracture, event_kinds
    use spb_cohesive, only: dissipated
+   use spb_diagnostics, only: diag_t, spall_row
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_attr, h5_group, h5_write
    use spb_output, only: h5_deck_header, column_t, column_names, claim_sweep_outputs, program_line, &
       bar_units
@@ -45,7 +47,8 @@ module spb_sweep
       'max_excess [-] (of the energy scale); e_vib_end (fragments'' vibration energy at t_end), ' // &
       'e_fracture (the fracture corrections'' energy) [J/m^2]; mean_fracture_stress [Pa] ' // &
       '(mean |section stress| at the fractures, 0: none); cracks [-] (cohesive cracks opened), ' // &
-      'e_cohesive [J/m^2] (energy they dissipated)'
+      'e_cohesive [J/m^2] (energy they dissipated); sigma_novikov_* [Pa], spall_x_*, ' // &
+      'scab_thickness_* [m] (PREFIX.spl of the top and bottom end; -1: none)'
    !> PREFIX.sweep and /cases: the one list of the sweep table's columns, in order
    !> (sweep_table), but the event kinds' counts: those follow spb_events event_kinds, each
    !> under its column name, the core kinds' after status, the others' after e_fracture.
@@ -70,19 +73,28 @@ module spb_sweep
       column_t('e_fracture', 'J/m^2', .false.)]
    type(column_t), parameter :: cohesive_columns(1) = [ &
       column_t('e_cohesive', 'J/m^2', .false.)]
+   !> the experiment diagnostics of each end (spb_diagnostics; PREFIX.spl), last
+   type(column_t), parameter :: spall_columns(6) = [ &
+      column_t('sigma_novikov_top', 'Pa', .false.), &
+      column_t('spall_x_top', 'm', .false.), &
+      column_t('scab_thickness_top', 'm', .false.), &
+      column_t('sigma_novikov_bottom', 'Pa', .false.), &
+      column_t('spall_x_bottom', 'm', .false.), &
+      column_t('scab_thickness_bottom', 'm', .false.)]
    !> the event kinds with a column: core, and the others
    integer, parameter :: n_core_kinds = count(event_kinds%core .and. event_kinds%column /= '')
    integer, parameter :: n_other_kinds = count(.not. event_kinds%core .and. &
                                                event_kinds%column /= '')
    integer, parameter :: n_columns = size(case_columns) + size(run_columns) + &
-      size(cohesive_columns) + n_core_kinds + n_other_kinds
+      size(cohesive_columns) + n_core_kinds + n_other_kinds + size(spall_columns)
    integer, parameter :: col_id = 1, col_fragments = 2, col_mean_length = 3, col_max_reaction = 4, &
       col_first_fracture = 5, col_value = 6, col_realization = 7, col_seed = 8, col_status = 9, &
       col_e_kin = n_core_kinds + 10, col_w_ext = n_core_kinds + 11, &
       col_excess = n_core_kinds + 12, col_drift = n_core_kinds + 13, &
       col_steps = n_core_kinds + 14, col_e_vib = n_core_kinds + 15, &
       col_fracture_stress = n_core_kinds + 16, col_e_fracture = n_core_kinds + 17, &
-      col_e_cohesive = n_core_kinds + n_other_kinds + 18
+      col_e_cohesive = n_core_kinds + n_other_kinds + 18, &
+      col_spall = n_core_kinds + n_other_kinds + 19
    integer, parameter :: status_not_run = -1
    integer, parameter :: tag_request = 1000000001, tag_work = 1000000002, tag_check = 1000000003
    !> Memory of the sweep's tables per case, besides its runs [bytes]: a row (n_columns
@@ -228,7 +240,25 @@ contains
       row(col_e_fracture) = sim%st%ledger%e_fracture
       if (sim%st%coh%on) row(col_e_cohesive) = sum(dissipated(sim%st%coh%dmax, sim%st%coh%r, &
                                                               sim%st%coh%dc))
+      row(col_spall:) = spall_cells(summary%diag)
    end subroutine run_case
+
+   !> The spall columns of a case: sigma_novikov, spall_x, scab_thickness of the top and the
+   !> bottom end (spb_diagnostics spall_row); -1 where an end has none (PREFIX.spl's NaN: the
+   !> table stays finite for spallbar-compare, as first_fracture_t's -1; none of the three is
+   !> ever negative).
+   pure function spall_cells(d) result(v)
+      type(diag_t), intent(in) :: d        !! the case's record
+      real(wp) :: v(size(spall_columns))
+      real(wp) :: r(10)
+      integer :: side
+      do side = 1, 2
+         r = spall_row(d%ends(side))
+         v(3 * side - 2:3 * side) = [r(6), r(7), r(9)]
+         if (.not. d%ends(side)%on) v(3 * side - 2:3 * side) = -1.0_wp
+      end do
+      where (ieee_is_nan(v)) v = -1.0_wp
+   end function spall_cells
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
    !> over the ranks; rank 0 writes PREFIX.sweep and PREFIX_sweep.h5.
@@ -645,7 +675,8 @@ contains
       integer :: k
       table(:col_status) = case_columns
       table(col_e_kin:col_e_fracture) = run_columns
-      table(col_e_cohesive:) = cohesive_columns
+      table(col_e_cohesive:col_spall - 1) = cohesive_columns
+      table(col_spall:) = spall_columns
       do k = 1, size(event_kinds)
          if (kind_column(k) > 0) table(kind_column(k)) = column_t(event_kinds(k)%column, '-', &
                                                                   .true.)
