@@ -288,7 +288,7 @@ p = subprocess.run([exe, "--sweep", "big.nml"], cwd=work, capture_output=True, t
                    stdin=subprocess.DEVNULL)
 lines = p.stderr.strip().splitlines()
 check(p.returncode == 2 and len(lines) == 1 and "ensemble_columns (3 at 108 history rows: "
-      "&run history_every = 1) need about 315.6 MB" in lines[0],
+      "&run history_every = 1) need about 320.4 MB" in lines[0],
       f"the ensemble's memory: exit {p.returncode}: {lines}")
 check(set(os.listdir(work)) - before == set(), "the ensemble's memory: no file left")
 
