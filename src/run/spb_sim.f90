@@ -316,7 +316,7 @@ contains
                          mesh%z(mesh%n), mesh%dt, st%gen%frag_id(top), events)
    end subroutine striker_events
 
-   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
+   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg, .imp (with files = .false.: no files,
    !> only the summary, as a sweep's cases do). With resume: go on from a checkpoint, the
    !> outputs continuing those of the run that wrote it (bit-identical to one run).
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
