@@ -13,7 +13,7 @@ import h5py
 import numpy as np
 
 PRIME = 4294967291
-TEXTS = [".his", ".prf", ".evt", ".frg", ".gau"]
+TEXTS = [".his", ".prf", ".evt", ".frg", ".imp", ".gau"]
 
 
 class Fletcher:

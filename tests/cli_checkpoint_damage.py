@@ -34,7 +34,7 @@ import numpy as np
 from checkpoint_tools import resign
 from clitools import Checks, run
 
-EXTS = [".his", ".prf", ".evt", ".frg"]
+EXTS = [".his", ".prf", ".evt", ".frg", ".imp"]
 
 # the issue's deck (item 1) with PREFIX.h5 and the x-t fields; the checkpoint at t = 0.15
 DECK = """&run t_end = {t_end}, gravity = 9.81, history_every = 1, checkpoint = '{ck}',

@@ -47,9 +47,9 @@ import numpy as np
 from checkpoint_tools import resign
 from clitools import Checks, run
 
-EXTS = [".his", ".prf", ".evt", ".frg"]
+EXTS = [".his", ".prf", ".evt", ".frg", ".imp"]
 # written once at the end of a run (not set aside by a restart), compared all the same
-DIAG_EXTS = [".spl", ".imp"]
+DIAG_EXTS = [".spl"]
 
 WEIBULL = """&run
   title = 'Weibull strength, restart'
@@ -490,7 +490,7 @@ def interrupted_restart(check, exe, work):
     # 1. killed while renaming: .his and .prf set aside, the others not yet
     lay_out({"big_R.his.restart": pristine[".his"], "big_R.prf.restart": pristine[".prf"],
              "big_R.evt": pristine[".evt"], "big_R.frg": pristine[".frg"],
-             "big_R.h5": pristine[".h5"]})
+             "big_R.imp": pristine[".imp"], "big_R.h5": pristine[".h5"]})
     resumed("killed while renaming")
     # 2. killed while copying: every file set aside, .his cut at 3 MB, the others headers
     state = {f"big_R{e}.restart": pristine[e] for e in exts}
@@ -507,7 +507,7 @@ def interrupted_restart(check, exe, work):
     lay_out(state)
     resumed("killed while PREFIX.h5 was rebuilt")
     # 4. killed while removing the set-aside files: .his.restart and .prf.restart gone
-    state = {f"big_R{e}.restart": pristine[e] for e in [".evt", ".frg", ".h5"]}
+    state = {f"big_R{e}.restart": pristine[e] for e in [".evt", ".frg", ".imp", ".h5"]}
     state.update({f"big_R{e}": pristine[e] for e in exts})
     lay_out(state)
     resumed("killed while removing the set-aside files")

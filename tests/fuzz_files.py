@@ -54,7 +54,7 @@ from checkpoint_tools import set_program
 from cli_restart import h5_differences
 from fuzz_structural import RUNTIME_TEXT
 
-TEXTS = [".his", ".prf", ".evt", ".frg"]
+TEXTS = [".his", ".prf", ".evt", ".frg", ".imp"]
 TABLE = "0 0\n1e-4 1e6\n2e-4 0\n"
 CLASSES = ("ok", "silent-wrong", "crash", "lost", "refused-wrong")
 
@@ -376,7 +376,7 @@ def case_kept(rng, exe, d, refs, case):
         # killed while it renamed its finished outputs (doc/outputs.md: each PREFIX.ext is
         # whole, the previous run's or this one's): a changed file must be the new run's
         alone = digests(refs.get(second, prefix, "second.nml"), names) if changed else {}
-        wrong = [n for n in changed if n.endswith((".his", ".prf", ".evt", ".frg", ".gau")) and
+        wrong = [n for n in changed if n.endswith((".his", ".prf", ".evt", ".frg", ".imp", ".gau")) and
                  now.get(n) != alone.get(n)]
         if changed and (rc == 3 or wrong):
             return case.fail("lost", f"exit {rc}: previous outputs changed {changed}, "

@@ -923,8 +923,8 @@ contains
       character(len=:), allocatable :: why
       integer :: k
       why = ''
-      if (min(marks%rows_his, marks%rows_evt, marks%rows_xt, marks%n_prof, marks%n_frg, &
-              marks%rows_gau) < 0) then
+      if (min(marks%rows_his, marks%rows_evt, marks%rows_imp, marks%rows_xt, marks%n_prof, &
+              marks%n_frg, marks%rows_gau) < 0) then
          why = 'is damaged: a count of its outputs is negative'
          return
       end if
@@ -953,6 +953,7 @@ contains
       logical, intent(in) :: gauges            !! the run has gauges (PREFIX.gau, /gauges)
       call field(ck, writing, '/outputs', 'rows_history', marks%rows_his)
       call field(ck, writing, '/outputs', 'rows_events', marks%rows_evt)
+      call field(ck, writing, '/outputs', 'rows_impacts', marks%rows_imp)
       call field(ck, writing, '/outputs', 'rows_xt', marks%rows_xt)
       call field(ck, writing, '/outputs', 'profiles', marks%n_prof)
       call field(ck, writing, '/outputs', 'fragment_blocks', marks%n_frg)

@@ -1,5 +1,5 @@
-!> Outputs (doc/outputs.md): the column text files PREFIX.his, .prf, .evt, .frg (and .gau with
-!> &gauges) and, with
+!> Outputs (doc/outputs.md): the column text files PREFIX.his, .prf, .evt, .frg, .imp (and .gau
+!> with &gauges), PREFIX.spl at the end and, with
 !> &run hdf5 = .true., PREFIX.h5 holding the same (layout in doc/outputs.md).
 !>
 !> Each text file starts with '#' header lines (version, title, the full echoed deck, the
@@ -28,10 +28,10 @@ module spb_output
    use spb_columns, only: column_t, column_set_t, column_fault, column_names
    use spb_history, only: history_ids_t, register_history, history_set
    use spb_diagnostics, only: diag_t, spall_row, impact_row, spall_columns, impact_columns, &
-      spall_units, impact_units, end_names, imp_kind_names, pick_fraction
+      spall_units, impact_units, end_names, imp_kind_names, pick_fraction, impact_t
    implicit none
    private
-   public :: write_diag_text, write_diag_h5, diag_unit
+   public :: write_diag_text, write_diag_h5, diag_unit, write_impacts
    public :: outputs_t, open_outputs, close_outputs, write_history_row, write_profile
    public :: history_columns, write_mesh_summary, write_events, write_fragments
    public :: write_field, flush_outputs, h5_deck_header, column_t, column_names
@@ -40,7 +40,7 @@ module spb_output
    public :: output_marks_t, mark_outputs, text_extensions, tail_len, claim_outputs, &
       check_written
    ! for spb_restart, which continues the outputs of a checkpointed run
-   public :: event_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
+   public :: event_columns, impact_table_columns, find_header, column_line, text_unit, set_text_unit, no_unit, &
       block_name, split
 
    character(len=*), parameter :: history_units = 't [s]; reaction_*, s_end_* [Pa] ' &
@@ -80,37 +80,42 @@ module spb_output
    !> A closed file's unit: newunit= numbers are negative but never -1.
    integer, parameter :: no_unit = -1
 
+   !> Text files a run may write (text_extensions).
+   integer, parameter :: n_text = 6
+
    type :: outputs_t
       character(len=:), allocatable :: prefix
       character(len=:), allocatable :: part   !! '.part' while written as temporaries, else ''
       logical :: with_h5 = .false.                        !! PREFIX.h5 is one of them
       integer :: his = no_unit, prf = no_unit, evt = no_unit, frg = no_unit   !! units
+      integer :: imp = no_unit                            !! PREFIX.imp's unit
       integer :: gau = no_unit                            !! PREFIX.gau's unit (no gauges: none)
       integer :: n_gauges = 0                             !! gauges (columns 3 n_gauges + 1)
       logical :: hdf5 = .false.                           !! PREFIX.h5 is written
       logical :: per_area = .true.                        !! every area 1: units per unit area
       type(h5file_t) :: h5
-      integer :: h_his = 0, h_evt = 0                     !! its table handles
+      integer :: h_his = 0, h_evt = 0, h_imp = 0          !! its table handles
       type(column_t), allocatable :: his_table(:)         !! the history's columns (spb_history)
       type(history_ids_t) :: his_id                       !! their ids: a row is posted under
                                                           !! them (spb_history post_history)
       type(column_t), allocatable :: evt_table(:)         !! the events' columns (spb_events)
       type(event_columns_t) :: evt_id                     !! their ids
       integer :: n_prof = 0, n_frg = 0                    !! profile, fragment blocks so far
-      integer(int64) :: head(5) = 0                       !! header bytes of each text file
-      type(row_buffer_t) :: rows(5)                       !! rows not yet written, per text
+      integer(int64) :: head(n_text) = 0                       !! header bytes of each text file
+      type(row_buffer_t) :: rows(n_text)                       !! rows not yet written, per text
                                                           !! file (text_extensions order)
       type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
-      integer(int64) :: n_his = 0, n_evt = 0              !! .his, .evt rows written here
-      integer(int64) :: expect(5) = 0                     !! bytes each text file should
+      integer(int64) :: n_his = 0, n_evt = 0, n_imp = 0   !! .his, .evt, .imp rows written here
+      integer(int64) :: expect(n_text) = 0                     !! bytes each text file should
                                                           !! hold: check_written's measure
                                                           !! (a write the disk refuses is
                                                           !! not always in inquire's size)
-      logical :: refused(5) = .false.                     !! a write of rows to it failed
+      logical :: refused(n_text) = .false.                     !! a write of rows to it failed
    end type outputs_t
 
    !> The text files, in the order of outputs_t%head and output_marks_t (.gau: with &gauges).
-   character(len=4), parameter :: text_extensions(5) = ['.his', '.prf', '.evt', '.frg', '.gau']
+   character(len=4), parameter :: text_extensions(n_text) = ['.his', '.prf', '.evt', '.frg', &
+      '.imp', '.gau']
 
    integer, parameter :: tail_len = 240   !! bytes of each text file a mark remembers
    !> the suffix of an output written as a temporary until the run publishes it
@@ -118,11 +123,12 @@ module spb_output
 
    !> How far the outputs reach at one step: what a restart keeps of them.
    type :: output_marks_t
-      integer(int64) :: body(5) = 0      !! bytes after the header of each text file
-      character(len=tail_len) :: tail(5) = ''   !! the last bytes of each body ...
-      integer :: tail_n(5) = 0           !! ... so many of them (a restart checks them)
+      integer(int64) :: body(n_text) = 0   !! bytes after the header of each text file
+      character(len=tail_len) :: tail(n_text) = ''   !! the last bytes of each body ...
+      integer :: tail_n(n_text) = 0           !! ... so many of them (a restart checks them)
       integer :: rows_his = 0            !! rows of PREFIX.h5 /history
       integer :: rows_evt = 0            !! rows of /events
+      integer :: rows_imp = 0            !! rows of /impacts
       integer :: rows_xt = 0             !! times of /fields/xt
       integer :: n_prof = 0              !! groups under /fields/profiles
       integer :: n_frg = 0               !! groups under /fragments
@@ -131,7 +137,7 @@ module spb_output
 
 contains
 
-   !> Open PREFIX.his, .prf, .evt, .frg (.gau, .h5) and write their headers. temporaries:
+   !> Open PREFIX.his, .prf, .evt, .frg, .imp (.gau, .h5) and write their headers. temporaries:
    !> write them as PREFIX.ext.part, which publish_outputs renames (a run that fails before
    !> leaves the previous outputs as they were; doc/outputs.md).
    subroutine open_outputs(prefix, rec, mesh, report, out, err, xt_rows, temporaries)
@@ -163,6 +169,7 @@ contains
       if (.not. allocated(err)) call open_one('.prf', out%prf)
       if (.not. allocated(err)) call open_one('.evt', out%evt)
       if (.not. allocated(err)) call open_one('.frg', out%frg)
+      if (.not. allocated(err)) call open_one('.imp', out%imp)
       out%n_gauges = size(rec%gauge_x)
       if (.not. allocated(err) .and. out%n_gauges > 0) call open_one('.gau', out%gau)
       if (allocated(err)) then
@@ -209,8 +216,19 @@ contains
       write(out%frg, '(a)') '# units: ' // bar_units('birth_t, t [s]; x_* [m]; mass [kg/m^2]; ' &
          // 'velocity [m/s]; e_vib [J/m^2]; ids and nodes [-]', mesh)
       write(out%frg, '(a)') column_line(4)
+      call header(out%imp, 'impacts: one row per contact episode (fragments, base, ' // &
+                  'impactor), in the order they end', 5)
+      write(out%imp, '(a)') '# t_start, t_end: the events that begin and end it (PREFIX.evt); ' &
+         // 'peak_force, impulse: of the contact force (compression > 0) over its steps'
+      write(out%imp, '(a)') '# v_*: centre-of-mass velocities of the two sides along +x ' // &
+         '(down); the base is at rest; an episode open at t_end has NaN for t_end, duration, ' &
+         // 'v_*_after'
+      write(out%imp, '(a)') '# units: t_start, t_end, duration [s]; kind [-]; x [m] ' // &
+         '(reference); peak_force [' // diag_unit('N', mesh) // ']; impulse [' // &
+         diag_unit('N s', mesh) // ']; v_* [m/s]'
+      write(out%imp, '(a)') column_line(5)
       if (out%gau /= no_unit) then
-         call header(out%gau, 'gauges: one row every &gauges every steps', 5)
+         call header(out%gau, 'gauges: one row every &gauges every steps', 6)
          call gauge_header(out%gau, rec, mesh)
       end if
       call text_sizes(out, out%head)
@@ -312,7 +330,7 @@ contains
       write(u, '(a)') '# velocity_k: du/dt over the step ending at t; u_k: displacement at t'
       write(u, '(a)') '# units: t [s]; stress_k [Pa] (compression > 0); velocity_k [m/s] ' // &
          'along +x (down); u_k [m]'
-      write(u, '(a)') column_line(5, size(g))
+      write(u, '(a)') column_line(6, size(g))
    end subroutine gauge_header
 
    !> The column names of PREFIX.gau: t, then stress_k velocity_k u_k for k = 1..n.
@@ -345,7 +363,7 @@ contains
          line(at + 44:at + 63) = es20_12(u(k))
          at = at + 63
       end do
-      call put_row(out, 5, line)
+      call put_row(out, 6, line)
       if (out%hdf5) call h5_append_xt(out%h5, t, stress, velocity, u, xt_gauges)
    end subroutine write_gauge_row
 
@@ -353,8 +371,8 @@ contains
    !> text_extensions.
    pure integer function text_count(rec)
       type(deck_record_t), intent(in) :: rec   !! the deck's record
-      text_count = 4
-      if (size(rec%gauge_x) > 0) text_count = 5
+      text_count = n_text - 1
+      if (size(rec%gauge_x) > 0) text_count = n_text
    end function text_count
 
    !> The mesh as built: dt, cells, steps, and each segment's cells and lengths.
@@ -438,7 +456,7 @@ contains
       type(deck_record_t), intent(in) :: rec       !! the deck's record (its path, hdf5)
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: refused)
-      character(len=len(prefix) + 10) :: files(15)
+      character(len=len(prefix) + 10) :: files(2 * n_text + 5)
       integer :: k, n, nt
       logical :: made(2), lockless(2)
       if (sys_is_directory(prefix)) then
@@ -508,15 +526,15 @@ contains
       character(len=*), intent(in) :: files(:)     !! the run's outputs and temporaries
       character(len=*), intent(in) :: checkpoint   !! the checkpoint file ('': none)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: refused)
-      character(len=10) :: tails(15)
+      character(len=10) :: tails(2 * n_text + 5)
       integer :: k, m
       ! every file a prefix may have: the text files, PREFIX.h5 and .xmf, each as itself and
       ! as its temporary, and the lock (from the lists that name them, never a copy)
-      tails(1:7) = [character(len=10) :: text_extensions, '.h5', '.xmf']
-      do k = 1, 7
-         tails(7 + k) = trim(tails(k)) // part_suffix
+      tails(1:n_text + 2) = [character(len=10) :: text_extensions, '.h5', '.xmf']
+      do k = 1, n_text + 2
+         tails(n_text + 2 + k) = trim(tails(k)) // part_suffix
       end do
-      tails(15) = '.lock'
+      tails(2 * n_text + 5) = '.lock'
       do k = 1, size(files)
          if (sys_lock_held(trim(files(k)) // '.lock')) then
             call make_error(err, '--output: ''' // trim(files(k)) // ''' is the checkpoint ' // &
@@ -747,8 +765,10 @@ contains
       if (out%prf /= no_unit) close(out%prf)
       if (out%evt /= no_unit) close(out%evt)
       if (out%frg /= no_unit) close(out%frg)
+      if (out%imp /= no_unit) close(out%imp)
       if (out%gau /= no_unit) close(out%gau)
       out%frg = no_unit
+      out%imp = no_unit
       out%gau = no_unit
       out%his = no_unit
       out%prf = no_unit
@@ -774,6 +794,7 @@ contains
       call drain_rows(out)
       if (out%his /= no_unit) flush(out%his)
       if (out%evt /= no_unit) flush(out%evt)
+      if (out%imp /= no_unit) flush(out%imp)
       if (out%gau /= no_unit) flush(out%gau)
       if (out%hdf5) call h5_flush(out%h5)
    end subroutine flush_outputs
@@ -781,15 +802,16 @@ contains
    !> Bytes in each text file now (written through to the file first).
    subroutine text_sizes(out, bytes)
       type(outputs_t), intent(inout) :: out   !! the outputs (collected rows written first)
-      integer(int64), intent(out) :: bytes(5)   !! .his, .prf, .evt, .frg, .gau (0: not open)
-      integer :: k, u(5)
+      integer(int64), intent(out) :: bytes(n_text)   !! each text file (text_extensions; 0:
+                                                      !! not open)
+      integer :: k, u
       call drain_rows(out)
-      u = [out%his, out%prf, out%evt, out%frg, out%gau]
       bytes = 0
-      do k = 1, 5
-         if (u(k) == no_unit) cycle
-         flush(u(k))
-         inquire(unit=u(k), size=bytes(k))
+      do k = 1, n_text
+         u = text_unit(out, k)
+         if (u == no_unit) cycle
+         flush(u)
+         inquire(unit=u, size=bytes(k))
       end do
    end subroutine text_sizes
 
@@ -820,7 +842,7 @@ contains
       integer :: k
       logical :: ok
       if (.not. is_temporary(out)) return
-      do k = 1, 4 + merge(1, 0, out%n_gauges > 0)
+      do k = 1, n_text - merge(0, 1, out%n_gauges > 0)
          call sys_rename(out_path(out, k), out%prefix // trim(text_extensions(k)), ok)
          if (.not. ok) then
             call make_error(err, 'run: cannot rename ''' // out_path(out, k) // ''' to ''' // &
@@ -856,7 +878,7 @@ contains
    subroutine mark_outputs(out, marks)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(output_marks_t), intent(out) :: marks   !! how far the outputs reach
-      integer(int64) :: bytes(5)
+      integer(int64) :: bytes(n_text)
       integer :: k, u, r, ios
       call flush_outputs(out)
       call text_sizes(out, bytes)
@@ -882,6 +904,7 @@ contains
       if (.not. out%hdf5) return
       marks%rows_his = h5_table_rows(out%h5, out%h_his)
       marks%rows_evt = h5_table_rows(out%h5, out%h_evt)
+      marks%rows_imp = h5_table_rows(out%h5, out%h_imp)
       marks%rows_xt = h5_xt_rows(out%h5)
       marks%n_prof = out%n_prof
       marks%n_frg = out%n_frg
@@ -892,8 +915,8 @@ contains
    pure integer function text_unit(out, k) result(u)
       type(outputs_t), intent(in) :: out   !! the outputs
       integer, intent(in) :: k             !! text file (text_extensions)
-      integer :: units(5)
-      units = [out%his, out%prf, out%evt, out%frg, out%gau]
+      integer :: units(n_text)
+      units = [out%his, out%prf, out%evt, out%frg, out%imp, out%gau]
       u = units(k)
    end function text_unit
 
@@ -918,6 +941,8 @@ contains
          out%evt = u
       case (4)
          out%frg = u
+      case (5)
+         out%imp = u
       case default
          out%gau = u
       end select
@@ -949,6 +974,8 @@ contains
          line = event_columns() // ' kind_code'
       case (4)
          line = fragment_columns
+      case (5)
+         line = impact_table_columns()
       case default
          line = gauge_columns(n_gauges)
       end select
@@ -1111,6 +1138,14 @@ contains
       whole = out%evt_table%whole
       call h5_table(out%h5, '/events', names, units, whole, out%h_evt)
       call h5_attr(out%h5, '/events', 'kind_codes', kind_codes())
+      ! /impacts: a row as each contact episode ends (write_impacts)
+      names = impact_columns()
+      units = impact_units()
+      units(6) = diag_unit('N', mesh)
+      units(7) = diag_unit('N s', mesh)
+      whole = spread(.false., 1, size(names))
+      whole(4) = .true.
+      call h5_table(out%h5, '/impacts', names, units, whole, out%h_imp)
       call h5_group(out%h5, '/fields')
       call h5_group(out%h5, '/fields/profiles')
       call h5_attr(out%h5, '/fields', 'rows', 'half nodes top to bottom, as PREFIX.prf: ' // &
@@ -1207,6 +1242,12 @@ contains
       call register_event_columns(evt, id)
       line = column_names(evt%col)
    end function event_columns
+
+   !> The contact episodes' column names, blank-separated (the column line of PREFIX.imp).
+   pure function impact_table_columns() result(line)
+      character(len=:), allocatable :: line
+      line = joined_names(impact_columns())
+   end function impact_table_columns
 
    !> The blank-separated words of s.
    pure subroutine split(s, words)
@@ -1495,8 +1536,8 @@ contains
       end do
    end function joined_names
 
-   !> PREFIX.spl (one row per free end) and PREFIX.imp (one row per contact episode), written
-   !> once at the end of a run (doc/outputs.md), with the header every text output has.
+   !> PREFIX.spl (one row per free end), written once at the end of a run (doc/outputs.md),
+   !> with the header every text output has.
    subroutine write_diag_text(prefix, rec, mesh, report, d, err)
       character(len=*), intent(in) :: prefix   !! output path prefix
       type(deck_record_t), intent(in) :: rec   !! the deck's record
@@ -1537,34 +1578,6 @@ contains
          write(u, '(a)') line
       end do
       close(u)
-      ! PREFIX.imp
-      cols = joined_names(impact_columns())
-      call open_text('.imp', u)
-      if (allocated(err)) return
-      if (rec%names_first) write(u, '(a)') cols
-      call header_lines(u, rec, mesh, report, 'impacts: one row per contact episode ' // &
-                        '(fragments, base, impactor), in the order they end')
-      write(u, '(a)') '# t_start, t_end: the events that begin and end it (PREFIX.evt); ' // &
-         'peak_force, impulse: of the contact force (compression > 0) over its steps'
-      write(u, '(a)') '# v_*: centre-of-mass velocities of the two sides along +x (down); ' // &
-         'the base is at rest; an episode open at t_end has NaN for t_end, duration, v_*_after'
-      write(u, '(a)') '# units: t_start, t_end, duration [s]; kind [-]; x [m] (reference); ' // &
-         'peak_force [' // diag_unit('N', mesh) // ']; impulse [' // diag_unit('N s', mesh) // &
-         ']; v_* [m/s]'
-      write(u, '(a)') '# ' // cols
-      do k = 1, d%n_done
-         v = impact_row(d%done(k))
-         line = ''
-         do side = 1, 11
-            if (side == 4) then
-               line = line // ' ' // adjustr(imp_kind_names(d%done(k)%kind) // '       ')
-            else
-               line = line // ' ' // num(v(side))
-            end if
-         end do
-         write(u, '(a)') line
-      end do
-      close(u)
    contains
       !> A value in 1x,es20.12e3 (NaN as 'NaN', right-aligned).
       function num(x) result(text)
@@ -1585,17 +1598,16 @@ contains
       end subroutine open_text
    end subroutine write_diag_text
 
-   !> The same as /spall and /impacts of PREFIX.h5 (before it is closed): columns as in the
-   !> text files, end and kind as codes (1 top, 2 bottom; 1 fragments, 2 base, 3 impactor).
-   subroutine write_diag_h5(out, mesh, d)
+   !> The same as /spall of PREFIX.h5 (before it is closed): columns as in the text file,
+   !> end as a code (1 top, 2 bottom).
+   subroutine write_diag_h5(out, d)
       type(outputs_t), intent(inout) :: out   !! the outputs
-      type(mesh_t), intent(in) :: mesh     !! the mesh
       type(diag_t), intent(in) :: d        !! the record
       character(len=14) :: names(11)
       character(len=8) :: units(11)
       logical :: whole(11)
       real(wp) :: v(11)
-      integer :: h, side, k
+      integer :: h, side
       if (.not. out%hdf5) return
       names = [character(len=14) :: 'end', spall_columns()]
       units = [character(len=8) :: '-', spall_units()]
@@ -1608,15 +1620,36 @@ contains
          v(2:11) = spall_row(d%ends(side))
          call h5_append(out%h5, h, v)
       end do
-      names = impact_columns()
-      units = impact_units()
-      units(6) = diag_unit('N', mesh)
-      units(7) = diag_unit('N s', mesh)
-      whole = .false.
-      whole(4) = .true.
-      call h5_table(out%h5, '/impacts', names, units, whole, h)
-      do k = 1, d%n_done
-         call h5_append(out%h5, h, impact_row(d%done(k)))
-      end do
    end subroutine write_diag_h5
+
+   !> Rows of PREFIX.imp and /impacts for the contact episodes (spb_diagnostics) that ended
+   !> since the last call, in the order they ended: the columns of impact_columns, kind as
+   !> its word in the text (/impacts: its code), NaN where there is no value.
+   subroutine write_impacts(out, ended)
+      type(outputs_t), intent(inout) :: out   !! the outputs
+      type(impact_t), intent(in) :: ended(:)   !! the episodes that ended
+      character(len=10 * 21 + 17) :: line
+      real(wp) :: v(11)
+      integer :: k, c, at
+      do k = 1, size(ended)
+         v = impact_row(ended(k))
+         ! 1x,es20.12e3 per column, the kind's word right-aligned in 1x,a16
+         at = 0
+         do c = 1, 11
+            if (c == 4) then
+               line(at + 1:at + 17) = ' ' // adjustr(imp_kind_names(ended(k)%kind) // '       ')
+               at = at + 17
+            else
+               line(at + 1:at + 21) = ' ' // es20_12(v(c))
+               at = at + 21
+            end if
+         end do
+         call put_row(out, 5, line)
+         out%n_imp = out%n_imp + 1
+         if (.not. out%hdf5) cycle
+         ! the text reaches the file before PREFIX.h5 writes a block of rows (write_events)
+         if (mod(out%n_imp, int(buffer_rows, int64)) == 0) call drain_one(out, 5)
+         call h5_append(out%h5, out%h_imp, v)
+      end do
+   end subroutine write_impacts
 end module spb_output

@@ -11,7 +11,7 @@ module spb_restart
    use spb_sys, only: sys_rename
    use spb_mesh, only: mesh_t
    use spb_output, only: outputs_t, output_marks_t, open_outputs, text_extensions, tail_len, &
-      history_columns, event_columns, find_header, column_line, text_unit, set_text_unit, &
+      history_columns, event_columns, impact_table_columns, find_header, column_line, text_unit, set_text_unit, &
       no_unit, block_name, split, text_count, remove_file
    implicit none
    private
@@ -42,14 +42,14 @@ contains
       type(outputs_t), intent(out) :: out   !! the outputs
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       integer, intent(in), optional :: xt_rows   !! x-t times buffered in memory (default 64)
-      integer(int64) :: head(5)
+      integer(int64) :: head(size(text_extensions))
       integer :: k, nrows, nt, ng
-      logical :: aside_there(6), ok
+      logical :: aside_there(size(text_extensions) + 1), ok
       character(len=:), allocatable :: f   !! one output's path
-      character(len=len(prefix) + 12) :: prev(6)   !! the previous outputs (PREFIX.ext[.restart])
+      character(len=len(prefix) + 12) :: prev(size(text_extensions) + 1)   !! the previous outputs (PREFIX.ext[.restart])
       ! the previous outputs (set aside by a restart that did not finish, or not yet): a
       ! header, then at least the body the checkpoint counts, ending in the bytes it remembers
-      nt = text_count(rec)            ! 4, or 5 with gauges (.gau)
+      nt = text_count(rec)            ! 5, or 6 with gauges (.gau)
       ng = size(rec%gauge_x)
       do k = 1, nt + 1
          f = output_file(prefix, k, nt)
@@ -215,6 +215,8 @@ contains
                         marks%rows_his, err)
       call replay_table(prefix, old, '/events', event_columns(), out, out%h_evt, marks%rows_evt, &
                         err)
+      call replay_table(prefix, old, '/impacts', impact_table_columns(), out, out%h_imp, &
+                        marks%rows_imp, err)
       if (marks%rows_xt > 0) call replay_xt(prefix, old, mesh, marks%rows_xt, out, err)
       if (marks%rows_gau > 0) call replay_gauges(prefix, old, out%n_gauges, marks%rows_gau, &
                                                  out, err)

@@ -294,9 +294,9 @@ contains
       write(unit, '(a)') '  contact episodes: ' // itoa(d%n_done) // ' (start, duration, ' // &
          'kind, peak force, impulse; ' // prefix // '.imp):'
       do k = 1, min(d%n_done, first_impacts)
-         v = impact_row(d%done(k))
+         v = impact_row(d%first(k))
          write(line, '(a,es11.4,a,es11.4,a,es11.4,a,es11.4)') '    from t = ', v(1), ' s for ', &
-            v(3), ' s, ' // trim(imp_kind_names(d%done(k)%kind)) // ', peak ', v(6), &
+            v(3), ' s, ' // trim(imp_kind_names(d%first(k)%kind)) // ', peak ', v(6), &
             ', impulse ', v(7)
          write(unit, '(a)') trim(line)
       end do

@@ -22,7 +22,7 @@ module spb_diagnostics
    public :: pick_t, pick_sample, significant, spall_end_t, impact_t, diag_t, diag_start, diag_step, &
       diag_end_samples, diag_fields, diag_close, imp_kind_names, imp_fragments, imp_base, &
       imp_impactor, pick_fraction, diag_problem, end_names, spall_row, impact_row, spall_columns, &
-      impact_columns, spall_units, impact_units, first_impacts
+      impact_columns, spall_units, impact_units, first_impacts, diag_taken
 
    !> The share of the swing that confirms a peak or a pull-back minimum (doc/outputs.md,
    !> "How the peak and the pull-back are picked"): a maximum is the peak once the velocity
@@ -92,8 +92,13 @@ module spb_diagnostics
                                            !! |w0| and |w - w0| of either end [m/s]
       type(impact_t), allocatable :: open(:)   !! episodes under way, first n_open used
       integer :: n_open = 0
-      type(impact_t), allocatable :: done(:)   !! episodes ended, first n_done used
-      integer :: n_done = 0
+      integer :: n_done = 0                !! episodes ended so far
+      type(impact_t) :: first(first_impacts)   !! the first min(n_done, first_impacts) of
+                                               !! them (the run summary's)
+      type(impact_t), allocatable :: ended(:)  !! episodes ended since the caller last took
+                                               !! them (PREFIX.imp's rows; diag_taken),
+                                               !! first n_ended used
+      integer :: n_ended = 0
    end type diag_t
 
 contains
@@ -159,7 +164,7 @@ contains
       d%ends(face_bottom)%z = mesh%z(mesh%n) / mesh%area(mesh%n)
       d%ends(face_top)%x_end = mesh%x(0)
       d%ends(face_bottom)%x_end = mesh%x(mesh%n)
-      allocate(d%open(4), d%done(4))
+      allocate(d%open(4), d%ended(4))
    end subroutine diag_start
 
    !> The outward velocities of the two end faces from their halves' increments [m/s].
@@ -341,7 +346,7 @@ contains
       call push(d%open, d%n_open, e)
    end subroutine begin
 
-   !> Episode k ends at t: its sides' velocities after, it moves to the done list.
+   !> Episode k ends at t: its sides' velocities after, it moves to the ended ones.
    pure subroutine finish(d, mesh, st, k, t)
       type(diag_t), intent(inout) :: d     !! the record
       type(mesh_t), intent(in) :: mesh     !! the mesh
@@ -352,10 +357,27 @@ contains
       e = d%open(k)
       e%t_end = t
       e%v(3:4) = side_velocities(mesh, st, e%kind, e%node)
-      call push(d%done, d%n_done, e)
+      call ended(d, e)
       d%open(k:d%n_open - 1) = d%open(k + 1:d%n_open)
       d%n_open = d%n_open - 1
    end subroutine finish
+
+   !> An episode ended (or open at the end of the run): counted, kept among the first ones
+   !> while there are fewer than first_impacts, and among those the caller takes next.
+   pure subroutine ended(d, e)
+      type(diag_t), intent(inout) :: d     !! the record
+      type(impact_t), intent(in) :: e      !! the episode
+      d%n_done = d%n_done + 1
+      if (d%n_done <= first_impacts) d%first(d%n_done) = e
+      call push(d%ended, d%n_ended, e)
+   end subroutine ended
+
+   !> The caller has taken the ended episodes (written them to PREFIX.imp, or has no
+   !> files): they are dropped, so that memory holds only the episodes open at once.
+   pure subroutine diag_taken(d)
+      type(diag_t), intent(inout) :: d     !! the record
+      d%n_ended = 0
+   end subroutine diag_taken
 
    !> Append an episode to a list (grown by doubling).
    pure subroutine push(list, n, e)
@@ -373,13 +395,13 @@ contains
       list(n) = e
    end subroutine push
 
-   !> The end of the run: the episodes still open go to the done list with no end (their
-   !> t_end, duration and velocities after empty), in the order they began.
+   !> The end of the run: the episodes still open end with no end (their t_end, duration
+   !> and velocities after empty), in the order they began.
    pure subroutine diag_close(d)
       type(diag_t), intent(inout) :: d     !! the record
       integer :: k
       do k = 1, d%n_open
-         call push(d%done, d%n_done, d%open(k))
+         call ended(d, d%open(k))
       end do
       d%n_open = 0
    end subroutine diag_close
@@ -468,8 +490,8 @@ contains
       character(len=:), allocatable :: why
       integer :: side, k
       why = ''
-      if (d%n_open < 0) then
-         why = 'is damaged: its count of open contact episodes is out of range'
+      if (d%n_open < 0 .or. d%n_done < 0) then
+         why = 'is damaged: its count of open or ended contact episodes is out of range'
          return
       end if
       do side = face_top, face_bottom
@@ -485,11 +507,11 @@ contains
             end if
          end associate
       end do
-      do k = 1, d%n_open + d%n_done
+      do k = 1, d%n_open + min(d%n_done, first_impacts)
          if (k <= d%n_open) then
             if (bad(d%open(k))) why = 'is damaged: an open contact episode is out of range'
          else
-            if (bad(d%done(k - d%n_open))) why = 'is damaged: a contact episode is out of range'
+            if (bad(d%first(k - d%n_open))) why = 'is damaged: a contact episode is out of range'
          end if
          if (len(why) > 0) return
       end do
@@ -513,14 +535,16 @@ contains
    end function whole
 
    !> The one list of what a checkpoint keeps of the record (attributes of group, the
-   !> episodes one array), written or read back (io%writing); all of it added later: a
-   !> checkpoint of a version without it restarts with the record as at t = 0 (diag_start).
+   !> episodes one array: those open, then the first ended ones the run summary lists; the
+   !> others are in PREFIX.imp up to the checkpoint's mark), written or read back
+   !> (io%writing); all of it added later: a checkpoint of a version without it restarts
+   !> with the record as at t = 0 (diag_start).
    subroutine diag_fields(d, io, group)
       type(diag_t), intent(inout) :: d     !! the record
       class(field_io_t), intent(inout) :: io   !! the checkpoint file
       character(len=*), intent(in) :: group    !! its group ('/run')
       integer, parameter :: nf = 13        ! values per episode
-      integer :: side, k, n_open
+      integer :: side, k, n_open, n_first
       real(wp) :: r
       real(wp), allocatable :: a(:)
       character(len=:), allocatable :: p
@@ -551,33 +575,36 @@ contains
          end associate
       end do
       call io%later(group, 'spl_scale', d%scale)
+      r = real(d%n_done, wp)
+      call io%later(group, 'imp_ended', r)
+      d%n_done = whole(r)
       ! the episodes, open ones first: n_open, then nf values each
+      n_first = min(max(d%n_done, 0), first_impacts)
       if (io%writing) then
-         allocate(a(1 + nf * (d%n_open + d%n_done)))
+         allocate(a(1 + nf * (d%n_open + n_first)))
          a(1) = real(d%n_open, wp)
          do k = 1, d%n_open
             a(2 + nf * (k - 1):1 + nf * k) = packed(d%open(k))
          end do
-         do k = 1, d%n_done
-            a(2 + nf * (d%n_open + k - 1):1 + nf * (d%n_open + k)) = packed(d%done(k))
+         do k = 1, n_first
+            a(2 + nf * (d%n_open + k - 1):1 + nf * (d%n_open + k)) = packed(d%first(k))
          end do
       end if
       call io%later_reals('impacts', a)
       if (io%writing .or. .not. allocated(a)) return
       if (size(a) < 1) return
       d%n_open = 0
-      d%n_done = 0
+      d%n_ended = 0
       n_open = whole(a(1))
-      if (n_open < 0 .or. n_open > (size(a) - 1) / nf) then
+      if (n_open < 0 .or. n_open + n_first /= (size(a) - 1) / nf) then
          d%n_open = -1                     ! damaged: diag_problem says so
          return
       end if
-      do k = 1, (size(a) - 1) / nf
-         if (k <= n_open) then
-            call push(d%open, d%n_open, unpacked(a(2 + nf * (k - 1):1 + nf * k)))
-         else
-            call push(d%done, d%n_done, unpacked(a(2 + nf * (k - 1):1 + nf * k)))
-         end if
+      do k = 1, n_open
+         call push(d%open, d%n_open, unpacked(a(2 + nf * (k - 1):1 + nf * k)))
+      end do
+      do k = 1, n_first
+         d%first(k) = unpacked(a(2 + nf * (n_open + k - 1):1 + nf * (n_open + k)))
       end do
    contains
       !> An episode as nf reals.

@@ -35,11 +35,12 @@ module spb_sim
       bar_units, &
       write_events, write_fragments, write_field, flush_outputs, output_marks_t, mark_outputs, &
       claim_outputs, check_written, write_gauge_row, publish_outputs, where_outputs, &
-      write_diag_text, write_diag_h5
+      write_diag_text, write_diag_h5, write_impacts
    use spb_restart, only: resume_outputs, drop_set_aside
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_estimate, only: progress_period
-   use spb_diagnostics, only: diag_start, diag_step, diag_end_samples, diag_close
+   use spb_diagnostics, only: diag_t, diag_start, diag_step, diag_end_samples, diag_close, &
+      diag_taken
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index
    implicit none
@@ -328,7 +329,7 @@ contains
                          mesh%z(mesh%n), mesh%dt, st%gen%frag_id(top), events)
    end subroutine striker_events
 
-   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg (with files = .false.: no files,
+   !> Run to t_end writing PREFIX.his, .prf, .evt, .frg, .imp (with files = .false.: no files,
    !> only the summary, as a sweep's cases do). With resume: go on from a checkpoint, the
    !> outputs continuing those of the run that wrote it (bit-identical to one run).
    !> With &run checkpoint: write it every checkpoint_every steps, at t_end and when a
@@ -389,18 +390,21 @@ contains
       call system_clock(c_now)
       if (progress) write(error_unit, '(a)') ''
       ! the episodes still open at the end of a complete run (doc/outputs.md, PREFIX.imp)
-      if (.not. allocated(err) .and. sim%st%step == sim%mesh%nsteps) call diag_close(summary%diag)
+      if (.not. allocated(err) .and. sim%st%step == sim%mesh%nsteps) then
+         call diag_close(summary%diag)
+         call take_impacts(run, summary%diag)
+      end if
       if (run%to_files) then
          block
             type(spb_error_t), allocatable :: err_close
-            if (.not. allocated(err)) call write_diag_h5(run%out, sim%mesh, summary%diag)
+            if (.not. allocated(err)) call write_diag_h5(run%out, summary%diag)
             call close_outputs(run%out, err_close)
             if (allocated(err_close) .and. .not. allocated(err)) call move_alloc(err_close, err)
             ! the outputs of a complete run replace the previous ones; a run that failed
             ! leaves them as they were and says where its own are (doc/outputs.md)
             if (.not. allocated(err)) call publish_outputs(run%out, err)
             if (allocated(err)) err%message = err%message // where_outputs(run%out)
-            ! PREFIX.spl and .imp: written once the others are published
+            ! PREFIX.spl: written once the others are published
             if (.not. allocated(err)) call write_diag_text(prefix, sim%record, sim%mesh, &
                                                            sim%report, summary%diag, err)
          end block
@@ -525,6 +529,7 @@ contains
       call sim_step(sim, run%events)
       call summary_reaction(summary, sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       call diag_step(summary%diag, sim%mesh, sim%st, run%events)
+      call take_impacts(run, summary%diag)
       if (run%events%n == 0) return
       ! the events' section forces as stresses over their sections (spb_mesh)
       do j = 1, run%events%n
@@ -536,6 +541,16 @@ contains
       if (run%to_files) call write_events(run%out, run%events)
       call summary_events(summary, run%events)
    end subroutine take_steps
+
+   !> The contact episodes that ended: their rows written (PREFIX.imp, /impacts), then gone
+   !> from memory (a run without files drops them).
+   subroutine take_impacts(run, d)
+      type(run_t), intent(inout) :: run    !! the run's context (outputs)
+      type(diag_t), intent(inout) :: d     !! the experiment diagnostics
+      if (d%n_ended == 0) return
+      if (run%to_files) call write_impacts(run%out, d%ended(1:d%n_ended))
+      call diag_taken(d)
+   end subroutine take_impacts
 
    !> What is due after step n: the row or the check between rows, profiles, the field row,
    !> a checkpoint, the end on a stop signal, the progress line. stop_now: the run ends here.
