@@ -14,6 +14,12 @@ the corrections move" and "The 'face' correction").
    * l_defect (the cells' length no stress explains): at round-off for the rigid shifts, at
      least linear for 'face' (its face moves leave the correction in the two cells at the
      node).
+3. Chatter (item 2 of the issue). Its deck (two one-cell pieces over a fixed bottom) under
+   the default timing 'accelerate' runs 1e6 steps (t_end = 10 s) with a bounded event count,
+   no event after the first 3 ms, x_drift and e_lost_w constant after them and the wave
+   ledger at round-off (1e-9 of the scale); under 'delay' the pair joins and parts on
+   alternate steps and the position guard stops it: exit 3, its message, the outputs up to
+   there readable (doc/method.md, "Chatter").
 2. Causality (item 3 of the issue). A bar at 2 m/s closes a dry gap onto a bar whose bottom
    transmits; its twin has the lower bar 0.4 m long with a free bottom. Until a reflection
    could return from the twin's far end the two are the same problem. Under 'face' (every
@@ -31,7 +37,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "bench"))
 
-from clitools import Checks, run_deck       # noqa: E402
+from clitools import Checks, run, run_deck       # noqa: E402
 from consistency import THETAS, LEVELS, drop_deck, pair_deck, last_row   # noqa: E402
 
 ROUND_OFF_E = 1e-11        # e_lost_w [J/m^2] of an event that removes nothing (scale ~ 1e3)
@@ -120,6 +126,59 @@ def check_twin(check, exe, work):
                   f"far side's mass is gone ({worst:.3g}): update doc/method.md")
 
 
+CHATTER = """&run t_end = {t_end}, timing = '{timing}', shift = 'above', warnings = .false.,
+  history_every = {every} /
+&mesh dt = 1e-5 /
+&segments n = 2, length = 0.03, 0.02, young = 4.9e9, 1.225e9, density = 4900, 1225,
+  strength = 0, 0 /
+&ends top = 'free', bottom = 'fixed' /
+&load kind = 'power', face = 'top', p0 = 3.2e6, t_k = 9e-5, exponent = 1, t_cut = 4e-5 /
+"""
+
+
+def his_rows(path):
+    """PREFIX.his by column name (lists of floats)."""
+    names, rows = None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith(" ") and line.strip():
+                rows.append([float(x) for x in line.split()])
+            elif names is None and line.split() and line.split()[0] == "t":
+                names = line.split()
+    return {k: [r[j] for r in rows] for j, k in enumerate(names)}
+
+
+def event_times(path):
+    with open(path) as f:
+        return [float(l.split()[0]) for l in f if l.startswith(" ") and l.strip()]
+
+
+def check_chatter(check, exe, work):
+    if not run_deck(check, exe, work, "chatter_accelerate",
+                    CHATTER.format(t_end=10.0, timing="accelerate", every=100000)):
+        return
+    h = his_rows(os.path.join(work, "chatter_accelerate.his"))
+    times = event_times(os.path.join(work, "chatter_accelerate.evt"))
+    scale = max(abs(x) for x in h["e_wave"])
+    drift = max(abs(x - h["ledger_w"][0]) for x in h["ledger_w"]) / scale
+    print(f"chatter, accelerate: {len(times)} events, the last at {max(times):.3g} s; ledger_w "
+          f"drift {drift:.2g} of the scale; x_drift {h['x_drift'][1]:.3g} .. "
+          f"{h['x_drift'][-1]:.3g} m")
+    check(len(times) < 100 and max(times) < 3e-3, f"chatter, accelerate: {len(times)} events, "
+          f"the last at {max(times)} s")
+    check(drift <= 1e-9, f"chatter, accelerate: ledger_w drift {drift:.3g} of the scale")
+    check(h["x_drift"][-1] == h["x_drift"][1] and h["e_lost_w"][-1] == h["e_lost_w"][1],
+          "chatter, accelerate: x_drift and e_lost_w move after the first row past the events")
+    with open(os.path.join(work, "chatter_delay.nml"), "w") as f:
+        f.write(CHATTER.format(t_end=0.2, timing="delay", every=100))
+    r = run(exe, ["chatter_delay.nml", "--quiet"], work)
+    print(f"chatter, delay: exit {r.returncode}: {r.stderr.strip()[:160]}")
+    check(r.returncode == 3 and "the event corrections have moved positions" in r.stderr,
+          f"chatter, delay: exit {r.returncode} {r.stderr.strip()!r}")
+    check(os.path.exists(os.path.join(work, "chatter_delay.his.part")),
+          "chatter, delay: the outputs up to the stop are kept")
+
+
 def main(argv):
     if len(argv) != 2:
         print(__doc__)
@@ -129,6 +188,7 @@ def main(argv):
     check = Checks()
     check_orders(check, exe, work)
     check_twin(check, exe, work)
+    check_chatter(check, exe, work)
     return check.finish()
 
 

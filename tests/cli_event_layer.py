@@ -222,7 +222,10 @@ def part_decks(check, exe, work):
     for rule in RULES:
         for policy in POLICIES:
             decks[f"gal0_{rule}_{policy}"] = gal0(rule, policy)
-            decks[f"case2_{rule}_{policy}"] = CASE2.format(timing=rule, shift=policy, cells=95)
+            # delay/face chatters into metres of length defect and the position guard stops
+            # it (exit 3; doc/method.md, "Chatter"; tests/cli_consistency.py checks the stop)
+            if (rule, policy) != ("delay", "face"):
+                decks[f"case2_{rule}_{policy}"] = CASE2.format(timing=rule, shift=policy, cells=95)
     for cells in (4, 5):
         for top in ("free", "fixed"):
             decks[f"gravity_bottom_load_{top}_{cells}"] = (
