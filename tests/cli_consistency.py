@@ -14,12 +14,14 @@ the corrections move" and "The 'face' correction").
    * l_defect (the cells' length no stress explains): at round-off for the rigid shifts, at
      least linear for 'face' (its face moves leave the correction in the two cells at the
      node).
-3. Chatter (item 2 of the issue). Its deck (two one-cell pieces over a fixed bottom) under
-   the default timing 'accelerate' runs 1e6 steps (t_end = 10 s) with a bounded event count,
-   no event after the first 3 ms, x_drift and e_lost_w constant after them and the wave
-   ledger at round-off (1e-9 of the scale); under 'delay' the pair joins and parts on
-   alternate steps; under 'face' the guard on the cells' length defect stops it: exit 3, its
-   message, the outputs up to there readable (doc/method.md, "Chatter").
+3. Chatter (item 2 of the issue). Its deck (one-cell pieces over a fixed bottom) runs 1e6
+   steps (t_end = 10 s) under the issue's own rules (delay/above), delay/face and the default
+   accelerate/above: a bounded event count, no event after the first 3 ms, x_drift, e_lost_w
+   and l_defect constant after them, jordan at round-off, and the wave ledger's drift at
+   round-off (1e-9 of the scale) under accelerate, below 1e-6 under delay, where a free
+   one-cell piece's Jordan block amplifies its steps' rounding (doc/method.md, "Chatter").
+   Before the tensile late join was taken at t^n, 'delay' joined and parted on alternate
+   steps for ever.
 2. Causality (item 3 of the issue). A bar at 2 m/s closes a dry gap onto a bar whose bottom
    transmits; its twin has the lower bar 0.4 m long with a free bottom. Until a reflection
    could return from the twin's far end the two are the same problem. Under 'face' (every
@@ -154,29 +156,34 @@ def event_times(path):
 
 
 def check_chatter(check, exe, work):
-    if not run_deck(check, exe, work, "chatter_accelerate",
-                    CHATTER.format(t_end=10.0, timing="accelerate", shift="above", every=100000)):
-        return
-    h = his_rows(os.path.join(work, "chatter_accelerate.his"))
-    times = event_times(os.path.join(work, "chatter_accelerate.evt"))
-    scale = max(abs(x) for x in h["e_wave"])
-    drift = max(abs(x - h["ledger_w"][0]) for x in h["ledger_w"]) / scale
-    print(f"chatter, accelerate: {len(times)} events, the last at {max(times):.3g} s; ledger_w "
-          f"drift {drift:.2g} of the scale; x_drift {h['x_drift'][1]:.3g} .. "
-          f"{h['x_drift'][-1]:.3g} m")
-    check(len(times) < 100 and max(times) < 3e-3, f"chatter, accelerate: {len(times)} events, "
-          f"the last at {max(times)} s")
-    check(drift <= 1e-9, f"chatter, accelerate: ledger_w drift {drift:.3g} of the scale")
-    check(h["x_drift"][-1] == h["x_drift"][1] and h["e_lost_w"][-1] == h["e_lost_w"][1],
-          "chatter, accelerate: x_drift and e_lost_w move after the first row past the events")
-    with open(os.path.join(work, "chatter_delay.nml"), "w") as f:
-        f.write(CHATTER.format(t_end=0.2, timing="delay", shift="face", every=100))
-    r = run(exe, ["chatter_delay.nml", "--quiet"], work)
-    print(f"chatter, delay: exit {r.returncode}: {r.stderr.strip()[:160]}")
-    check(r.returncode == 3 and "the event corrections have left" in r.stderr,
-          f"chatter, delay: exit {r.returncode} {r.stderr.strip()!r}")
-    check(os.path.exists(os.path.join(work, "chatter_delay.his.part")),
-          "chatter, delay: the outputs up to the stop are kept")
+    # the issue's deck under its own rules (delay/above), the default timing and 'face'
+    for timing, shift, limit in (("accelerate", "above", 1e-9), ("delay", "above", 1e-6),
+                                 ("delay", "face", 1e-6)):
+        name = f"chatter_{timing}_{shift}"
+        if not run_deck(check, exe, work, name,
+                        CHATTER.format(t_end=10.0, timing=timing, shift=shift, every=100000)):
+            continue
+        h = his_rows(os.path.join(work, name + ".his"))
+        times = event_times(os.path.join(work, name + ".evt"))
+        scale = max(abs(x) for x in h["e_wave"])
+        drift = max(abs(x - h["ledger_w"][0]) for x in h["ledger_w"]) / scale
+        print(f"chatter, {timing}/{shift}: {len(times)} events, the last at {max(times):.3g} s; "
+              f"ledger_w drift {drift:.2g} of the scale; jordan {max(h['jordan']):.2g}; x_drift "
+              f"{h['x_drift'][1]:.3g} .. {h['x_drift'][-1]:.3g} m; l_defect {h['l_defect'][-1]:.3g} m")
+        check(len(times) < 100 and max(times) < 3e-3, f"chatter, {timing}/{shift}: {len(times)} "
+              f"events, the last at {max(times)} s")
+        # accelerate's pieces keep exactly representable stresses; under delay a free one-cell
+        # piece rings at 1.02 MPa with a full mantissa, and the rounding of its steps feeds its
+        # zig-zag Jordan block (doc/method.md, "Chatter"): measured 1.2e-7 over the 1e6 steps
+        check(drift <= limit, f"chatter, {timing}/{shift}: ledger_w drift {drift:.3g} of the scale")
+        check(max(h["jordan"]) <= 1e-12, f"chatter, {timing}/{shift}: jordan {max(h['jordan']):.3g}")
+        for col in ("x_drift", "e_lost_w"):
+            check(h[col][-1] == h[col][1], f"chatter, {timing}/{shift}: {col} moves after the "
+                  "first row past the events")
+        # l_defect is read from positions and stresses: constant to their round-off
+        moved = max(abs(x - h["l_defect"][1]) for x in h["l_defect"][1:])
+        check(moved <= 1e-12, f"chatter, {timing}/{shift}: l_defect moves by {moved:.3g} m "
+              "after the first row past the events")
 
 
 def main(argv):

@@ -14,7 +14,8 @@ module spb_rules_admissible
    use spb_events, only: event_list_t
    use spb_fragments, only: node_energy, fragment_span, span_mass, anchored, choose_time, &
       shift_part, extend_up, extend_down, book_shift_work, keep_credit, cohesive_open, &
-      gap_at_n, start_collision, join_node, open_section, record_break, move_faces
+      gap_at_n, start_collision, join_node, open_section, record_break, move_faces, &
+      join_stress
    use spb_wave, only: fragment_characteristics, region_wave, credit_position
    use spb_problem, only: shift_above, shift_face
    implicit none
@@ -114,6 +115,7 @@ contains
       d_acc = gap_at_n(st, i, tol)
       d_del = st%ua(i) - st%ub(i)
       call choose_time(timing, d_acc, d_del, at_n, corr)
+      call hold_late_join(mesh, st, i, d_acc, at_n, corr)
       call plan_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, top, bot, x, y, &
                            i_top, i_bot)
    end function joins_at_n
@@ -133,10 +135,34 @@ contains
       real(wp) :: du0(2), d_acc, d_del, corr, shift_amount
       logical :: at_n
       call start_collision(mesh, st, g, timing, i, tol, du0, d_acc, d_del, at_n, corr)
+      call hold_late_join(mesh, st, i, d_acc, at_n, corr)
       call shift_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, shift_amount, &
                             i_top, i_bot)
       call join_node(mesh, st, g, i, at_n, corr, shift_amount, du0, events)
    end subroutine collide
+
+   !> A join at t^{n+1} is a contact only if its collision stress (5.6) there compresses: a
+   !> tensile one would part the faces in the next step, whose break redoes that step from
+   !> the continuum state at t^n and so undoes the join's exchange of momentum (the 'delay'
+   !> chatter, doc/method.md "Chatter"). Such a collision is joined at t^n, as accelerate
+   !> would: the contact began within the step just taken.
+   pure subroutine hold_late_join(mesh, st, i, d_acc, at_n, corr)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state (trial step taken)
+      integer, intent(in) :: i             !! split node
+      real(wp), intent(in) :: d_acc        !! correction (5.2) for a join at t^n [m]
+      logical, intent(inout) :: at_n       !! join at t^n (else t^{n+1})
+      real(wp), intent(inout) :: corr      !! the correction of the chosen time [m]
+      real(wp), parameter :: unused(2) = 0.0_wp
+      real(wp) :: scale
+      if (at_n) return
+      ! tensile beyond round-off (a frame change or a mirror must not flip the choice)
+      scale = abs(st%s(i)) + abs(st%s(i + 1)) + &
+              mesh%z(i + 1) * (abs(st%dua(i)) + abs(st%dub(i))) / mesh%dt
+      if (.not. join_stress(mesh, st, i, .false., unused) < -1.0e-9_wp * scale) return
+      at_n = .true.
+      corr = d_acc
+   end subroutine hold_late_join
 
    !> The admissible correction of a collision at split node i: both sides move rigidly so
    !> that their faces meet and their common centre of mass stays (upper by -d M_l/(M_u + M_l),
