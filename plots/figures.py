@@ -474,7 +474,7 @@ def _fig13_ensembles(axes, ens, ref_t, ref_i):
                 ax.axvline(h, color=color, ls=":", lw=1.2)
         drawn = drawn or bool(np.any(rows["I"][0] != 0.0) or np.any(rows["e"][0] != 0.0))
         k = len(e.t) - 1
-        at_end.append((cells, h, *(float(v[k]) if k >= 0 else float("nan")
+        at_end.append((cells, h, *(float(v[k]) + 0.0 if k >= 0 else float("nan")
                                    for v in (rows["I"][0], rows["I"][1], rows["e"][0],
                                              rows["e"][1]))))
     axes[0].set_ylabel("base impulse I = -i_support\n[kg/(m s)]", fontsize=8)
@@ -496,17 +496,17 @@ def _fig13_rules(axes, rules, ref, ref_t, ref_i, t_end):
     agree in every row drawn once), the min..max band over the runs that reach t_end, the
     reference ensemble's mean +- std and horizon; a run the position guard stopped up to
     its stop (a cross)."""
-    groups = []                     # [[labels], run, timing, shift]
+    groups = []                     # [[(timing, shift), ...], run, timing, shift]
     for timing, shift, run in rules:
         h = run.history
         for g in groups:
             o = g[1].history
             if len(o["t"]) == len(h["t"]) and all(np.array_equal(o[c], h[c]) for c in
                                                   ("t", "i_support", "e_lost_w")):
-                g[0].append(timing)
+                g[0].append((timing, shift))
                 break
         else:
-            groups.append([[timing], run, timing, shift])
+            groups.append([[(timing, shift)], run, timing, shift])
     full = [g for g in groups if len(g[1].history["t"]) and
             g[1].history["t"][-1] >= t_end * (1 - 1e-9)]
     band, stopped, drawn = {}, [], False
@@ -514,7 +514,7 @@ def _fig13_rules(axes, rules, ref, ref_t, ref_i, t_end):
         h = run.history
         t, i_base, e_lost = h["t"], -h["i_support"], h["e_lost_w"]
         shift_i = np.interp(t, ref_t, ref_i) if len(ref_t) else np.zeros(len(t))
-        name = f"{', '.join(labels)} / {shift}" + (" (identical)" if len(labels) > 1 else "")
+        name = _fig13_rule_names(labels) + (" (identical)" if len(labels) > 1 else "")
         style = dict(color=FIG13_SHIFT_COLORS[shift], lw=0.8,
                      ls=FIG13_TIMING_STYLES[timing] if len(labels) == 1 else "-")
         ends = len(t) and t[-1] < t_end * (1 - 1e-9)
@@ -551,8 +551,16 @@ def _fig13_rules(axes, rules, ref, ref_t, ref_i, t_end):
     axes[0].legend(fontsize=6.5, loc="lower right", framealpha=0.9,
                    title="timing / shift (lines: - accelerate, -- delay, : min)",
                    title_fontsize=6.5)
-    k = {key: (float(lo[-1]), float(hi[-1])) for key, (lo, hi) in band.items()}
-    return dict(band=k, stopped=stopped, drawn=drawn, distinct=len(groups))
+    k = {key: (float(lo[-1]) + 0.0, float(hi[-1]) + 0.0) for key, (lo, hi) in band.items()}
+    merged = [_fig13_rule_names(g[0]) for g in groups if len(g[0]) > 1]
+    return dict(band=k, stopped=stopped, drawn=drawn, distinct=len(groups), merged=merged)
+
+
+def _fig13_rule_names(pairs):
+    """'accelerate, delay / above' for rules of one shift, else 'accelerate/above, ...'."""
+    if len({s for _, s in pairs}) == 1:
+        return f"{', '.join(t for t, _ in pairs)} / {pairs[0][1]}"
+    return ", ".join(f"{t}/{s}" for t, s in pairs)
 
 
 def _fig13_caption(ens, left, right, realizations):
@@ -563,10 +571,12 @@ def _fig13_caption(ens, left, right, realizations):
     band = right["band"]
     i_lo, i_hi = band.get("I", (np.nan, np.nan))
     e_lo, e_hi = band.get("e", (np.nan, np.nan))
-    stopped = "; ".join(f"{tm}/{sh} is stopped by the position guard at {t:.3f} s (exit 3) "
-                        "and drawn up to there (a cross)" for tm, sh, t in right["stopped"])
-    i_all = [v for _, _, v, _, _, _ in left["at_end"]] + [i_lo, i_hi]
-    spread = (max(i_all) - min(i_all)) / np.mean(i_all) * 100
+    notes = [f"{m}: identical in every row, one line" for m in right["merged"]]
+    notes += [f"{tm}/{sh} is stopped by the position guard at {t:.3f} s (exit 3) and drawn "
+              "up to there (a cross)" for tm, sh, t in right["stopped"]]
+    i_all = np.array([v for _, _, v, _, _, _ in left["at_end"]] + [i_lo, i_hi])
+    i_mean = float(np.mean(i_all))
+    spread = (i_all.max() - i_all.min()) / i_mean * 100 if i_mean else np.nan
     i_std = max((si / i * 100 for _, _, i, si, _, _ in left["at_end"] if i), default=np.nan)
     return (
         f"(a) {realizations} realizations per mesh, p0 x (1 + {FIG13_SPREAD:g} u), u uniform "
@@ -576,8 +586,8 @@ def _fig13_caption(ens, left, right, realizations):
         "the realizations of the base reaction's window mean exceeds 1 % of its largest "
         "window mean (&sweep horizon_tol).  "
         f"(b) accelerate, delay, min x above, fragment, face, unperturbed, h/"
-        f"{FIG13_RULE_CELLS}; {right['distinct']} distinct runs (under 'above' the timing "
-        f"rule does not matter: one line); grey band min .. max over them. {stopped}.\n"
+        f"{FIG13_RULE_CELLS}: {right['distinct']} distinct runs, grey band min .. max over "
+        "them" + "".join(f"; {n}" for n in notes) + ".\n"
         f"At t_end: {per_mesh} (I in kg/(m s), e_lost_w in J/m²). Across the rules at h/"
         f"{FIG13_RULE_CELLS}: I {i_lo:.0f} .. {i_hi:.0f}, e_lost_w {e_lo:.1f} .. "
         f"{e_hi:.1f}.\n"
