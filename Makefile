@@ -79,7 +79,7 @@ test-translator:
 
 figures: build
 	cmake --build $(BUILD_RELEASE) --target figures
-	@echo "figures: $(BUILD_RELEASE)/figures/fig{07c,08b,10,11,12}.png"
+	@echo "figures: $(BUILD_RELEASE)/figures/fig{07c,08b,10,11,12,13}.png"
 
 PYTHON ?= $(shell test -x .venv/bin/python && echo .venv/bin/python || echo python3)
 bench: build

@@ -6,9 +6,11 @@ The scripts are found by listing plots/: every *.py with a `__main__` block is a
 without one fails this test. For each script:
 
   * on an output with nothing for it to draw (no profiles, no fragment blocks, a bar that
-    never breaks, no gauges, no x-t field and no events, a zero base reaction, no fracture in
-    a fragmentation window, an ensemble without rows in the time window), read from PREFIX.h5 and from the text files alone: exit status
-    0, the line 'SCRIPT: warning: nothing to draw: ...' on stderr, and the PNG written;
+    never breaks, no gauges, no x-t field and no events, a zero base reaction, no base impulse
+    and no event loss in case 2's ensembles and rules (figures.py fig13), no fracture in a
+    fragmentation window, an ensemble without rows in the time window), read from PREFIX.h5
+    and from the text files alone: exit status 0, the line 'SCRIPT: warning: nothing to
+    draw: ...' on stderr, and the PNG written;
   * on an output that has it: exit status 0, no warning on stderr, a PNG written.
 
 usage: plots_nothing_to_draw.py SPALLBAR INPUT_DIR PLOTS_DIR WORKDIR   (a Python with numpy,
@@ -66,6 +68,9 @@ HANGING = """&run
   state = 'static'
 /
 """
+# figures.py --only fig13 reads input/example3_case2/accelerate_above_h19.nml (its ensembles
+# perturb p0): here the bar of EMPTY under a pressure, with no base and no event
+NO_BASE = EMPTY.format(extra="") + "&load\n  kind = 'power'\n  p0 = 1.0e6\n/\n"
 
 
 def plot_scripts(plots):
@@ -104,6 +109,9 @@ def main():
     for rule in ("accelerate", "delay", "fixed"):
         with open(os.path.join(hanging, f"example3_case1_{rule}.nml"), "w") as f:
             f.write(HANGING)
+    os.makedirs(os.path.join(hanging, "example3_case2"))
+    with open(os.path.join(hanging, "example3_case2", "accelerate_above_h19.nml"), "w") as f:
+        f.write(NO_BASE)
     # outputs with something to draw: Example 2 for 1.2 ms (spall, collisions; x-t rows
     # every 4 steps, two gauges) and Example 3 case 1 for 0.1 s (base reaction)
     deck = open(os.path.join(indir, "example2.nml")).read()
@@ -115,9 +123,8 @@ def main():
     deck = re.sub(r"profile_times\s*=.*", "profile_times = 0.05", deck)
     ex3 = spallbar("ex3", deck.replace("t_end         = 1.0", "t_end         = 0.1"))
     # an ensemble (plots/ensemble.py): 3 realizations of the bar of EMPTY under a pressure
-    ens_deck = EMPTY.format(extra="") + ("&load\n  kind = 'power'\n  p0 = 1.0e6\n/\n"
-                                         "&sweep\n  perturb = 'p0'\n  realizations = 3\n"
-                                         "  ensemble_columns = 'e_kin'\n/\n")
+    ens_deck = NO_BASE + ("&sweep\n  perturb = 'p0'\n  realizations = 3\n"
+                          "  ensemble_columns = 'e_kin'\n/\n")
     with open(os.path.join(work, "ens.nml"), "w") as f:
         f.write(ens_deck)
     r = run(exe, ["--sweep", "ens.nml", "-q"], work)
@@ -147,12 +154,19 @@ def main():
         "ensemble": ([("no row in the window", [ens, "--t-min", "1"], "e0")], ([ens], "e1")),
         # no gauge on an end (and, from the text files alone, no .spl either)
         "spall": ([("h5", [empty], "sp0"), ("text", [empty_text], "sp1")], ([spall], "sp2")),
-        # the paper's Fig. 10 from decks whose bar never touches a base
+        # the paper's Fig. 10 from decks whose bar never touches a base; Fig. 13 (case 2's
+        # ensembles and rule band, 2 realizations per mesh) from a free bar: no base impulse,
+        # no event loss; then both from input/
         "figures": ([("no base reaction", ["--exe", exe, "--input", hanging, "--out",
                                            os.path.join(work, "fig_none"), "--only", "fig10"],
-                      os.path.join("fig_none", "fig10"))],
+                      os.path.join("fig_none", "fig10")),
+                     ("no base impulse, no event loss",
+                      ["--exe", exe, "--input", hanging, "--out", os.path.join(work, "fig13_none"),
+                       "--only", "fig13", "--realizations", "2"],
+                      os.path.join("fig13_none", "fig13"))],
                     (["--exe", exe, "--input", indir, "--out", os.path.join(work, "fig_some"),
-                      "--only", "fig10"], os.path.join("fig_some", "fig10"))),
+                      "--only", "fig10", "fig13", "--realizations", "2"],
+                     (os.path.join("fig_some", "fig10"), os.path.join("fig_some", "fig13")))),
         # 1e6 1/s: the study's run is one step long, too short for any fracture
         "fragmentation_study": (
             [("no fracture", ["--exe", exe, "--rates", "1e6", "--realizations", "1", "--out",
@@ -202,7 +216,8 @@ def main():
         name = f"{s}.py, {what}"
         line = f"{s}.py: warning: nothing to draw: "
         check(r.returncode == 0, f"{name}: exit {r.returncode} {r.stderr.strip()[-600:]}")
-        check(png_ok(out(png)), f"{name}: no PNG {out(png)}")
+        for one in (png if isinstance(png, tuple) else (png,)):
+            check(png_ok(out(one)), f"{name}: no PNG {out(one)}")
         if warns:
             check(any(ln.startswith(line) for ln in r.stderr.splitlines()),
                   f"{name}: no '{line}...' line on stderr: {r.stderr.strip()[-600:]!r}")
