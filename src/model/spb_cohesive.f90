@@ -256,7 +256,7 @@ contains
       real(wp), intent(in) :: hi        !! largest [Pa]
       real(wp), intent(out) :: p        !! the force of the root taken [Pa]
       logical, intent(out) :: found     !! a root was found
-      real(wp) :: corner(4), p0, p1, alpha, beta, y0, l0, kk, qa, qb, qc, disc, x, best, dm, tm
+      real(wp) :: corner(4), p0, p1, alpha, beta, y0, e, kk, qa, qb, q, disc, x, best, dm, tm
       real(wp) :: roots(2), span
       integer :: k, m, nr
       found = .false.
@@ -294,23 +294,32 @@ contains
             nr = 1
             roots(1) = x
          else
+            ! in the step's opening increment v = x - a: L(x) = e + v (alpha + beta (a + x)/2),
+            ! e = L(y0) less the piece's line integrated from a to y0 (0 where a is on the
+            ! piece's closure), so the equation is qa v^2 + qb v - e = 0. The factor v is kept
+            ! apart: written in x, the root v = 0 that it has where a is on a corner came out
+            ! of the cancellation of terms of size K a at round-off of them, on the piece's
+            ! side of a corner a lies an ulp below, and was taken as the nearest root (a
+            ! frame-dependent choice: doc/method.md, "Cohesive cracks")
             y0 = merge(p0, p1, a < p0)
-            l0 = law_integral(a, y0, dmax, r, dc)
+            e = law_integral(a, y0, dmax, r, dc) - (y0 - a) * (alpha + 0.5_wp * beta * (a + y0))
             qa = -2.0_wp / c - 0.5_wp * beta
-            qb = kk + 2.0_wp * a / c - alpha
-            qc = -kk * a - l0 + alpha * y0 + 0.5_wp * beta * y0**2
+            qb = kk - 2.0_wp * a / c - alpha - beta * a
             if (abs(qa) * span <= 1.0e-14_wp * abs(qb)) then
                if (abs(qb) > 0.0_wp) then
                   nr = 1
-                  roots(1) = -qc / qb
+                  roots(1) = a + e / qb
                end if
             else
-               disc = qb**2 - 4.0_wp * qa * qc
+               disc = qb**2 + 4.0_wp * qa * e
                if (disc >= 0.0_wp) then
-                  nr = 2
-                  roots(1) = -0.5_wp * (qb + sign(sqrt(disc), qb)) / qa
-                  roots(2) = qc / (qa * roots(1))
-                  if (.not. abs(roots(1)) > 0.0_wp) nr = 1
+                  q = -0.5_wp * (qb + sign(sqrt(disc), qb))
+                  nr = 1
+                  roots(1) = a + q / qa
+                  if (abs(q) > 0.0_wp) then
+                     nr = 2
+                     roots(2) = a - e / q
+                  end if
                end if
             end if
          end if
