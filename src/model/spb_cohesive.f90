@@ -165,7 +165,7 @@ contains
       hi = 0.5_wp * (i_prev / dt + r)
       if (a <= 1.0e-12_wp * dc) then
          ! closed at t^n (to round-off: a step that ends in contact leaves delta^{n+1} = 0 to an
-         ! ulp of the faces' positions). At delta = 0+ the law's traction is r for a fresh crack
+         ! ulp of the step's opening increment). At delta = 0+ the law's traction is r for a fresh crack
          ! (its jump: at 0 it takes any traction up to r) and 0 on a damaged crack's unloading
          ! line; in contact it takes any compression. The crack stays closed where the force
          ! that keeps it so, p_c = dstar / c, needs a traction I^{n+1}/dt = 2 p_c - I^n/dt of
@@ -239,10 +239,11 @@ contains
    !> The roots of cohesive_force's equation in closed form. With x = delta^{n+1} and
    !> P = (dstar - x)/c the equation is (K - 2x/c)(x - a) = L(x), K = 2 dstar/c - I^n/dt and
    !> L(x) the law's integral from a to x; on each piece of the law (T = alpha + beta y between
-   !> its corners) L is quadratic, so each piece gives a quadratic in x (a linear one on the
-   !> piece that holds a, where the factor x - a is taken out). Of the roots that lie on their
-   !> piece and give P in [lo, hi], the one nearest to a is taken (the least change of the
-   !> opening: the only one where the cohesive zone is resolved, doc/method.md).
+   !> its corners) L is quadratic, so each piece gives a quadratic in the increment v = x - a
+   !> (a linear one on the piece that holds a, where the factor v is taken out; elsewhere the
+   !> factor is kept apart, so that no root v = 0 of it comes out of round-off). Of the roots
+   !> that lie on their piece and give P in [lo, hi], the one nearest to a is taken (the least
+   !> change of the opening: the only one where the cohesive zone is resolved, doc/method.md).
    pure subroutine exact_root(a, dstar, c, dt, i_prev, dmax, r, dc, lo, hi, p, found)
       real(wp), intent(in) :: a         !! opening at t^n [m]
       real(wp), intent(in) :: dstar     !! opening at t^{n+1} without the force [m]
