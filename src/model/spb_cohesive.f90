@@ -165,12 +165,12 @@ contains
       hi = 0.5_wp * (i_prev / dt + r)
       if (a <= 1.0e-12_wp * dc) then
          ! closed at t^n (to round-off: a step that ends in contact leaves delta^{n+1} = 0 to an
-         ! ulp of the step's opening increment). At delta = 0+ the law's traction is r for a fresh crack
-         ! (its jump: at 0 it takes any traction up to r) and 0 on a damaged crack's unloading
-         ! line; in contact it takes any compression. The crack stays closed where the force
-         ! that keeps it so, p_c = dstar / c, needs a traction I^{n+1}/dt = 2 p_c - I^n/dt of
-         ! at most that; else it opens, and the root lies where delta^{n+1} > 0, below p_c,
-         ! where phi is continuous
+         ! ulp of the step's opening increment). At delta = 0+ the law's traction is r for a
+         ! fresh crack (its jump: at 0 it takes any traction up to r) and 0 on a damaged crack's
+         ! unloading line; in contact it takes any compression. The crack stays closed where
+         ! the force that keeps it so, p_c = dstar / c, needs a traction
+         ! I^{n+1}/dt = 2 p_c - I^n/dt of at most that; else it opens, and the root lies where
+         ! delta^{n+1} > 0, below p_c, where phi is continuous
          p = dstar / c
          if (2.0_wp * p - i_prev / dt <= merge(r, 0.0_wp, .not. dmax > 0.0_wp)) then
             i_next = 2.0_wp * dt * p - i_prev
