@@ -193,6 +193,7 @@ contains
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(state_t), intent(inout) :: st   !! the state
       logical, intent(in) :: writing       !! write (else read back)
+      logical :: offsets
       call field(ck, writing, '/state', 'n', st%step)   ! names as in 0.1 checkpoints
       call field(ck, writing, '/state', 'n_breakable', st%n_breakable)
       call field(ck, writing, '/state', 'n_split', st%n_split)
@@ -245,7 +246,7 @@ contains
          call field(ck, writing, '/state', 'u_base_top', st%ends(face_top)%u_contact)
          call field(ck, writing, '/state', 'base_contact_top', st%ends(face_top)%contact)
       end if
-      call cohesive_fields(ck, st, writing)
+      call cohesive_fields(ck, st, writing, offsets)
       ! time-dependent fracture (spb_state damage_t; only a run that has it, so a checkpoint
       ! of a run without it is what it was before it existed)
       if (.not. writing) st%dmg%on = h5_has_attr(ck%h5, '/state', 'dmg_d:size')
@@ -272,15 +273,39 @@ contains
       call array_field(ck, writing, 'joined', st%joined)
       call array_field(ck, writing, 'is_cut', st%fm%is_cut)
       call array_field(ck, writing, 'cracked', st%cracked)
+      if (offsets) call openings_of_offsets(st)
    end subroutine state_fields
+
+   !> A checkpoint written before the cracks kept their own opening holds, in its place, what
+   !> rigid shifts added to the faces' distance (coh_offset): the opening is that distance
+   !> less it, ub - ua - offset, to the positions' round-off (doc/method.md, "Cohesive
+   !> cracks").
+   pure subroutine openings_of_offsets(st)
+      type(state_t), intent(inout) :: st   !! the state read back, offsets in coh%opening
+      integer :: i
+      if (.not. (allocated(st%coh%opening) .and. allocated(st%coh%active) .and. &
+                 allocated(st%ua) .and. allocated(st%ub))) return
+      if (.not. (bounds_are(st%ua, lbound(st%coh%opening, 1), ubound(st%coh%opening, 1)) .and. &
+                 bounds_are(st%ub, lbound(st%coh%opening, 1), ubound(st%coh%opening, 1)) .and. &
+                 bounds_are(st%coh%opening, lbound(st%coh%active, 1), &
+                            ubound(st%coh%active, 1)))) return
+      do i = lbound(st%coh%opening, 1), ubound(st%coh%opening, 1)
+         st%coh%opening(i) = merge(st%ub(i) - st%ua(i) - st%coh%opening(i), 0.0_wp, &
+                                   st%coh%active(i))
+      end do
+   end subroutine openings_of_offsets
 
    !> The cohesive cracks' part of the state (spb_state cohesive_t): only in a run that has
    !> them, so a checkpoint of a run without them is what it was before they existed; read
-   !> back where the checkpoint has them.
-   subroutine cohesive_fields(ck, st, writing)
+   !> back where the checkpoint has them. One written before the cracks kept their opening
+   !> holds coh_offset in its place (offsets: read into coh%opening, for
+   !> openings_of_offsets once the positions are read).
+   subroutine cohesive_fields(ck, st, writing, offsets)
       type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
       type(state_t), intent(inout) :: st   !! the state
       logical, intent(in) :: writing       !! write (else read back)
+      logical, intent(out) :: offsets      !! coh%opening holds a checkpoint's coh_offset
+      offsets = .false.
       if (.not. writing) st%coh%on = h5_has_attr(ck%h5, '/state', 'coh_n_active')
       if (.not. st%coh%on) return
       call field(ck, writing, '/state', 'coh_n_active', st%coh%n_active)
@@ -292,7 +317,12 @@ contains
       call array_field(ck, writing, 'coh_dc', st%coh%dc)
       call array_field(ck, writing, 'coh_dmax', st%coh%dmax)
       call array_field(ck, writing, 'coh_q', st%coh%q)
-      call array_field(ck, writing, 'coh_offset', st%coh%offset)
+      offsets = .not. writing .and. .not. h5_has_attr(ck%h5, '/state', 'coh_opening:size')
+      if (offsets) then
+         call array_field(ck, writing, 'coh_offset', st%coh%opening)
+      else
+         call array_field(ck, writing, 'coh_opening', st%coh%opening)
+      end if
       call array_field(ck, writing, 'coh_active', st%coh%active)
    end subroutine cohesive_fields
 
@@ -747,7 +777,7 @@ contains
       else if (st%coh%on .and. .not. (bounds_are(st%coh%gc, 0, n) .and. &
                bounds_are(st%coh%r, 0, n) .and. bounds_are(st%coh%dc, 0, n) .and. &
                bounds_are(st%coh%dmax, 0, n) .and. bounds_are(st%coh%q, 0, n) .and. &
-               bounds_are(st%coh%offset, 0, n) .and. allocated(st%coh%active))) then
+               bounds_are(st%coh%opening, 0, n) .and. allocated(st%coh%active))) then
          why = 'is damaged: a cohesive crack array has other bounds than the mesh gives'
       else if (st%dmg%on .and. .not. (bounds_are(st%dmg%k, 0, n) .and. &
                bounds_are(st%dmg%lambda, 0, n) .and. bounds_are(st%dmg%d, 0, n))) then

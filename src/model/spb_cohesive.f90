@@ -165,12 +165,12 @@ contains
       hi = 0.5_wp * (i_prev / dt + r)
       if (a <= 1.0e-12_wp * dc) then
          ! closed at t^n (to round-off: a step that ends in contact leaves delta^{n+1} = 0 to an
-         ! ulp of the faces' positions). At delta = 0+ the law's traction is r for a fresh crack
-         ! (its jump: at 0 it takes any traction up to r) and 0 on a damaged crack's unloading
-         ! line; in contact it takes any compression. The crack stays closed where the force
-         ! that keeps it so, p_c = dstar / c, needs a traction I^{n+1}/dt = 2 p_c - I^n/dt of
-         ! at most that; else it opens, and the root lies where delta^{n+1} > 0, below p_c,
-         ! where phi is continuous
+         ! ulp of the step's opening increment). At delta = 0+ the law's traction is r for a
+         ! fresh crack (its jump: at 0 it takes any traction up to r) and 0 on a damaged crack's
+         ! unloading line; in contact it takes any compression. The crack stays closed where
+         ! the force that keeps it so, p_c = dstar / c, needs a traction
+         ! I^{n+1}/dt = 2 p_c - I^n/dt of at most that; else it opens, and the root lies where
+         ! delta^{n+1} > 0, below p_c, where phi is continuous
          p = dstar / c
          if (2.0_wp * p - i_prev / dt <= merge(r, 0.0_wp, .not. dmax > 0.0_wp)) then
             i_next = 2.0_wp * dt * p - i_prev
@@ -239,10 +239,11 @@ contains
    !> The roots of cohesive_force's equation in closed form. With x = delta^{n+1} and
    !> P = (dstar - x)/c the equation is (K - 2x/c)(x - a) = L(x), K = 2 dstar/c - I^n/dt and
    !> L(x) the law's integral from a to x; on each piece of the law (T = alpha + beta y between
-   !> its corners) L is quadratic, so each piece gives a quadratic in x (a linear one on the
-   !> piece that holds a, where the factor x - a is taken out). Of the roots that lie on their
-   !> piece and give P in [lo, hi], the one nearest to a is taken (the least change of the
-   !> opening: the only one where the cohesive zone is resolved, doc/method.md).
+   !> its corners) L is quadratic, so each piece gives a quadratic in the increment v = x - a
+   !> (a linear one on the piece that holds a, where the factor v is taken out; elsewhere the
+   !> factor is kept apart, so that no root v = 0 of it comes out of round-off). Of the roots
+   !> that lie on their piece and give P in [lo, hi], the one nearest to a is taken (the least
+   !> change of the opening: the only one where the cohesive zone is resolved, doc/method.md).
    pure subroutine exact_root(a, dstar, c, dt, i_prev, dmax, r, dc, lo, hi, p, found)
       real(wp), intent(in) :: a         !! opening at t^n [m]
       real(wp), intent(in) :: dstar     !! opening at t^{n+1} without the force [m]
@@ -256,7 +257,7 @@ contains
       real(wp), intent(in) :: hi        !! largest [Pa]
       real(wp), intent(out) :: p        !! the force of the root taken [Pa]
       logical, intent(out) :: found     !! a root was found
-      real(wp) :: corner(4), p0, p1, alpha, beta, y0, l0, kk, qa, qb, qc, disc, x, best, dm, tm
+      real(wp) :: corner(4), p0, p1, alpha, beta, y0, e, kk, qa, qb, q, disc, x, best, dm, tm
       real(wp) :: roots(2), span
       integer :: k, m, nr
       found = .false.
@@ -294,23 +295,32 @@ contains
             nr = 1
             roots(1) = x
          else
+            ! in the step's opening increment v = x - a: L(x) = e + v (alpha + beta (a + x)/2),
+            ! e = L(y0) less the piece's line integrated from a to y0 (0 where a is on the
+            ! piece's closure), so the equation is qa v^2 + qb v - e = 0. The factor v is kept
+            ! apart: written in x, the root v = 0 that it has where a is on a corner came out
+            ! of the cancellation of terms of size K a at round-off of them, on the piece's
+            ! side of a corner a lies an ulp below, and was taken as the nearest root (a
+            ! frame-dependent choice: doc/method.md, "Cohesive cracks")
             y0 = merge(p0, p1, a < p0)
-            l0 = law_integral(a, y0, dmax, r, dc)
+            e = law_integral(a, y0, dmax, r, dc) - (y0 - a) * (alpha + 0.5_wp * beta * (a + y0))
             qa = -2.0_wp / c - 0.5_wp * beta
-            qb = kk + 2.0_wp * a / c - alpha
-            qc = -kk * a - l0 + alpha * y0 + 0.5_wp * beta * y0**2
+            qb = kk - 2.0_wp * a / c - alpha - beta * a
             if (abs(qa) * span <= 1.0e-14_wp * abs(qb)) then
                if (abs(qb) > 0.0_wp) then
                   nr = 1
-                  roots(1) = -qc / qb
+                  roots(1) = a + e / qb
                end if
             else
-               disc = qb**2 - 4.0_wp * qa * qc
+               disc = qb**2 + 4.0_wp * qa * e
                if (disc >= 0.0_wp) then
-                  nr = 2
-                  roots(1) = -0.5_wp * (qb + sign(sqrt(disc), qb)) / qa
-                  roots(2) = qc / (qa * roots(1))
-                  if (.not. abs(roots(1)) > 0.0_wp) nr = 1
+                  q = -0.5_wp * (qb + sign(sqrt(disc), qb))
+                  nr = 1
+                  roots(1) = a + q / qa
+                  if (abs(q) > 0.0_wp) then
+                     nr = 2
+                     roots(2) = a - e / q
+                  end if
                end if
             end if
          end if

@@ -108,6 +108,7 @@ contains
          st%coh%r(i) = st%strength(i)
          st%coh%dc(i) = 2.0_wp * st%coh%gc(i) / st%strength(i)
          st%coh%q(i) = q(m)
+         st%coh%opening(i) = 0.0_wp
          st%coh%active(i) = .true.
          st%coh%n_active = st%coh%n_active + 1
          st%coh%n_pending = st%coh%n_pending + 1
@@ -139,8 +140,10 @@ contains
       do c = 1, size(split)
          i = split(c)
          if (.not. st%coh%active(i)) cycle
-         ! the crack's own opening: the faces' distance less what rigid shifts added
-         a = st%ub(i) - st%ua(i) - st%coh%offset(i)
+         ! the crack's own opening (spb_state cohesive_t): the faces' distance less what rigid
+         ! shifts added, kept by the increments (not ub - ua: the positions' round-off, which
+         ! is the frame's, is large beside a small opening: doc/method.md, "Cohesive cracks")
+         a = st%coh%opening(i)
          dstar = a + (st%dub(i) - st%dua(i))
          call cohesive_force(a, dstar, dt2 * (1.0_wp / mesh%ma(i) + 1.0_wp / mesh%mb(i)), dt, &
                              st%coh%q(i), st%coh%dmax(i), st%coh%r(i), st%coh%dc(i), p, q_next, &
@@ -159,12 +162,13 @@ contains
          st%ledger%e_traction = st%ledger%e_traction + &
                                 p * 0.5_wp * ((d1 - a) + (old_b(c) - old_a(c)))
          st%coh%dmax(i) = max(st%coh%dmax(i), d1)
+         st%coh%opening(i) = d1
          st%coh%q(i) = q_next
          if (.not. abs(q_next) > 0.0_wp .and. st%coh%dmax(i) >= st%coh%dc(i)) then
             ! a plain split node from now on: its faces' contact is the collisions'
             st%coh%active(i) = .false.
             st%coh%n_active = st%coh%n_active - 1
-            st%coh%offset(i) = 0.0_wp
+            st%coh%opening(i) = 0.0_wp
          end if
       end do
    end subroutine cohesive_step

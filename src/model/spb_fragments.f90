@@ -85,7 +85,7 @@ contains
 
    !> Shift the displacements (not the increments) of the fragment from B_top to A_bot
    !> rigidly by delta; returns the change of gravity potential energy. A cohesive crack at an
-   !> end keeps its opening: the shift goes to its offset (spb_state cohesive_t).
+   !> end keeps its opening, which is its own (spb_state cohesive_t): a shift is no opening.
    pure subroutine shift_span(mesh, st, g, top, bot, delta, de_pot)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(inout) :: st   !! the state
@@ -99,14 +99,6 @@ contains
          if (i > top .or. top == 0) st%ua(i) = st%ua(i) + delta
          if (i < bot .or. bot == mesh%n) st%ub(i) = st%ub(i) + delta
       end do
-      if (st%coh%on) then
-         if (top > 0) then
-            if (st%coh%active(top)) st%coh%offset(top) = st%coh%offset(top) + delta
-         end if
-         if (bot < mesh%n) then
-            if (st%coh%active(bot)) st%coh%offset(bot) = st%coh%offset(bot) - delta
-         end if
-      end if
       de_pot = -g * span_mass(mesh, top, bot) * delta
       ! the centre of mass moves with no momentum behind it (x_drift, doc/outputs.md)
       st%ledger%m_drift = st%ledger%m_drift + span_mass(mesh, top, bot) * delta

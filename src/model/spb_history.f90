@@ -176,16 +176,16 @@ contains
       if (any(is_striker(st%ends))) m = m + sum(st%ends%mass, is_striker(st%ends))
    end function bar_mass
 
-   !> What rigid shifts added to the faces' distance at an open cohesive crack, which is no
-   !> opening of the crack (spb_state cohesive_t); 0 elsewhere [m].
-   pure real(wp) function crack_offset(st, i) result(d)
+   !> The overlap of the two faces of split node i: at an open cohesive crack minus its own
+   !> opening (spb_state cohesive_t: rigid shifts are none), elsewhere ua - ub [m].
+   pure real(wp) function face_overlap(st, i) result(d)
       type(state_t), intent(in) :: st      !! the state
       integer, intent(in) :: i             !! split node
-      d = 0.0_wp
+      d = st%ua(i) - st%ub(i)
       if (st%coh%on) then
-         if (st%coh%active(i)) d = st%coh%offset(i)
+         if (st%coh%active(i)) d = -st%coh%opening(i)
       end if
-   end function crack_offset
+   end function face_overlap
 
    !> The largest overlap of two faces at a split node (at an open cohesive crack, of its own
    !> opening below 0), or of an end face and its base, in cells of that node (-1 when
@@ -197,7 +197,7 @@ contains
       ov = -huge(1.0_wp)
       do c = 1, st%n_split
          i = st%split(c)
-         ov = max(ov, (st%ua(i) - st%ub(i) + crack_offset(st, i)) / min(mesh%dx(i), mesh%dx(i + 1)))
+         ov = max(ov, face_overlap(st, i) / min(mesh%dx(i), mesh%dx(i + 1)))
       end do
       if (has_base(st%ends(face_bottom))) ov = max(ov, (st%ua(mesh%n) - &
          st%ends(face_bottom)%u_contact) / mesh%dx(mesh%n))

@@ -49,9 +49,11 @@ module spb_state
                                               !! (the section's strength when it started) [Pa]
       real(wp), allocatable :: dc(:)          !! (0:n) critical opening 2 Gc / r [m]
       real(wp), allocatable :: dmax(:)        !! (0:n) largest opening so far [m]
-      real(wp), allocatable :: offset(:)      !! (0:n) what rigid shifts of one side added to the
-                                              !! faces' distance: the crack's opening is
-                                              !! ub - ua - offset (a shift is no opening) [m]
+      real(wp), allocatable :: opening(:)     !! (0:n) the crack's opening, kept by its faces'
+                                              !! increments: ub - ua less what rigid shifts of
+                                              !! one side added (a shift is no opening), not
+                                              !! taken from ub - ua, whose round-off is that
+                                              !! of the positions (of the frame) [m]
       real(wp), allocatable :: q(:)           !! (0:n) integral of the traction over the last
                                               !! step, I^n (tension > 0) [Pa s]
       logical, allocatable :: active(:)       !! (0:n) a split node whose faces carry traction
@@ -429,7 +431,7 @@ contains
       if (.not. any(prob%fracture_energy > 0.0_wp)) return
       st%coh%on = .true.
       allocate(st%coh%gc(0:n), st%coh%r(0:n), st%coh%dc(0:n), st%coh%dmax(0:n), st%coh%q(0:n), &
-               st%coh%offset(0:n), source=0.0_wp)
+               st%coh%opening(0:n), source=0.0_wp)
       allocate(st%coh%active(0:n), source=.false.)
       allocate(st%coh%pending(max(1, n)), source=0)
       allocate(st%coh%pending_stress(max(1, n)), source=0.0_wp)
