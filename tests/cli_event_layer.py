@@ -49,7 +49,7 @@ import sys
 
 import numpy as np
 
-RULES = ("accelerate", "delay", "min")
+RULES = ("accelerate", "delay", "min", "within")
 POLICIES = ("above", "fragment", "face")
 EXCESS_TOL = 1.0e-6      # the issue: energy <= initial + work + 1e-6 of the scale
 LOST_TOL = 1.0e-12       # e_lost never decreases (to round-off: 1e-12 of the scale)
