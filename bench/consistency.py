@@ -42,7 +42,7 @@ RULES = [("accelerate", "above", "admissible"), ("accelerate", "fragment", "admi
          ("delay", "above", "admissible"), ("delay", "fragment", "admissible"),
          ("min", "above", "admissible"), ("min", "fragment", "admissible"),
          ("accelerate", "face", "admissible"), ("delay", "face", "admissible"),
-         ("min", "face", "admissible"),
+         ("min", "face", "admissible"), ("within", "above", "admissible"),
          ("accelerate", "above", "paper")]
 THETAS = (0.13, 0.37, 0.61, 0.89)
 LEVELS = (1, 2, 4, 8)

@@ -16,7 +16,8 @@ Three parts, each reading the history columns of the wave measure (doc/outputs.m
                more than 1e-12 of the scale, the wave ledger constant to 1e-9 of the scale,
                the Jordan amplitude at round-off (1e-9) and no overlap of faces or of a face
                and the base beyond 1e-9 of a cell;
-  metamorphic  Galilean (3 m/s added: the same events, stresses to 1e-9 of the largest,
+  metamorphic  Galilean (3 m/s added: the same events, stresses to 1e-9 of the largest ('within':
+               up to 3 ms, after which the deck's rattling amplifies rounding),
                momentum shifted by exactly M V0), free fall (g added to a free-free bar: the
                same events and stresses), mirror (the bar reversed, loaded on the other face:
                mirrored events (node i at n - i), equal energies), scaling (lengths and times x2, stresses x3:
@@ -54,7 +55,7 @@ import sys
 
 import numpy as np
 
-RULES = ("accelerate", "delay", "min")
+RULES = ("accelerate", "delay", "min", "within")
 POLICIES = ("above", "fragment", "face")
 EXCESS_TOL = 1.0e-6      # the issue: energy <= initial + work + 1e-6 of the scale
 LOST_TOL = 1.0e-12       # e_lost never decreases (to round-off: 1e-12 of the scale)
@@ -280,17 +281,24 @@ def part_metamorphic(check, exe, work, cohesive=False, combos=None):
             hb, eb, sb = his(p(names["base"], ".his")), events(p(names["base"], ".evt")), \
                 profiles(p(names["base"], ".prf"))
             smax = np.max(np.abs(sb))
+            # 'within' keeps the overlap (a difference of two displacements) as strain, so the
+            # rounding of positions enters the stresses; from 3 ms on this deck's one-cell pieces
+            # rattle and amplify any rounding (p0 changed by 1e-12 of itself: 1.4e-8 by 4 ms;
+            # 3e-6 m/s added: 8e-8, the same as 3 m/s). Its stresses are compared up to 3 ms (the
+            # first three profiles), its events over the whole run (doc/method.md, "Collisions
+            # timed within the step")
+            upto = 3 * len(sb) // 4 if rule == "within" else len(sb)
             # Galilean
             h, e, s = his(p(names["v3"], ".his")), events(p(names["v3"], ".evt")), profiles(p(names["v3"], ".prf"))
             check(e == eb, f"{base}: Galilean: events differ ({len(e)} vs {len(eb)})")
-            ds = np.max(np.abs(s - sb)) / smax if len(s) == len(sb) else np.inf
+            ds = np.max(np.abs(s - sb)[:upto]) / smax if len(s) == len(sb) else np.inf
             check(ds <= 1e-9, f"{base}: Galilean: stresses differ by {ds:.2e}")
             dp = np.max(np.abs(h["momentum"] - hb["momentum"] - 3.0 * mass)) / (3.0 * mass)
             check(dp <= 1e-9, f"{base}: Galilean: momentum - M V0 off by {dp:.2e}")
             # free fall
             h, e, s = his(p(names["g"], ".his")), events(p(names["g"], ".evt")), profiles(p(names["g"], ".prf"))
             check(e == eb, f"{base}: free fall: events differ ({len(e)} vs {len(eb)})")
-            dsg = np.max(np.abs(s - sb)) / smax if len(s) == len(sb) else np.inf
+            dsg = np.max(np.abs(s - sb)[:upto]) / smax if len(s) == len(sb) else np.inf
             check(dsg <= 1e-9, f"{base}: free fall: stresses differ by {dsg:.2e}")
             # mirror: node i <-> n - i, equal energies
             h, e = his(p(names["mirror"], ".his")), events(p(names["mirror"], ".evt"))

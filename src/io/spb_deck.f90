@@ -29,7 +29,8 @@ module spb_deck
    use spb_problem, only: problem_t, end_free, end_fixed, end_transmit, end_base, end_velocity, &
       end_impactor, &
       load_none, load_power, load_table, load_exponential, face_top, face_bottom, &
-      timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment, shift_face, &
+      timing_accelerate, timing_delay, timing_min, timing_within, shift_above, shift_fragment, &
+      shift_face, &
       events_admissible, events_paper
    implicit none
    private
@@ -112,7 +113,7 @@ contains
       prob%gravity = deck%run%gravity
       prob%full_mass = deck%run%model == 'full-mass'
       prob%timing = code_of(timing_words, deck%run%timing, [timing_accelerate, timing_delay, &
-                            timing_min])
+                            timing_min, timing_within])
       prob%shift = code_of(shift_words, deck%run%shift, [shift_above, shift_fragment, &
                            shift_face])
       prob%events = code_of(events_words, deck%run%events, [events_admissible, events_paper])
@@ -731,6 +732,12 @@ contains
       if (run%shift == 'face' .and. run%events == 'paper') then
          call make_error(err, '&run: shift = ''face'' needs events = ''admissible'' (the paper''s ' &
                          // 'rules shift fragments)')
+         return
+      end if
+      ! the paper's rules put a collision at t^n or t^{n+1}; keeping the overlap as strain is ours
+      if (run%timing == 'within' .and. run%events == 'paper') then
+         call make_error(err, '&run: timing = ''within'' needs events = ''admissible'' (the ' &
+                         // 'paper''s rules join at t^n or t^{n+1})')
          return
       end if
       call need_finite(err, 'run', 'eps_rel', run%eps_rel)

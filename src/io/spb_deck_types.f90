@@ -21,8 +21,8 @@ module spb_deck_types
 
    ! the values each keyword variable accepts (checked in spb_deck, documented with the
    ! variable in spb_deck_params, turned into codes by problem_from_deck in this order)
-   character(len=*), parameter :: timing_words(3) = [character(len=10) :: 'accelerate', &
-      'delay', 'min']
+   character(len=*), parameter :: timing_words(4) = [character(len=10) :: 'accelerate', &
+      'delay', 'min', 'within']
    character(len=*), parameter :: shift_words(3) = [character(len=8) :: 'above', 'fragment', 'face']
    character(len=*), parameter :: events_words(2) = [character(len=10) :: 'admissible', 'paper']
    character(len=*), parameter :: model_words(2) = [character(len=9) :: 'half-mass', 'full-mass']

@@ -27,7 +27,7 @@ module spb_base
       extend_down, finish_event, book_shift_work, skip_next, keep_credit
    use spb_base_face, only: base_face_t, base_face, face_u, face_du, face_mass, move_base_face, &
       base_fragment, base_ids, lift_off_event, end_order
-   use spb_problem, only: events_paper, shift_above, shift_face
+   use spb_problem, only: events_paper, shift_above, shift_face, timing_within
    implicit none
    private
    public :: touch_base, lift_off
@@ -151,7 +151,7 @@ contains
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp), intent(in) :: eps_rel      !! the contact tolerance, of a cell [-]
-      real(wp) :: e_wave0, tol, du0, d_acc, d_del, corr, shift_amount
+      real(wp) :: e_wave0, tol, du0, d_acc, d_del, corr, shift_amount, d_pre
       integer :: r_top, r_bot, a, b
       logical :: at_n
       tol = eps_rel * mesh%dx(bf%c)
@@ -160,6 +160,24 @@ contains
       e_wave0 = region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
       call landing_start(mesh, st, bf, g, timing, policy, tol, du0, d_acc, d_del, at_n, corr, &
                          a, b, shift_amount)
+      if (timing == timing_within) then
+         ! at t^{n+1}, the overlap the step's motion made kept as strain of the end cell
+         ! (strain_base); one the face already had at t^n is moved away as a length defect
+         ! (even one within the contact tolerance, which gap_at_n reads as touching)
+         d_pre = max(0.0_wp, bf%sgn * ((face_u(st, bf) - face_du(st, bf)) - &
+                                       st%ends(bf%side)%u_contact))
+         if (d_pre > 0.0_wp) then
+            call move_base_face(st, bf, bf%sgn * d_pre, 0.0_wp)
+            st%ledger%e_shift = st%ledger%e_shift - g * face_mass(mesh, bf) * bf%sgn * d_pre
+            st%ledger%m_drift = st%ledger%m_drift - face_mass(mesh, bf) * bf%sgn * d_pre
+         end if
+         call join_base(mesh, st, bf, g, .false., d_del, a, -bf%sgn * d_del, du0, events)
+         call strain_base(mesh, st, bf, g, d_del - d_pre)
+         call keep_credit(mesh, st, g, i_top, i_bot, e_wave0)
+         st%ledger%e_lost_wave = st%ledger%e_lost_wave + e_wave0 - &
+                                 region_wave(mesh, st, g, i_top, i_bot, r_top, r_bot)
+         return
+      end if
       call correct_admissible(mesh, st, bf, g, policy, i_top, i_bot, d_acc, d_del, at_n, corr, &
                               a, b, shift_amount)
       call join_base(mesh, st, bf, g, at_n, corr, a, shift_amount, du0, events)
@@ -283,6 +301,31 @@ contains
       call base_ids(st, bf, a, above, below)
       call finish_event(mesh, st, ev, bf%e, at_n, corr, shift_amount, above, below, events)
    end subroutine join_base
+
+   !> A landing timed within the step ('within'), after the face's join with the base at
+   !> t^{n+1} (join_base): the face goes back onto the base by d, the overlap the trial step
+   !> left, and the end cell takes that change of its length as compression (the base does not
+   !> move, so the cell takes all of it), s_old with it (strain_faces, the same for a collision
+   !> between fragments). The base section stress S^{n+1/2} takes 2 ds, so that the next
+   !> step's (3.1)-(3.2) give the collision stress of the landing. The face's move has no
+   !> momentum behind it (x_drift: its mass times d, O(dt^2) per landing).
+   pure subroutine strain_base(mesh, st, bf, g, d)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state (the face joined with the base)
+      type(base_face_t), intent(in) :: bf  !! the base end
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: d            !! the face's overlap with the base [m]
+      real(wp) :: e0, ds
+      e0 = node_energy(mesh, st, g, bf%e)
+      ds = mesh%stiff(bf%c) * d
+      call move_base_face(st, bf, bf%sgn * d, 0.0_wp)
+      st%s(bf%c) = st%s(bf%c) + ds
+      st%s_old(bf%c) = st%s_old(bf%c) + ds
+      st%section(bf%e) = st%section(bf%e) + 2.0_wp * ds
+      st%ledger%e_shift = st%ledger%e_shift - g * face_mass(mesh, bf) * bf%sgn * d
+      st%ledger%m_drift = st%ledger%m_drift - face_mass(mesh, bf) * bf%sgn * d
+      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, bf%e))
+   end subroutine strain_base
 
    !> The admissible rules' landing correction: the base does not move, so the bar's side
    !> takes the whole correction, rigidly; where that would move it against gravity and a

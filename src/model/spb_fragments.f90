@@ -14,7 +14,7 @@ module spb_fragments
       ev_separation
    use spb_arrays, only: append
    use spb_wave, only: region_wave, held_odd, credit_bound, credit_position
-   use spb_problem, only: timing_accelerate, timing_delay
+   use spb_problem, only: timing_accelerate, timing_delay, timing_within
    implicit none
    private
    public :: node_energy, anchored, fragment_span, span_mass, shift_span, new_fragment_id
@@ -22,7 +22,7 @@ module spb_fragments
       shift_late, shift_part, extend_up, extend_down, finish_event, book_shift_work, skip_next, &
       keep_credit
    public :: cohesive_open, gap_at_n, start_collision, join_node, open_section, record_break
-   public :: join_stress, move_faces
+   public :: join_stress, move_faces, strain_faces
 
 contains
 
@@ -116,8 +116,9 @@ contains
       st%gen%frag_birth(node) = st%step
    end subroutine new_fragment_id
 
-   !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay), or where the
-   !> correction is smaller (min, (5.3)); corr is the chosen correction (5.2).
+   !> The timing rule: join at t^n (accelerate), at t^{n+1} (delay; within, whose overlap
+   !> strain_faces then keeps as strain), or where the correction is smaller (min, (5.3));
+   !> corr is the chosen correction (5.2).
    pure subroutine choose_time(timing, d_acc, d_del, at_n, corr)
       integer, intent(in) :: timing        !! collision timing rule (timing_*)
       real(wp), intent(in) :: d_acc          !! correction (5.2) for a join at t^n [m]
@@ -127,7 +128,7 @@ contains
       select case (timing)
       case (timing_accelerate)
          at_n = .true.
-      case (timing_delay)
+      case (timing_delay, timing_within)
          at_n = .false.
       case default
          at_n = abs(d_acc) <= abs(d_del)
@@ -463,6 +464,43 @@ contains
       st%ledger%e_shift = st%ledger%e_shift - de_pot
       st%ledger%m_drift = st%ledger%m_drift + (mesh%mb(i) * y - mesh%ma(i) * x)
    end subroutine move_faces
+
+   !> A collision timed within the step ('within', doc/method.md "Collisions timed within the
+   !> step"), after the join at t^{n+1} of split node i (join_node): the overlap d the trial
+   !> step left is kept as strain. The two halves, now one node, go to their common centre of
+   !> mass (the upper half by -d m_B/(m_A + m_B), the lower by +d m_A/(m_A + m_B), as
+   !> move_faces), and the two cells take the change of their lengths in their stresses. With
+   !> constant velocities over the step a contact at t^n + theta dt leaves d = (1 - theta) dv dt,
+   !> and the cells' added stress is the contact stress (5.6) times the share of the step after
+   !> the contact. s_old follows s: the step in effect started from the compressed cells, which
+   !> keeps s^{n+1} - s^n = E/dx (du_{k-1} - du_k) and the ledger's telescoping exact. The
+   !> section stress S^{n+1/2} takes 2 ds of the cell above, so that the next step's (3.1)-(3.2)
+   !> give the collision stress (5.6) of the join, not it plus the added strain. Nothing moves
+   !> the centre of mass and no length is left unexplained (x_drift, l_defect: 0).
+   pure subroutine strain_faces(mesh, st, g, i, d)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(inout) :: st   !! the state (node i joined at t^{n+1})
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      integer, intent(in) :: i             !! the node
+      real(wp), intent(in) :: d            !! the faces' overlap at t^{n+1} [m]
+      real(wp) :: x, y, e0, ds_a, ds_b
+      e0 = node_energy(mesh, st, g, i)
+      x = d * mesh%mb(i) / (mesh%ma(i) + mesh%mb(i))
+      y = d - x
+      ds_a = mesh%stiff(i) * x
+      ds_b = mesh%stiff(i + 1) * y
+      st%ua(i) = st%ua(i) - x
+      st%ub(i) = st%ub(i) + y
+      st%s(i) = st%s(i) + ds_a
+      st%s(i + 1) = st%s(i + 1) + ds_b
+      st%s_old(i) = st%s_old(i) + ds_a
+      st%s_old(i + 1) = st%s_old(i + 1) + ds_b
+      st%section(i) = st%section(i) + 2.0_wp * ds_a
+      ! gravity: the common centre of mass stays (0 to round-off), booked as a shift's
+      st%ledger%e_shift = st%ledger%e_shift + g * (mesh%mb(i) * y - mesh%ma(i) * x)
+      st%ledger%m_drift = st%ledger%m_drift + (mesh%mb(i) * y - mesh%ma(i) * x)
+      st%ledger%e_join = st%ledger%e_join + (e0 - node_energy(mesh, st, g, i))
+   end subroutine strain_faces
 
    !> The join of a collision at split node i once a rule set has corrected the positions
    !> (moved by shift, at the time at_n with the correction corr): the collision stress (5.6)

@@ -11,7 +11,7 @@ module spb_problem
    public :: problem_t
    public :: end_free, end_fixed, end_transmit, end_base, end_velocity, end_impactor
    public :: load_none, load_power, load_table, load_exponential, face_top, face_bottom
-   public :: timing_accelerate, timing_delay, timing_min, shift_above, shift_fragment, &
+   public :: timing_accelerate, timing_delay, timing_min, timing_within, shift_above, shift_fragment, &
       shift_face
    public :: events_admissible, events_paper
 
@@ -21,8 +21,11 @@ module spb_problem
    !> Kinds of end load, and the face it acts on.
    integer, parameter :: load_none = 0, load_power = 1, load_table = 2, load_exponential = 3
    integer, parameter :: face_top = 1, face_bottom = 2
-   !> Collision timing rules (5.2)-(5.3) and shift policies (doc/method.md, "Collisions").
-   integer, parameter :: timing_accelerate = 1, timing_delay = 2, timing_min = 3
+   !> Collision timing rules (5.2)-(5.3) and shift policies (doc/method.md, "Collisions");
+   !> 'within' keeps the overlap at t^{n+1} as strain (doc/method.md, "Collisions timed within
+   !> the step").
+   integer, parameter :: timing_accelerate = 1, timing_delay = 2, timing_min = 3, &
+      timing_within = 4
    integer, parameter :: shift_above = 1, shift_fragment = 2, shift_face = 3
    !> Event rules: 'admissible' keeps the continuum state a break or a lift-off acts on (no
    !> wave energy is created, no Jordan component is left); 'paper' is the paper's literal

@@ -15,9 +15,9 @@ module spb_rules_admissible
    use spb_fragments, only: node_energy, fragment_span, span_mass, anchored, choose_time, &
       shift_part, extend_up, extend_down, book_shift_work, keep_credit, cohesive_open, &
       gap_at_n, start_collision, join_node, open_section, record_break, move_faces, &
-      join_stress
+      join_stress, strain_faces
    use spb_wave, only: fragment_characteristics, region_wave, credit_position
-   use spb_problem, only: shift_above, shift_face
+   use spb_problem, only: shift_above, shift_face, timing_within
    implicit none
    private
    public :: admissible_collisions, admissible_breaks, pay_credit
@@ -112,6 +112,8 @@ contains
       real(wp), intent(in) :: tol              !! contact tolerance [m]
       real(wp) :: d_acc, d_del, corr, x, y
       integer :: top, bot
+      at_n = .false.
+      if (timing == timing_within) return
       d_acc = gap_at_n(st, i, tol)
       d_del = st%ua(i) - st%ub(i)
       call choose_time(timing, d_acc, d_del, at_n, corr)
@@ -132,9 +134,23 @@ contains
       real(wp), intent(in) :: i_top        !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot        !! load integral on the bottom face over the step [Pa s]
       real(wp), intent(in) :: tol          !! contact tolerance [m]
-      real(wp) :: du0(2), d_acc, d_del, corr, shift_amount
+      real(wp) :: du0(2), d_acc, d_del, corr, shift_amount, d_pre
       logical :: at_n
       call start_collision(mesh, st, g, timing, i, tol, du0, d_acc, d_del, at_n, corr)
+      if (timing == timing_within) then
+         ! joined at t^{n+1}, the overlap the step's motion made kept as strain; no side moves
+         ! (no shift policy). An overlap the faces already had at t^n (d_acc > 0) is no
+         ! contact within this step: straining it would create energy (the loss (1 - theta)
+         ! theta ... of strain_faces turns negative for theta < 0), so the faces take it as
+         ! 'face' does, as a length defect
+         ! (even one within the contact tolerance, which gap_at_n reads as touching)
+         d_pre = max(0.0_wp, (st%ua(i) - st%dua(i)) - (st%ub(i) - st%dub(i)))
+         if (d_pre > 0.0_wp) call move_faces(mesh, st, g, i, d_pre)
+         call join_node(mesh, st, g, i, .false., corr, &
+                        -corr * mesh%mb(i) / (mesh%ma(i) + mesh%mb(i)), du0, events)
+         call strain_faces(mesh, st, g, i, corr - d_pre)
+         return
+      end if
       call hold_late_join(mesh, st, i, d_acc, at_n, corr)
       call shift_both_sides(mesh, st, g, policy, i, d_acc, d_del, at_n, corr, shift_amount, &
                             i_top, i_bot)
