@@ -56,8 +56,8 @@ module spb_sim
    !> The characteristic steps (spb_ring) stand in for the lattice's over a span of at least
    !> ring_min_steps steps of a bar of at least ring_min_cells cells: below either the
    !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
-   integer, parameter :: ring_min_steps = 32
-   integer, parameter :: ring_min_cells = 256
+   integer, parameter :: ring_min_steps = 40
+   integer, parameter :: ring_min_cells = 16
    !> In a batch log the first progress line comes after this at the latest, whatever
    !> --progress asks for the lines after it: with the set-up (4 s for 5e6 cells) and a look
    !> at the clock every 2^24 cell-steps, within 10 s of the start (issue 32) [s].
@@ -527,7 +527,7 @@ contains
       real(wp) :: sec_max
       real(wp), allocatable :: face_du(:, :)
       k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
-      if (use_rings(sim)) then
+      if (use_rings(sim, summary)) then
          k = ring_span(sim, run)
          if (k - 1 >= ring_min_steps) then
             call ring_steps(sim, summary, k - 1)
@@ -559,10 +559,12 @@ contains
       call summary_events(summary, run%events)
    end subroutine take_steps
 
-   !> The characteristic steps serve this bar now (spb_ring ring_qualifies, long enough).
-   pure logical function use_rings(sim)
+   !> The characteristic steps serve this bar now (spb_ring ring_qualifies, long enough), and
+   !> no contact episode is under way (spb_diagnostics: its force is summed step by step).
+   pure logical function use_rings(sim, summary)
       type(sim_t), intent(in) :: sim       !! the simulation
-      use_rings = sim%opt%rings .and. sim%mesh%n >= ring_min_cells
+      type(run_summary_t), intent(in) :: summary   !! the run's summary (its episodes)
+      use_rings = sim%opt%rings .and. sim%mesh%n >= ring_min_cells .and. summary%diag%n_open == 0
       if (use_rings) use_rings = ring_qualifies(sim%mesh, sim%st, sim%prob%gravity)
    end function use_rings
 
