@@ -30,7 +30,7 @@ import shutil
 import subprocess
 import sys
 
-from clitools import Checks
+from clitools import Checks, _value
 
 TOL = 1.0e-12
 C_CONCRETE = math.sqrt(35.0e9 / 2350.0)
@@ -82,13 +82,6 @@ def deck_text(title, cells, t_transits, every, top="free", bottom="free", face="
                       density=", ".join(["2350.0"] * nseg),
                       strength=", ".join([strength] * nseg), top=top, bottom=bottom,
                       face=face, p0=p0, t_k=1.0e-4, extra=extra)
-
-
-def _value(word):
-    try:
-        return float(word)
-    except ValueError:
-        return word
 
 
 def history(path):
