@@ -10,6 +10,11 @@
   case2     the paper's Example 3 case 2 at h/190 (input/example3_case2/), outputs as in
             the decks (history every step, every event)
   output    case 2 at h/19 with history every step vs none: the share output costs
+  rings     issue 36's target 1: a breakable homogeneous bar of 1e6 cells (concrete, the
+            triangular pulse of input/spall_test.nml) to its first fracture (1 077 187
+            steps, history rows at steps 0, 1e6 and the end only), in characteristic form
+            (spb_ring): effective node-steps/s = N steps / CPU s of the whole process, and
+            / the naive loop's node-steps/s (bench/naive_ref.f90, N = 1e6, 200 steps, CPU s)
   scaling   time per node-step for N = 1e3 .. 1e6 (intact); for N = 1e5 flying apart in
             1, 10, 100 fragments; wall time vs event count over the six case-2 decks at
             h/95 and h/190 (slope = cost per event; h/19 has too few events to
@@ -19,8 +24,10 @@ usage: run.py --exe SPALLBAR [--repeats 5] [--table doc/benchmarks.md] [--plot P
               [--fc gfortran]
 """
 import argparse
+import math
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -163,6 +170,61 @@ def intact_rows(exe, work, rep, fc):
     return rows
 
 
+def ring_deck(work, cells, t_end):
+    """input/spall_test.nml (the concrete spall bar) with cells, t_end, history rows every 1e6
+    steps and no gauge (a gauge row every step would end every span)."""
+    with open(os.path.join(ROOT, "input", "spall_test.nml")) as f:
+        text = f.read()
+    text = text[:text.index("&gauges")]
+    text = re.sub(r"cells *= *\d+", f"cells = {cells}", text)
+    text = re.sub(r"t_end *= *[0-9.eE+-]+", f"t_end = {t_end!r}", text)
+    text = re.sub(r"history_every *= *\d+", "history_every = 1000000", text)
+    path = os.path.join(work, "rings1m.nml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def cpu_run(cmd, cwd):
+    """CPU seconds (user + system) of one run of cmd, and its stdout."""
+    t0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    out = subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.PIPE, text=True).stdout
+    t1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (t1.ru_utime - t0.ru_utime) + (t1.ru_stime - t0.ru_stime), out
+
+
+def ring_rows(exe, work, rep, fc):
+    """Issue 36's target 1 (>= 1e11 effective node-steps/s, >= 100x the naive loop): the
+    spall bar of 1e6 cells to its first fracture at step 1 077 186 (the first of its
+    reflected tension, 0.922 m down), then one more step."""
+    cells, steps = 1000000, 1077187
+    t_end = (steps - 0.5) / (math.sqrt(35.0e9 / 2350.0) * cells)
+    deck = ring_deck(work, cells, t_end)
+    naive, _ = build_naive(work, fc, release_flags(exe))
+    cpu, loops = [], []
+    for _ in range(max(1, rep // 2)):
+        c, _ = cpu_run([exe, deck, "-q", "--output", os.path.join(work, "rings1m")], work)
+        cpu.append(c)
+        # its CPU time too (the process, set-up included: a loaded machine stretches the
+        # wall time its loop prints)
+        c, _ = cpu_run([naive, str(cells), "200"], work)
+        loops.append(c)
+    with open(os.path.join(work, "rings1m.evt")) as f:
+        first = [line.split() for line in f if line.startswith(" ")][:1]
+    c, lp = statistics.median(cpu), statistics.median(loops)
+    rate = cells * steps / c
+    naive_rate = (cells + 1) * 200 / lp
+    what = (f"step {first[0][1]}, node {first[0][3]}, {float(first[0][5]) / 1e6:.4f} MPa"
+            if first else "none")
+    return [("issue 36 target 1: breakable homogeneous bar, N = 1e6, to its first fracture "
+             f"({steps} steps, 3 history rows; characteristic steps, spb_ring)",
+             f"{c:.2f} s CPU ({min(cpu):.2f}-{max(cpu):.2f})",
+             f"**{rate:.3g}** effective node-steps/s (target 1e11); naive loop "
+             f"{naive_rate:.3g} node-steps/s (N = 1e6, 200 steps, CPU s of its process): "
+             f"**{rate / naive_rate:.0f}x** "
+             f"(target 100x); first fracture {what}")]
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--exe", required=True)
@@ -177,6 +239,7 @@ def main():
     rows, notes = [], []
     with tempfile.TemporaryDirectory() as work:
         rows += intact_rows(exe, work, rep, args.fc)
+        rows += ring_rows(exe, work, rep, args.fc)
         # case 2 at h/190
         for rule in ("accelerate_fragment", "accelerate_above", "delay_fragment",
                      "min_fragment"):

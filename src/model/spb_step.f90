@@ -14,7 +14,7 @@ module spb_step
    implicit none
    private
    public :: section_stress_a, section_stress_b, advance, advance_joined, joined_only, &
-      end_stresses, face_load_integrals
+      end_stresses, face_load_integrals, step_load_integral, hold_end, book_end_nodes
 
    integer, parameter :: block_default = 2048   !! nodes per block of advance_joined
 

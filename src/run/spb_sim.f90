@@ -19,6 +19,7 @@ module spb_sim
    use spb_state, only: state_t, init_state
    use spb_full_mass, only: init_full_mass
    use spb_step, only: advance, advance_joined, joined_only, face_load_integrals
+   use spb_ring, only: ring_qualifies, advance_rings, ring_span_max
    use spb_ends, only: face_top, face_bottom, is_velocity_end, is_striker, strike_events
    use spb_fragments, only: fragment_span
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
@@ -52,6 +53,11 @@ module spb_sim
    !> every progress_period(cells) steps (a look at the clock: the progress line, the flush;
    !> 1024 steps, fewer on a large mesh, spb_estimate), besides the deck's own periods.
    integer, parameter :: check_every = 64
+   !> The characteristic steps (spb_ring) stand in for the lattice's over a span of at least
+   !> ring_min_steps steps of a bar of at least ring_min_cells cells: below either the
+   !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
+   integer, parameter :: ring_min_steps = 40
+   integer, parameter :: ring_min_cells = 16
    !> In a batch log the first progress line comes after this at the latest, whatever
    !> --progress asks for the lines after it: with the set-up (4 s for 5e6 cells) and a look
    !> at the clock every 2^24 cell-steps, within 10 s of the start (issue 32) [s].
@@ -119,6 +125,9 @@ module spb_sim
       integer :: xt_rows = xt_rows_max               !! x-t times buffered (fewer when memory
                                                      !! is short)
       integer :: gauge_every = 1                     !! steps between gauge rows
+      logical :: rings = .true.                      !! characteristic steps where a bar
+                                                     !! qualifies (spb_ring); .false.: the
+                                                     !! lattice always (SPALLBAR_STEPPING)
    end type run_options_t
 
    type :: sim_t
@@ -507,8 +516,9 @@ contains
    end subroutine first_rows
 
    !> The steps up to the next one at which an action is due: those before it in one
-   !> cache-blocked call where the bar is joined and nothing can break, then that step with
-   !> its events (written and counted).
+   !> cache-blocked call where the bar is joined and nothing can break, or in characteristic
+   !> form where it is intact, homogeneous and breakable (spb_ring: they stop before a step
+   !> in which a node could break), then that step with its events (written and counted).
    subroutine take_steps(sim, run, summary)
       type(sim_t), intent(inout) :: sim    !! the simulation
       type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
@@ -517,6 +527,13 @@ contains
       real(wp) :: sec_max
       real(wp), allocatable :: face_du(:, :)
       k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
+      if (use_rings(sim, summary)) then
+         k = ring_span(sim, run)
+         if (k - 1 >= ring_min_steps) then
+            call ring_steps(sim, summary, k - 1)
+            k = 0
+         end if
+      end if
       if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
          allocate(face_du(2, k - 1))
          n0 = sim%st%step
@@ -541,6 +558,55 @@ contains
       if (run%to_files) call write_events(run%out, run%events)
       call summary_events(summary, run%events)
    end subroutine take_steps
+
+   !> The characteristic steps serve this bar now (spb_ring ring_qualifies, long enough), and
+   !> no contact episode is under way (spb_diagnostics: its force is summed step by step).
+   pure logical function use_rings(sim, summary)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(run_summary_t), intent(in) :: summary   !! the run's summary (its episodes)
+      use_rings = sim%opt%rings .and. sim%mesh%n >= ring_min_cells .and. summary%diag%n_open == 0
+      if (use_rings) use_rings = ring_qualifies(sim%mesh, sim%st, sim%prob%gravity)
+   end function use_rings
+
+   !> Steps to the next due action but the check between rows and the progress line: the
+   !> characteristic steps keep no lattice arrays to check, so that check (finiteness, the
+   !> energy guard) is made at the rows and at the end of each span (doc/method.md).
+   pure integer function ring_span(sim, run) result(k)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(run_t), intent(in) :: run       !! the run's context (its schedule)
+      type(schedule_t) :: sched
+      sched = run%sched
+      sched%every(act_check) = 0
+      sched%every(act_progress) = 0
+      k = next_due(sched, sim%st%step, run%next_profile) - sim%st%step
+   end function ring_span
+
+   !> Up to nsteps characteristic steps (spb_ring advance_rings, in calls of at most
+   !> ring_span_max steps), with what the run books of each: the bottom reaction, the ends'
+   !> samples. They stop early before a step in which a node could break.
+   subroutine ring_steps(sim, summary, nsteps)
+      type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      integer, intent(in) :: nsteps        !! steps to take at most
+      real(wp), allocatable :: face_du(:, :)
+      real(wp) :: sec_max
+      integer :: left, m, taken, n0
+      left = nsteps
+      do while (left > 0)
+         m = min(left, ring_span_max(sim%mesh%n))
+         if (allocated(face_du)) deallocate(face_du)
+         allocate(face_du(2, m))
+         n0 = sim%st%step
+         call advance_rings(sim%mesh, sim%load, sim%prob%gravity, sim%st, m, taken, sec_max, &
+                            face_du)
+         if (taken > 0) then
+            call summary_reaction(summary, sec_max / sim%mesh%area(sim%mesh%n))
+            call diag_end_samples(summary%diag, sim%mesh, n0, face_du(:, 1:taken))
+         end if
+         left = left - taken
+         if (taken < m) exit
+      end do
+   end subroutine ring_steps
 
    !> The contact episodes that ended: their rows written (PREFIX.imp, /impacts), then gone
    !> from memory (a run without files drops them).
