@@ -234,13 +234,14 @@ contains
       if (k < 0 .and. j >= 1) field(j:j) = '-'
    end subroutine int_into
 
-   !> Integer as text, no blanks.
+   !> Integer as text, no blanks (the I0 edit's text, without the run-time library's
+   !> formatted I/O: a deck's checks and echo format hundreds of them).
    pure function itoa_default(k) result(s)
       integer, intent(in) :: k   !! the integer
       character(len=:), allocatable :: s
       character(len=24) :: buf
-      write(buf, '(i0)') k
-      s = trim(buf)
+      call int_into(k, buf)
+      s = trim(adjustl(buf))
    end function itoa_default
 
    !> The decimal text of a 64-bit integer.

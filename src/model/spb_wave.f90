@@ -205,9 +205,8 @@ contains
                                                  !! 0) [m]
       real(wp), intent(out), optional :: w_sup   !! V Z f_end summed over the fragment's
                                                  !! constant-velocity ends (wave_t) [J/m^2]
-      real(wp) :: dt, r, sd, hd, hd_1, sgn, sgn_k, a, b, c, d, beta, iz
+      real(wp) :: dt, r, hd, hd_1, a, b, c, d, beta
       type(faces_t) :: fc
-      integer :: k
       dt = mesh%dt
       fc = face_equations(mesh, st, g, top, bot, i_top, i_bot)
       r = node_momentum(mesh, st, top, bot, top)
@@ -220,21 +219,8 @@ contains
       a = 0.0_wp
       b = 0.0_wp
       c = 0.0_wp
-      sgn = 1.0_wp
-      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
-      do k = top + 1, bot
-         sd = st%s(k) * dt
-         r = node_momentum(mesh, st, top, bot, k)
-         sgn = -sgn
-         jprime = jprime + sgn * (r + sd)
-         jordan = jordan + abs(r) + abs(sd)
-         iz = 1.0_wp / mesh%z(k)
-         a = a + (hd**2 + (hd + sd)**2) * iz
-         b = b + sgn_k * (2.0_wp * hd + sd) * iz
-         c = c + iz
-         sgn_k = -sgn_k
-         if (k < bot) hd = r - st%s(k + 1) * dt - hd
-      end do
+      ! the pass over the cells (node_momentum of each node below top written out there)
+      call cell_sums(mesh, st, top, bot, .true., .true., hd, r, jprime, jordan, a, b, c)
       call face_terms(mesh, st, top, bot, fc, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
