@@ -249,7 +249,10 @@ contains
       b = 0.0_wp
       c = 0.0_wp
       ! the pass over the cells (node_momentum of each node below top written out there)
-      call cell_sums(mesh, st, top, bot, .true., .true., hd, r, jprime, jordan, a, b, c)
+      if (bot > top) call cell_sums(bot - top, merge(bot - top, bot - top - 1, bot == mesh%n), &
+         dt, mesh%ma(top + 1:bot), mesh%mb(top + 1:bot), st%dua(top + 1:bot), &
+         st%dub(top + 1:bot), st%s(top + 1:bot), mesh%z(top + 1:bot), .true., &
+         merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0), hd, r, jprime, jordan, a, b, c)
       call face_terms(mesh, st, top, bot, fc, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
@@ -331,7 +334,10 @@ contains
          b = b + 1.0_wp * (2.0_wp * hd + sd) * iz
          c = c + iz
       else
-         call cell_sums(mesh, st, top, bot, with_scale, .true., hd, r, jprime, jordan, a, b, c)
+         call cell_sums(bot - top, bot - top - 1, dt, mesh%ma(top + 1:bot), &
+            mesh%mb(top + 1:bot), st%dua(top + 1:bot), st%dub(top + 1:bot), &
+            st%s(top + 1:bot), mesh%z(top + 1:bot), with_scale, &
+            merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0), hd, r, jprime, jordan, a, b, c)
       end if
       if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * no_load
       d = r - no_load - hd
@@ -340,41 +346,14 @@ contains
       e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
    end subroutine inner_wave
 
-   !> fragment_wave's pass over the cells top+1..bot: the same operations in the same order
-   !> as the one-pass loop (node_momentum inlined), the sums in locals. On return hd is
-   !> hd_bot and r the bottom node's momentum (the top node's when the fragment has no cell).
-   pure subroutine cell_sums(mesh, st, top, bot, with_scale, with_bc, hd, r, jp, jr, a, b, c)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
-      logical, intent(in) :: with_scale    !! sum the momentum scale (jr)
-      logical, intent(in) :: with_bc       !! sum B and C
-      real(wp), intent(inout) :: hd        !! hd of the first cell in, hd_bot out [kg/(m s)]
-      real(wp), intent(inout) :: r         !! m du/dt of the last node summed [kg/(m s)]
-      real(wp), intent(inout) :: jp        !! J' so far [kg/(m s)]
-      real(wp), intent(inout) :: jr        !! the momentum scale so far [kg/(m s)]
-      real(wp), intent(inout) :: a         !! A so far [(kg/(m s))^2 m^2 s/kg]
-      real(wp), intent(inout) :: b         !! B so far [kg/(m s) m^2 s/kg]
-      real(wp), intent(inout) :: c         !! C so far [m^2 s/kg]
-      integer :: last
-      if (bot <= top) return
-      ! the bottom node is a whole node only at the bar's end
-      last = bot
-      if (bot < mesh%n) last = bot - 1
-      call cell_pass(bot - top, last - top, mesh%dt, mesh%ma(top + 1:bot), &
-                     mesh%mb(top + 1:bot), st%dua(top + 1:bot), st%dub(top + 1:bot), &
-                     st%s(top + 1:bot), mesh%z(top + 1:bot), with_scale, with_bc, &
-                     merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0), hd, r, jp, jr, a, b, c)
-   end subroutine cell_sums
-
-   !> cell_sums' loop over the m cells below the top node, on the fragment's own slices of
-   !> the arrays (explicit shapes: the compiler keeps their addresses in registers); node j
-   !> (1..m) below the top is a whole node for j <= m_whole, else the upper half of a split
-   !> node. The operations and their order are cell_sums' (and fragment_wave's one-pass
-   !> loop's).
-   pure subroutine cell_pass(m, m_whole, dt, ma, mb, dua, dub, s, z, with_scale, with_bc, &
-                             sgn_k0, hd, r, jp, jr, a, b, c)
+   !> The pass over the cells top+1..bot of a fragment (fragment_wave, inner_wave): the same
+   !> operations in the same order as fragment_wave's one-pass loop (node_momentum written
+   !> out), the sums in locals, on the fragment's own slices of the arrays (explicit shapes:
+   !> the compiler keeps their addresses in registers). Node j (1..m) below the top is a
+   !> whole node for j <= m_whole (m at the bar's end, else m - 1), else the upper half of a
+   !> split node. On return hd is hd_bot and r the bottom node's momentum.
+   pure subroutine cell_sums(m, m_whole, dt, ma, mb, dua, dub, s, z, with_scale, sgn_k0, hd, &
+                             r, jp, jr, a, b, c)
       integer, intent(in) :: m             !! cells (nodes below the top node)
       integer, intent(in) :: m_whole       !! of them whole nodes (m or m - 1)
       real(wp), intent(in) :: dt           !! time step [s]
@@ -385,7 +364,6 @@ contains
       real(wp), intent(in) :: s(m)         !! stresses of the cells above the nodes [Pa A]
       real(wp), intent(in) :: z(m)         !! impedances of the cells [kg/(m^2 s) A]
       logical, intent(in) :: with_scale    !! sum the momentum scale (jr)
-      logical, intent(in) :: with_bc       !! sum B and C
       real(wp), intent(in) :: sgn_k0       !! (-1)^(bot-top-1), B's sign at the first cell
       real(wp), intent(inout) :: hd        !! hd of the first cell in, hd_bot out [kg/(m s)]
       real(wp), intent(inout) :: r         !! m du/dt of the last node summed [kg/(m s)]
@@ -418,10 +396,8 @@ contains
          p = p + sgn * (rk + sd)
          if (with_scale) q = q + abs(rk) + abs(sd)
          u = u + (h**2 + (h + sd)**2) * iz
-         if (with_bc) then
-            v = v + sgn_k * (2.0_wp * h + sd) * iz
-            w = w + iz
-         end if
+         v = v + sgn_k * (2.0_wp * h + sd) * iz
+         w = w + iz
          sgn_k = -sgn_k
          if (j < m) then
             sd_next = s(j + 1) * dt
@@ -435,7 +411,7 @@ contains
       a = u
       b = v
       c = w
-   end subroutine cell_pass
+   end subroutine cell_sums
 
    !> The zig-zag content of the fragments at the transmitting ends, at t^{n+1} [m]: the
    !> reading's incoming interval there minus the one the end's equation gives,
