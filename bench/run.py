@@ -1,33 +1,43 @@
 #!/usr/bin/env python3
-"""spallbar benchmarks (`make bench`): whole-process wall times, medians of several runs.
+"""spallbar benchmarks (`make bench`): CPU time of each process (user + system, its
+children's included: an MPI sweep's ranks), medians of several runs, the programs compared
+timed in the same interleaved rounds (a VM's slow and fast spells fall on all of them).
 
-  intact    intact bar, N = 100 000 cells, 2000 steps: node-steps/s, and in the same run
+  intact    intact bar, N = 100 000 cells, 2000 steps: node-steps/s, and in the same rounds
             two references of the same compact scheme (bench/references.py): a lean NumPy
             loop (bench/numpy_ref.py) and a naive Fortran loop (bench/naive_ref.f90,
             compiled here with spallbar's Release flags); first a check that both compute
             spallbar's final state (u, v, stress) to TOLERANCE; then the superseded NumPy
-            reference (numpy_ref.py --variant old), timed once, for the record
+            reference (numpy_ref.py --variant old), timed once, for the record. "Steps only"
+            is each program's CPU time less that of the same program for one step.
+  scaling   cost per step of the intact bar against N = 1e3 .. 1e6 (lattice and naive loop),
+            from enough steps that set-up does not count: SCALING_NODE_STEPS node-steps per
+            run, at least 2000 steps, less the same run for one step; for N = 1e5 flying
+            apart in 1, 10, 100 fragments; CPU time vs event count over the six case-2 decks
+            at h/95 and h/190 (slope = cost per event)
   case2     the paper's Example 3 case 2 at h/190 (input/example3_case2/), outputs as in
             the decks (history every step, every event)
   output    case 2 at h/19 with history every step vs none: the share output costs
-  rings     issue 36's target 1: a breakable homogeneous bar of 1e6 cells (concrete, the
-            triangular pulse of input/spall_test.nml) to its first fracture (1 077 187
-            steps, history rows at steps 0, 1e6 and the end only), in characteristic form
-            (spb_ring): effective node-steps/s = N steps / CPU s of the whole process, and
-            / the naive loop's node-steps/s (bench/naive_ref.f90, N = 1e6, 200 steps, CPU s)
-  scaling   time per node-step for N = 1e3 .. 1e6 (intact); for N = 1e5 flying apart in
-            1, 10, 100 fragments; wall time vs event count over the six case-2 decks at
-            h/95 and h/190 (slope = cost per event; h/19 has too few events to
-            time)
+  targets   issue 36's targets, each with its measured value: (1) a breakable homogeneous
+            1e6-cell bar (concrete, the triangular pulse of input/spall_test.nml) to its first
+            fracture (1 077 187 steps, history rows at steps 0, 1e6 and the end only), in
+            characteristic form (spb_ring): effective node-steps/s = N steps / CPU s of the
+            whole process, and / the naive loop's node-steps/s (bench/naive_ref.f90, N = 1e6,
+            200 steps, CPU s), (2) the 1e5-cell layered bar with one breakable segment
+            (LAYERED, and the same bar unbreakable), (3) the Weibull spall sweep
+            (input/sweeps/weibull_spall.nml at 1000 realizations) on one rank and on two,
+            (4) case 2 accelerate/fragment at h/760 and h/190
 
 usage: run.py --exe SPALLBAR [--repeats 5] [--table doc/benchmarks.md] [--plot PNG]
-              [--fc gfortran]
+              [--fc gfortran] [--mpiexec mpirun] [--skip-targets]
 """
 import argparse
 import math
 import os
+import platform
 import re
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -40,13 +50,24 @@ from references import (TOLERANCE, build_naive, check, describe, intact_deck,
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
+def run_cpu(cmd, cwd, capture=False):
+    """Run CMD; returns (CPU seconds of the process and its children, wall seconds, stdout
+    when capture). The CPU time is what the process used of the machine, whatever else runs
+    beside it (a busy VM stretches wall times, not this)."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t = time.perf_counter()
+    p = subprocess.run(cmd, cwd=cwd, check=True, text=True,
+                       stdout=subprocess.PIPE if capture else subprocess.DEVNULL)
+    wall = time.perf_counter() - t
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return cpu, wall, p.stdout if capture else ""
+
+
 def timed(cmd, cwd, repeats):
-    walls = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.DEVNULL)
-        walls.append(time.perf_counter() - t)
-    return statistics.median(walls), min(walls), max(walls)
+    """Median, min and max CPU time of REPEATS runs of CMD."""
+    cpus = [run_cpu(cmd, cwd)[0] for _ in range(repeats)]
+    return statistics.median(cpus), min(cpus), max(cpus)
 
 
 FLYING = """&run
@@ -74,7 +95,7 @@ FLYING = """&run
 def flying_deck(work, cells, steps, k):
     """N cells in k segments, dry interfaces, each segment faster than the one above it:
     k - 1 open sections from the first step and no event after."""
-    path = os.path.join(work, f"flying_{cells}_{k}.nml")
+    path = os.path.join(work, f"flying_{cells}_{k}_{steps}.nml")
     with open(path, "w") as f:
         f.write(FLYING.format(t_end=f"{steps * 1.0e-6:.10g}", k=k,
                               length=f"{cells // k * 5.0e-3:.10g}",
@@ -108,20 +129,18 @@ def no_history(work, deck, name):
 def timed_together(cmds, cwd, repeats):
     """Run the commands of CMDS ({name: argv}) one after the other, REPEATS rounds, so that
     the VM's slow and fast spells fall on all of them alike. Returns {name: (median, min,
-    max wall, median of the 'loop T s' the program printed, or None)}."""
-    walls = {k: [] for k in cmds}
+    max CPU time, median of the 'loop T s' the program printed, or None)}."""
+    cpus = {k: [] for k in cmds}
     loops = {k: [] for k in cmds}
     for _ in range(repeats):
         for name, cmd in cmds.items():
-            t = time.perf_counter()
-            out = subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.PIPE,
-                                 text=True).stdout
-            walls[name].append(time.perf_counter() - t)
+            cpu, _, out = run_cpu(cmd, cwd, capture=True)
+            cpus[name].append(cpu)
             m = re.search(r"loop\s+([0-9.]+) s", out)
             if m:
                 loops[name].append(float(m.group(1)))
-    return {k: (statistics.median(w), min(w), max(w),
-                statistics.median(loops[k]) if loops[k] else None) for k, w in walls.items()}
+    return {k: (statistics.median(c), min(c), max(c),
+                statistics.median(loops[k]) if loops[k] else None) for k, c in cpus.items()}
 
 
 def intact_rows(exe, work, rep, fc):
@@ -138,7 +157,9 @@ def intact_rows(exe, work, rep, fc):
             # start-up, deck, set-up of 1e5 nodes and outputs: the same deck for one step
             "spallbar_1": [exe, intact_deck(work, cells, 1), "-q"],
             "naive": [naive, str(cells), str(steps)],
-            "numpy": [sys.executable, numpy_ref, str(cells), str(steps)]}
+            "naive_1": [naive, str(cells), "1"],
+            "numpy": [sys.executable, numpy_ref, str(cells), str(steps)],
+            "numpy_1": [sys.executable, numpy_ref, str(cells), "1"]}
     r = timed_together(cmds, work, rep)
     old = timed_together({"old": [sys.executable, numpy_ref, str(cells), str(steps),
                                   "--variant", "old"]}, work, max(3, rep // 2))["old"]
@@ -151,23 +172,121 @@ def intact_rows(exe, work, rep, fc):
 
     rows = [("intact bar, N = 1e5, 2000 steps", span(spb),
              f"{ns / spb[0]:.3g} node-steps/s; the same deck for 1 step (start-up, set-up, "
-             f"outputs) {spb1[0]:.3f} s, so the steps take {spb_steps:.3f} s")]
+             f"outputs) {spb1[0]:.3f} s, so the steps take {spb_steps:.3f} s "
+             f"({ns / spb_steps:.3g} node-steps/s)")]
     for key, what in (("naive", "naive Fortran loop (bench/naive_ref.f90, Release flags)"),
                       ("numpy", "NumPy, lean loop (bench/numpy_ref.py)")):
-        x = r[key]
+        x, x1 = r[key], r[key + "_1"]
+        x_steps = x[0] - x1[0]
         rows.append((f"{what}, same scheme and size", span(x),
-                     f"its time loop {x[3]:.3f} s ({ns / x[3]:.3g} node-steps/s); "
-                     f"spallbar / {key} = **{x[0] / spb[0]:.2f}** whole process, "
-                     f"**{x[3] / spb_steps:.2f}** time steps only"))
+                     f"its steps {x_steps:.3f} s ({ns / x_steps:.3g} node-steps/s; its own "
+                     f"wall-clock loop timer {x[3]:.3f} s); spallbar / {key} = "
+                     f"**{x[0] / spb[0]:.2f}** whole process, **{x_steps / spb_steps:.2f}** "
+                     f"time steps only (> 1: spallbar is faster)"))
     rows.append(("superseded NumPy reference (NumPy-scalar stiffness, temporaries; "
                  "`numpy_ref.py --variant old`)", span(old),
-                 f"its time loop {old[3]:.3f} s; spallbar / old = {old[0] / spb[0]:.2f} whole "
+                 f"its own loop timer {old[3]:.3f} s; spallbar / old = {old[0] / spb[0]:.2f} whole "
                  f"process (the ratio the tables before issue 21 reported)"))
     rows.append(("check: both references against spallbar's profile at t_end, N = 1e5, "
                  "2000 steps", "-",
                  f"max |ref - spallbar| / max |spallbar|: {describe(result)} "
                  f"(tolerance {TOLERANCE:.0e}); naive built with `{naive_cmd}`"))
     return rows
+
+
+# Scaling runs: this many node-steps each (at least MIN_STEPS steps), so that the set-up of
+# the bar (allocation, the start, process start) is a small part, and the same run for one
+# step is subtracted. (Before issue 36 the N = 1e6 row came from 20 steps: 13.6 ns per
+# node-step was mostly set-up.)
+SCALING_SIZES = (1000, 10000, 100000, 1000000)
+SCALING_NODE_STEPS = 1.0e9
+MIN_STEPS = 2000
+
+# Issue 36 target 2: a 1e5-cell layered bar (steel, aluminium, steel, aluminium: three
+# interfaces) under a 200 us triangular pulse on its free top, the top segment breakable:
+# the pulse's tension reflected at the first interface spalls it (2 fractures, 25 events
+# in 40 000 steps). {strength}: 1.0e8 Pa, or '' for the same bar unbreakable.
+LAYERED = """&run
+  title = 'layered bar, one breakable segment (issue 36, target 2)'
+  t_end = 0.04
+  history_every = 1000000000
+/
+&mesh
+  dt  = 1.0e-6
+  fit = 'stretch'
+/
+&segments
+  n        = 4
+  length   = 50.0, 150.0, 150.0, 152.75
+  young    = 2.0e11, 7.0e10, 2.0e11, 7.0e10
+  density  = 8000.0, 2700.0, 8000.0, 2700.0
+{strength}/
+&ends
+  top    = 'free'
+  bottom = 'free'
+/
+&load
+  kind     = 'power'
+  p0       = 6.0e8
+  t_k      = 2.0e-4
+  exponent = 1.0
+  t_cut    = 2.0e-4
+/
+"""
+
+
+def scaling_runs(exe, naive, work, rep):
+    """CPU time per step of the intact bar, spallbar's lattice and the naive loop, at each
+    size of SCALING_SIZES: {name: [seconds per step]}, and the steps of each size."""
+    per_step = {"lattice": [], "naive": []}
+    steps_of = []
+    for n in SCALING_SIZES:
+        st = max(MIN_STEPS, int(SCALING_NODE_STEPS / n))
+        steps_of.append(st)
+        r = timed_together({"spb": [exe, intact_deck(work, n, st), "-q"],
+                            "spb_1": [exe, intact_deck(work, n, 1), "-q"],
+                            "naive": [naive, str(n), str(st)],
+                            "naive_1": [naive, str(n), "1"]}, work, rep)
+        per_step["lattice"].append((r["spb"][0] - r["spb_1"][0]) / (st - 1))
+        per_step["naive"].append((r["naive"][0] - r["naive_1"][0]) / (st - 1))
+    return per_step, steps_of
+
+
+def scaling_row(per_step, steps_of):
+    """The table's row of the scaling runs: ns per node-step and the ratio to the naive loop."""
+    cells = []
+    for n, st, a, b in zip(SCALING_SIZES, steps_of, per_step["lattice"], per_step["naive"]):
+        cells.append(f"N = {n:.0e}, {st} steps: {a / (n + 1) * 1e9:.2f} ns "
+                     f"(naive {b / (n + 1) * 1e9:.2f} ns, spallbar / naive **{b / a:.2f}**)")
+    return ("time per node-step, intact bar (CPU time of the steps: the run less the same "
+            "run for one step)", "; ".join(cells),
+            f"{SCALING_NODE_STEPS:.0e} node-steps per run, at least {MIN_STEPS} steps; "
+            "flat = O(N) per step")
+
+
+def sweep_deck(work, realizations=1000):
+    """input/sweeps/weibull_spall.nml at REALIZATIONS realizations of its middle amplitude
+    (p0 = 2e8 Pa, the deck's &load value; vary and values left out): one case each."""
+    text = open(os.path.join(ROOT, "input", "sweeps", "weibull_spall.nml")).read()
+    text = re.sub(r"^\s*vary\s*=.*$", "", text, flags=re.M)
+    text = re.sub(r"^\s*values\s*=.*$", "", text, flags=re.M)
+    text = re.sub(r"realizations\s*=\s*\d+", f"realizations = {realizations}", text)
+    path = os.path.join(work, f"weibull_spall_{realizations}.nml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def table_rows(path):
+    """The rows of a text table, its '#' header lines left out."""
+    with open(path) as f:
+        return [line for line in f if not line.startswith("#")]
+
+
+def sweep_wall(out):
+    """The wall time a sweep prints ('... in T s wall') [s]."""
+    m = re.search(r"in\s+([0-9.]+) s wall", out)
+    return float(m.group(1)) if m else float("nan")
 
 
 def ring_deck(work, cells, t_end):
@@ -185,14 +304,6 @@ def ring_deck(work, cells, t_end):
     return path
 
 
-def cpu_run(cmd, cwd):
-    """CPU seconds (user + system) of one run of cmd, and its stdout."""
-    t0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    out = subprocess.run(cmd, cwd=cwd, check=True, stdout=subprocess.PIPE, text=True).stdout
-    t1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (t1.ru_utime - t0.ru_utime) + (t1.ru_stime - t0.ru_stime), out
-
-
 def ring_rows(exe, work, rep, fc):
     """Issue 36's target 1 (>= 1e11 effective node-steps/s, >= 100x the naive loop): the
     spall bar of 1e6 cells to its first fracture at step 1 077 186 (the first of its
@@ -203,11 +314,11 @@ def ring_rows(exe, work, rep, fc):
     naive, _ = build_naive(work, fc, release_flags(exe))
     cpu, loops = [], []
     for _ in range(max(1, rep // 2)):
-        c, _ = cpu_run([exe, deck, "-q", "--output", os.path.join(work, "rings1m")], work)
+        c = run_cpu([exe, deck, "-q", "--output", os.path.join(work, "rings1m")], work)[0]
         cpu.append(c)
         # its CPU time too (the process, set-up included: a loaded machine stretches the
         # wall time its loop prints)
-        c, _ = cpu_run([naive, str(cells), "200"], work)
+        c = run_cpu([naive, str(cells), "200"], work)[0]
         loops.append(c)
     with open(os.path.join(work, "rings1m.evt")) as f:
         first = [line.split() for line in f if line.startswith(" ")][:1]
@@ -225,6 +336,86 @@ def ring_rows(exe, work, rep, fc):
              f"(target 100x); first fracture {what}")]
 
 
+def target_rows(exe, work, rep, mpiexec, case2_190, fc):
+    """Issue 36's targets, each with its measured value (CPU time unless said)."""
+    rows = ring_rows(exe, work, rep, fc)
+    # target 2: the layered bar, breakable and not
+    times = {}
+    for name, strength in (("breakable", "  strength = 1.0e8, -1.0, -1.0, -1.0\n"),
+                           ("unbreakable", "")):
+        deck = os.path.join(work, f"layered_{name}.nml")
+        with open(deck, "w") as f:
+            f.write(LAYERED.format(strength=strength))
+        prefix = os.path.join(work, f"layered_{name}")
+        times[name] = timed([exe, deck, "-q", "--output", prefix], work, max(1, rep // 3))
+        times[name + "_events"] = count_events(prefix)
+    b, u = times["breakable"], times["unbreakable"]
+    verdict = f"**not met** ({b[0] / 0.2:.0f}x over)" if b[0] > 0.2 else "met"
+    rows.append(("**target 2**: 1e5-cell layered bar (3 interfaces), one breakable segment, "
+                 "40 000 steps, <= 0.2 s", f"{b[0]:.2f} s ({b[1]:.2f}-{b[2]:.2f})",
+                 f"{times['breakable_events']} events; the same bar unbreakable {u[0]:.2f} s "
+                 f"({times['unbreakable_events']} events); target {verdict}"))
+    # target 3: the sweep, one rank and two
+    deck = sweep_deck(work)
+    one = [run_cpu([exe, "--sweep", deck, "--output", os.path.join(work, "sw1")], work,
+                   capture=True) for _ in range(max(1, rep // 2))]
+    cpu1 = statistics.median(x[0] for x in one)
+    wall1 = statistics.median(sweep_wall(x[2]) for x in one)
+    text = (f"1 rank: sweep wall {wall1:.3f} s; target <= 0.5 s on one core "
+            + ("met" if cpu1 <= 0.5 else f"**not met** ({cpu1 / 0.5:.1f}x over)"))
+    if mpiexec:
+        two = [run_cpu([mpiexec, "--oversubscribe", "-np", "2", exe, "--sweep", deck,
+                        "--output", os.path.join(work, "sw2")], work, capture=True)
+               for _ in range(max(1, rep // 2))]
+        wall2 = statistics.median(sweep_wall(x[2]) for x in two)
+        text += (f"; 2 ranks (mpirun -np 2): sweep wall {wall2:.3f} s, **{wall1 / wall2:.2f}x** "
+                 "(target >= 1.8x; the sweep's own wall times: two ranks need two idle cores)")
+        if table_rows(os.path.join(work, "sw1.sweep")) != \
+                table_rows(os.path.join(work, "sw2.sweep")):
+            raise SystemExit("the sweep tables of 1 and 2 ranks differ")
+    else:
+        text += "; 2 ranks: no mpirun (or a serial build)"
+    rows.append(("**target 3**: Weibull spall sweep, input/sweeps/weibull_spall.nml at 1000 "
+                 "realizations (p0 = 2e8 Pa), 1 rank", f"{cpu1:.3f} s ({cpu1:.2f} ms per "
+                 "realization)", text))
+    # target 4: case 2 accelerate/fragment at h/760 (the deck of input/ with cells = 760)
+    text = open(os.path.join(ROOT, "input", "example3_case2",
+                             "accelerate_fragment_h190.nml")).read()
+    assert "cells = 190" in text
+    deck = os.path.join(work, "accelerate_fragment_h760.nml")
+    with open(deck, "w") as f:
+        f.write(text.replace("cells = 190", "cells = 760"))
+    prefix = os.path.join(work, "af760")
+    c760 = timed([exe, deck, "-q", "--output", prefix], work, max(1, rep // 2))
+    ev = count_events(prefix)
+    for ext in (".evt", ".imp", ".his", ".prf", ".frg"):
+        if os.path.exists(prefix + ext):
+            os.remove(prefix + ext)
+    rows.append(("**target 4**: case 2 accelerate/fragment at h/760 (outputs as in the deck) "
+                 "<= 1.5 s; h/190 <= 0.1 s", f"h/760 {c760[0]:.2f} s ({c760[1]:.2f}-"
+                 f"{c760[2]:.2f}); h/190 {case2_190[0]:.3f} s",
+                 f"h/760: {ev} events; " +
+                 ("met" if c760[0] <= 1.5 else f"**not met** ({c760[0] / 1.5:.1f}x over)") +
+                 "; h/190: " + ("met" if case2_190[0] <= 0.1 else
+                                f"**not met** ({case2_190[0] / 0.1:.1f}x over)")))
+    return rows
+
+
+def machine():
+    """The machine in one line: CPU model, cores, compiler."""
+    model = platform.processor() or "unknown CPU"
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    fc = subprocess.run(["gfortran", "--version"], capture_output=True, text=True).stdout
+    return (f"{model}, {os.cpu_count()} cores, {fc.splitlines()[0] if fc else 'gfortran ?'}, "
+            f"load average {os.getloadavg()[0]:.1f} at the end")
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--exe", required=True)
@@ -233,19 +424,26 @@ def main():
     p.add_argument("--plot", help="write the scaling plot here")
     p.add_argument("--label", default="this build")
     p.add_argument("--fc", default="gfortran", help="compiler for bench/naive_ref.f90")
+    p.add_argument("--mpiexec", default=shutil.which("mpirun") or "",
+                   help="MPI launcher for the two-rank sweep ('' : none)")
+    p.add_argument("--skip-targets", action="store_true", help="leave issue 36's targets out")
     args = p.parse_args()
     exe = os.path.abspath(args.exe)
     rep = args.repeats
-    rows, notes = [], []
+    os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+    os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    rows = []
     with tempfile.TemporaryDirectory() as work:
         rows += intact_rows(exe, work, rep, args.fc)
-        rows += ring_rows(exe, work, rep, args.fc)
+        naive = os.path.join(work, "naive_ref")
         # case 2 at h/190
+        case2 = {}
         for rule in ("accelerate_fragment", "accelerate_above", "delay_fragment",
                      "min_fragment"):
             deck = os.path.join(ROOT, "input", "example3_case2", f"{rule}_h190.nml")
             prefix = os.path.join(work, rule)
             med, lo, hi = timed([exe, deck, "-q", "--output", prefix], work, rep)
+            case2[rule] = (med, lo, hi)
             ev = count_events(prefix)
             nmed, _, _ = timed([exe, no_history(work, deck, rule + "_nh"), "-q", "--output",
                                 prefix + "_nh"], work, rep)
@@ -262,20 +460,17 @@ def main():
                      f"{w_med:.4f} s vs {n_med:.4f} s without",
                      f"history rows cost {100 * (w_med - n_med) / w_med:.0f}% of the run "
                      "(process start and deck echo included in both)"))
-        # scaling with N (intact), with the number of fragments, and with the event count
-        sizes, per_node = [1000, 10000, 100000, 1000000], []
-        for n in sizes:
-            st = max(20, int(2.0e7 / n))
-            med, _, _ = timed([exe, intact_deck(work, n, st), "-q"], work, 3)
-            per_node.append(med / ((n + 1) * st) * 1e9)
-        rows.append(("time per node-step, intact bar, N = 1e3, 1e4, 1e5, 1e6",
-                     ", ".join(f"{x:.2f} ns" for x in per_node), "flat = O(N) per step"))
+        # scaling with N (intact): the lattice and the naive loop, enough steps
+        per_step, steps_of = scaling_runs(exe, naive, work, 3)
+        rows.append(scaling_row(per_step, steps_of))
         pieces, per_frag = [1, 10, 100], []
         for k in pieces:
-            med, _, _ = timed([exe, flying_deck(work, 100000, 200, k), "-q"], work, 3)
-            per_frag.append(med / (100001 * 200) * 1e9)
-        rows.append(("time per node-step, N = 1e5 flying apart in 1, 10, 100 fragments "
-                     "(no events after t = 0)", ", ".join(f"{x:.2f} ns" for x in per_frag),
+            r = timed_together({"run": [exe, flying_deck(work, 100000, MIN_STEPS, k), "-q"],
+                                "one": [exe, flying_deck(work, 100000, 1, k), "-q"]}, work, 3)
+            per_frag.append((r["run"][0] - r["one"][0]) / (100001 * (MIN_STEPS - 1)) * 1e9)
+        rows.append((f"time per node-step, N = 1e5 flying apart in 1, 10, 100 fragments "
+                     f"(no events after t = 0; {MIN_STEPS} steps less 1 step)",
+                     ", ".join(f"{x:.2f} ns" for x in per_frag),
                      "flat = independent of the number of fragments"))
         fits = {}
         for cells in (95, 190):
@@ -291,12 +486,16 @@ def main():
                     walls.append(med)
             slope, icpt = linear_fit(evs, walls)
             fits[cells] = (evs, walls, slope, icpt)
-        rows.append(("wall time vs events, case 2 without history rows, the 6 rule/policy "
+        rows.append(("CPU time vs events, case 2 without history rows, the 6 rule/policy "
                      "decks at h/95 and h/190 (least-squares slope)",
                      ", ".join(f"{fits[c][2] * 1e6:.2f} us/event" for c in (95, 190)),
                      "events " + "; ".join(f"h/{c}: {min(fits[c][0])}-{max(fits[c][0])}"
                                            for c in (95, 190))))
-    lines = [f"| case ({args.label}) | median wall (min-max) | result |", "|---|---|---|"]
+        if not args.skip_targets:
+            rows += target_rows(exe, work, rep, args.mpiexec, case2["accelerate_fragment"],
+                              args.fc)
+    lines = [f"Machine: {machine()}.", "",
+             f"| case ({args.label}) | median CPU time (min-max) | result |", "|---|---|---|"]
     lines += [f"| {a} | {b} | {c} |" for a, b, c in rows]
     text = "\n".join(lines)
     print(text)
@@ -307,15 +506,21 @@ def main():
         os.environ.setdefault("MPLBACKEND", "Agg")
         import matplotlib.pyplot as plt
         fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(13, 3.8))
-        a1.loglog(sizes, per_node, "o-", color="C0")
-        a1.set_ylim(min(per_node) / 3, max(per_node) * 3)
+        # cost per step against N, one curve per stepping (the characteristic rings of
+        # issue 36 add theirs here: a name and its seconds per step at SCALING_SIZES)
+        styles = {"lattice": ("o-", "C0", "spallbar, lattice"),
+                  "naive": ("s--", "C2", "naive Fortran loop")}
+        for name, ys in per_step.items():
+            mk, col, label = styles.get(name, ("^-", "C3", name))
+            a1.loglog(SCALING_SIZES, [y * 1e6 for y in ys], mk, color=col, label=label)
         a1.set_xlabel("cells N")
-        a1.set_ylabel("wall time per node-step [ns]")
-        a1.set_title("intact bar: cost per node-step vs N", fontsize=9)
+        a1.set_ylabel("CPU time per step [us]")
+        a1.set_title("intact bar: cost per step vs N", fontsize=9)
+        a1.legend(fontsize=8)
         a2.semilogx(pieces, per_frag, "o-", color="C0")
         a2.set_ylim(0, max(per_frag) * 1.5)
-        a2.set_xlabel("fragments (N = 1e5, 200 steps)")
-        a2.set_ylabel("wall time per node-step [ns]")
+        a2.set_xlabel(f"fragments (N = 1e5, {MIN_STEPS} steps)")
+        a2.set_ylabel("CPU time per node-step [ns]")
         a2.set_title("no events: cost per step vs number of fragments", fontsize=9)
         # one colour per series: its points, its least-squares line and its legend entry
         # (a proxy drawn with both the marker and the line)
@@ -327,8 +532,8 @@ def main():
             a3.plot([], [], mk + "-", color=col, lw=0.8,
                     label=f"h/{c}: runs and fit, {slope * 1e6:.2f} us/event")
         a3.set_xlabel("events in the run (case 2, 6 rule/policy decks)")
-        a3.set_ylabel("wall time [s]")
-        a3.set_title("case 2: wall time vs event count", fontsize=9)
+        a3.set_ylabel("CPU time [s]")
+        a3.set_title("case 2: CPU time vs event count", fontsize=9)
         a3.legend(fontsize=8)
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)

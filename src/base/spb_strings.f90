@@ -5,7 +5,7 @@ module spb_strings
    use spb_kinds, only: wp
    implicit none
    private
-   public :: itoa, rtoa, lower, ltoa, es20_12, int_right, int_into
+   public :: itoa, rtoa, lower, ltoa, es20_12, es_into, int_right, int_into
 
    interface itoa
       module procedure itoa_default, itoa_int64
@@ -30,6 +30,16 @@ contains
    pure function es20_12(x) result(out)
       real(wp), intent(in) :: x            !! the number
       character(len=20) :: out
+      call es_into(x, out)
+   end function es20_12
+
+   !> es20_12 written in place into a row's field of 20 characters (no function result to
+   !> copy: a run's rows hold millions of them).
+   pure subroutine es_into(x, out)
+      real(wp), intent(in) :: x            !! the number
+      ! the caller's part of a row receives the text
+      ! allow(assumed-size-character-intent)
+      character(len=*), intent(out) :: out   !! the field (20 characters)
       integer(int64) :: m, hi7
       integer :: e, k, lo6, hi6
       logical :: ok
@@ -61,7 +71,7 @@ contains
       k = abs(e)
       out(18:18) = achar(48 + k / 100)
       out(19:20) = pair(mod(k, 100))
-   end function es20_12
+   end subroutine es_into
 
    !> The six decimal digits of 0 <= v < 10^6, leading zeros kept.
    pure function six_digits(v) result(d)
@@ -234,13 +244,14 @@ contains
       if (k < 0 .and. j >= 1) field(j:j) = '-'
    end subroutine int_into
 
-   !> Integer as text, no blanks.
+   !> Integer as text, no blanks (the I0 edit's text, without the run-time library's
+   !> formatted I/O: a deck's checks and echo format hundreds of them).
    pure function itoa_default(k) result(s)
       integer, intent(in) :: k   !! the integer
       character(len=:), allocatable :: s
       character(len=24) :: buf
-      write(buf, '(i0)') k
-      s = trim(buf)
+      call int_into(k, buf)
+      s = trim(adjustl(buf))
    end function itoa_default
 
    !> The decimal text of a 64-bit integer.

@@ -1264,15 +1264,25 @@ contains
       end function speed_hint
    end function mesh_fault_message
 
-   !> The record of a validated deck for the outputs and checkpoints.
-   function deck_record(deck) result(rec)
+   !> The record of a validated deck for the outputs and checkpoints. echo = .false. (a run
+   !> that writes no files: a sweep's case) leaves the echo's items out (none), the most of
+   !> the record's cost.
+   function deck_record(deck, echo) result(rec)
       type(deck_t), intent(in) :: deck     !! the deck
+      logical, intent(in), optional :: echo   !! with the echo's items (default .true.)
       type(deck_record_t) :: rec
       integer :: k
+      logical :: with_echo
+      with_echo = .true.
+      if (present(echo)) with_echo = echo
       rec%path = trim(deck%path)
       rec%title = trim(deck%run%title)
       rec%table = deck_file(deck, deck%load%table)
-      call deck_items(deck, rec%items)
+      if (with_echo) then
+         call deck_items(deck, rec%items)
+      else
+         allocate(rec%items(0))
+      end if
       rec%hdf5 = deck%run%hdf5
       rec%names_first = deck%run%header == 'names'
       rec%field_every = deck%run%field_every

@@ -9,7 +9,7 @@ module spb_output
    use spb_kinds, only: wp
    use spb_identity, only: program_identity, build_revision
    use spb_error, only: spb_error_t, make_error, exit_runtime
-   use spb_strings, only: itoa, rtoa, es20_12, int_right, int_into
+   use spb_strings, only: itoa, rtoa, es20_12, es_into, int_right, int_into
    use spb_deck, only: deck_record_t, write_echo
    use spb_deck_types, only: echo_item_t
    use spb_hdf5, only: h5file_t, h5_create, h5_close, h5_flush, h5_attr, h5_group, h5_write, &
@@ -1385,6 +1385,8 @@ contains
                   cache%line(at + 1:at + c%width) = kind_field(whole(v(k)))
                else if (c%whole) then
                   call int_into(whole(v(k)), cache%line(at + 1:at + c%width))
+               else if (c%width == 20) then
+                  call es_into(v(k), cache%line(at + 1:at + 20))
                else
                   cache%line(at + 1:at + c%width) = es20_12(v(k))
                end if
@@ -1640,7 +1642,8 @@ contains
                line(at + 1:at + 17) = ' ' // adjustr(imp_kind_names(ended(k)%kind) // '       ')
                at = at + 17
             else
-               line(at + 1:at + 21) = ' ' // es20_12(v(c))
+               line(at + 1:at + 1) = ' '
+               call es_into(v(c), line(at + 2:at + 21))
                at = at + 21
             end if
          end do

@@ -45,6 +45,8 @@ module spb_diagnostics
    character(len=9), parameter :: imp_kind_names(3) = ['fragments', 'base     ', 'impactor ']
    character(len=6), parameter :: end_names(2) = ['top   ', 'bottom']
    integer, parameter :: first_impacts = 5   !! episodes the run summary lists
+   integer, parameter :: hole = -1           !! the node of a slot of diag_t%open whose
+                                             !! episode ended (no node is negative)
 
    !> The running peak and pull-back of one end's outward velocity (pick_sample).
    type :: pick_t
@@ -90,8 +92,14 @@ module spb_diagnostics
       type(spall_end_t) :: ends(2)         !! face_top, face_bottom
       real(wp) :: scale = 0.0_wp           !! the bar's velocity scale so far: the largest
                                            !! |w0| and |w - w0| of either end [m/s]
-      type(impact_t), allocatable :: open(:)   !! episodes under way, first n_open used
+      type(impact_t), allocatable :: open(:)   !! episodes under way in the order they began,
+                                               !! first n_open slots used; a slot whose
+                                               !! episode ended is a hole (node = hole)
       integer :: n_open = 0
+      integer :: n_holes = 0               !! holes among open(1:n_open): an episode's end
+                                           !! leaves one instead of moving the slots after it
+                                           !! (thousands when every cell is a contact); they
+                                           !! are packed away once they are half (pack_open)
       integer :: n_done = 0                !! episodes ended so far
       type(impact_t) :: first(first_impacts)   !! the first min(n_done, first_impacts) of
                                                !! them (the run summary's)
@@ -234,6 +242,7 @@ contains
          end associate
       end do
       do k = 1, d%n_open
+         if (d%open(k)%node == hole) cycle
          call add_force(d%open(k), contact_force(mesh, st, d%open(k)), mesh%dt)
       end do
    end subroutine diag_step
@@ -358,9 +367,25 @@ contains
       e%t_end = t
       e%v(3:4) = side_velocities(mesh, st, e%kind, e%node)
       call ended(d, e)
-      d%open(k:d%n_open - 1) = d%open(k + 1:d%n_open)
-      d%n_open = d%n_open - 1
+      d%open(k)%node = hole
+      d%n_holes = d%n_holes + 1
+      if (2 * d%n_holes >= d%n_open) call pack_open(d)
    end subroutine finish
+
+   !> The open episodes packed to the front of d%open, in the order they began (the holes
+   !> gone).
+   pure subroutine pack_open(d)
+      type(diag_t), intent(inout) :: d     !! the record
+      integer :: k, m
+      m = 0
+      do k = 1, d%n_open
+         if (d%open(k)%node == hole) cycle
+         m = m + 1
+         if (m < k) d%open(m) = d%open(k)
+      end do
+      d%n_open = m
+      d%n_holes = 0
+   end subroutine pack_open
 
    !> An episode ended (or open at the end of the run): counted, kept among the first ones
    !> while there are fewer than first_impacts, and among those the caller takes next.
@@ -400,6 +425,7 @@ contains
    pure subroutine diag_close(d)
       type(diag_t), intent(inout) :: d     !! the record
       integer :: k
+      call pack_open(d)
       do k = 1, d%n_open
          call ended(d, d%open(k))
       end do
@@ -581,6 +607,7 @@ contains
       ! the episodes, open ones first: n_open, then nf values each
       n_first = min(max(d%n_done, 0), first_impacts)
       if (io%writing) then
+         call pack_open(d)
          allocate(a(1 + nf * (d%n_open + n_first)))
          a(1) = real(d%n_open, wp)
          do k = 1, d%n_open

@@ -141,13 +141,11 @@ contains
       integer, intent(in) :: top           !! top node of the region (0 or a split node)
       integer, intent(in) :: bot           !! bottom node of the region (n or a split node)
       real(wp) :: e, jp, jr, ja, ws
-      integer :: t, b, i
+      integer :: t, b
       ! gravity potential at mid-step, -g m (u^n + u^{n+1})/2, of the halves the region owns
-      e_sum = 0.0_wp
-      do i = top, bot
-         if (i > top .or. top == 0) e_sum = e_sum - g * mesh%ma(i) * (st%ua(i) - 0.5_wp * st%dua(i))
-         if (i < bot .or. bot == mesh%n) e_sum = e_sum - g * mesh%mb(i) * (st%ub(i) - 0.5_wp * st%dub(i))
-      end do
+      e_sum = region_potential(bot - top, g, top == 0, bot == mesh%n, mesh%ma(top:bot), &
+                               mesh%mb(top:bot), st%ua(top:bot), st%ub(top:bot), &
+                               st%dua(top:bot), st%dub(top:bot))
       t = top
       do while (t < bot)
          b = t + 1
@@ -165,6 +163,37 @@ contains
          t = b
       end do
    end function region_wave
+
+   !> The gravity potential at mid-step, -g m (u^n + u^{n+1})/2, of the halves a region of
+   !> nodes 0..m (top..bot) owns [J/m^2]: every node's but the top node's upper half (unless
+   !> the top is the bar's end, first_a) and the bottom node's lower half (unless it is the
+   !> bar's end, last_b); summed node by node, upper half before lower (region_wave's order:
+   !> the ends peeled off the loop, on the region's slices of the arrays).
+   pure real(wp) function region_potential(m, g, first_a, last_b, ma, mb, ua, ub, dua, dub) &
+      result(e)
+      integer, intent(in) :: m             !! cells of the region (nodes 0..m)
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      logical, intent(in) :: first_a       !! the top node's upper half is the region's
+      logical, intent(in) :: last_b        !! the bottom node's lower half is the region's
+      real(wp), intent(in) :: ma(0:m)      !! upper half masses [kg/m^2 A]
+      real(wp), intent(in) :: mb(0:m)      !! lower half masses [kg/m^2 A]
+      real(wp), intent(in) :: ua(0:m)      !! upper half displacements at t^{n+1} [m]
+      real(wp), intent(in) :: ub(0:m)      !! lower half displacements at t^{n+1} [m]
+      real(wp), intent(in) :: dua(0:m)     !! their increments over the step [m]
+      real(wp), intent(in) :: dub(0:m)     !! [m]
+      integer :: j
+      e = 0.0_wp
+      if (first_a) e = e - g * ma(0) * (ua(0) - 0.5_wp * dua(0))
+      if (m > 0 .or. last_b) e = e - g * mb(0) * (ub(0) - 0.5_wp * dub(0))
+      do j = 1, m - 1
+         e = e - g * ma(j) * (ua(j) - 0.5_wp * dua(j))
+         e = e - g * mb(j) * (ub(j) - 0.5_wp * dub(j))
+      end do
+      if (m > 0) then
+         e = e - g * ma(m) * (ua(m) - 0.5_wp * dua(m))
+         if (last_b) e = e - g * mb(m) * (ub(m) - 0.5_wp * dub(m))
+      end if
+   end function region_potential
 
    !> Whether a face of the fragment top..bot is a cohesive crack's (it carries a traction).
    pure logical function loaded(st, top, bot)
@@ -205,9 +234,8 @@ contains
                                                  !! 0) [m]
       real(wp), intent(out), optional :: w_sup   !! V Z f_end summed over the fragment's
                                                  !! constant-velocity ends (wave_t) [J/m^2]
-      real(wp) :: dt, r, sd, hd, hd_1, sgn, sgn_k, a, b, c, d, beta, iz
+      real(wp) :: dt, r, hd, hd_1, a, b, c, d, beta
       type(faces_t) :: fc
-      integer :: k
       dt = mesh%dt
       fc = face_equations(mesh, st, g, top, bot, i_top, i_bot)
       r = node_momentum(mesh, st, top, bot, top)
@@ -220,21 +248,11 @@ contains
       a = 0.0_wp
       b = 0.0_wp
       c = 0.0_wp
-      sgn = 1.0_wp
-      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
-      do k = top + 1, bot
-         sd = st%s(k) * dt
-         r = node_momentum(mesh, st, top, bot, k)
-         sgn = -sgn
-         jprime = jprime + sgn * (r + sd)
-         jordan = jordan + abs(r) + abs(sd)
-         iz = 1.0_wp / mesh%z(k)
-         a = a + (hd**2 + (hd + sd)**2) * iz
-         b = b + sgn_k * (2.0_wp * hd + sd) * iz
-         c = c + iz
-         sgn_k = -sgn_k
-         if (k < bot) hd = r - st%s(k + 1) * dt - hd
-      end do
+      ! the pass over the cells (node_momentum of each node below top written out there)
+      if (bot > top) call cell_sums(bot - top, merge(bot - top, bot - top - 1, bot == mesh%n), &
+         dt, mesh%ma(top + 1:bot), mesh%mb(top + 1:bot), st%dua(top + 1:bot), &
+         st%dub(top + 1:bot), st%s(top + 1:bot), mesh%z(top + 1:bot), .true., &
+         merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0), hd, r, jprime, jordan, a, b, c)
       call face_terms(mesh, st, top, bot, fc, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
@@ -316,7 +334,10 @@ contains
          b = b + 1.0_wp * (2.0_wp * hd + sd) * iz
          c = c + iz
       else
-         call cell_sums(mesh, st, top, bot, with_scale, .true., hd, r, jprime, jordan, a, b, c)
+         call cell_sums(bot - top, bot - top - 1, dt, mesh%ma(top + 1:bot), &
+            mesh%mb(top + 1:bot), st%dua(top + 1:bot), st%dub(top + 1:bot), &
+            st%s(top + 1:bot), mesh%z(top + 1:bot), with_scale, &
+            merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0), hd, r, jprime, jordan, a, b, c)
       end if
       if (mod(bot - top, 2) == 1) jprime = jprime + 2.0_wp * no_load
       d = r - no_load - hd
@@ -325,16 +346,25 @@ contains
       e = max(0.0_wp, a + 2.0_wp * beta * (b + beta * c)) / dt
    end subroutine inner_wave
 
-   !> fragment_wave's pass over the cells top+1..bot: the same operations in the same order
-   !> as the one-pass loop (node_momentum inlined), the sums in locals. On return hd is
-   !> hd_bot and r the bottom node's momentum (the top node's when the fragment has no cell).
-   pure subroutine cell_sums(mesh, st, top, bot, with_scale, with_bc, hd, r, jp, jr, a, b, c)
-      type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state
-      integer, intent(in) :: top           !! top node of the fragment (0 or a split node)
-      integer, intent(in) :: bot           !! bottom node of the fragment (n or a split node)
+   !> The pass over the cells top+1..bot of a fragment (fragment_wave, inner_wave): the same
+   !> operations in the same order as fragment_wave's one-pass loop (node_momentum written
+   !> out), the sums in locals, on the fragment's own slices of the arrays (explicit shapes:
+   !> the compiler keeps their addresses in registers). Node j (1..m) below the top is a
+   !> whole node for j <= m_whole (m at the bar's end, else m - 1), else the upper half of a
+   !> split node. On return hd is hd_bot and r the bottom node's momentum.
+   pure subroutine cell_sums(m, m_whole, dt, ma, mb, dua, dub, s, z, with_scale, sgn_k0, hd, &
+                             r, jp, jr, a, b, c)
+      integer, intent(in) :: m             !! cells (nodes below the top node)
+      integer, intent(in) :: m_whole       !! of them whole nodes (m or m - 1)
+      real(wp), intent(in) :: dt           !! time step [s]
+      real(wp), intent(in) :: ma(m)        !! upper half masses of the nodes [kg/m^2 A]
+      real(wp), intent(in) :: mb(m)        !! lower half masses [kg/m^2 A]
+      real(wp), intent(in) :: dua(m)       !! increments of the upper halves [m]
+      real(wp), intent(in) :: dub(m)       !! increments of the lower halves [m]
+      real(wp), intent(in) :: s(m)         !! stresses of the cells above the nodes [Pa A]
+      real(wp), intent(in) :: z(m)         !! impedances of the cells [kg/(m^2 s) A]
       logical, intent(in) :: with_scale    !! sum the momentum scale (jr)
-      logical, intent(in) :: with_bc       !! sum B and C
+      real(wp), intent(in) :: sgn_k0       !! (-1)^(bot-top-1), B's sign at the first cell
       real(wp), intent(inout) :: hd        !! hd of the first cell in, hd_bot out [kg/(m s)]
       real(wp), intent(inout) :: r         !! m du/dt of the last node summed [kg/(m s)]
       real(wp), intent(inout) :: jp        !! J' so far [kg/(m s)]
@@ -342,9 +372,8 @@ contains
       real(wp), intent(inout) :: a         !! A so far [(kg/(m s))^2 m^2 s/kg]
       real(wp), intent(inout) :: b         !! B so far [kg/(m s) m^2 s/kg]
       real(wp), intent(inout) :: c         !! C so far [m^2 s/kg]
-      real(wp) :: dt, sd, sd_next, iz, sgn, sgn_k, h, p, q, u, v, w, rk
-      integer :: k, last
-      dt = mesh%dt
+      real(wp) :: sd, sd_next, iz, sgn, sgn_k, h, p, q, u, v, w, rk
+      integer :: j
       h = hd
       p = jp
       q = jr
@@ -353,31 +382,25 @@ contains
       w = c
       rk = r
       sgn = 1.0_wp
-      sgn_k = merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0)
-      ! the bottom node is a whole node only at the bar's end
-      last = bot
-      if (bot < mesh%n) last = bot - 1
-      sd_next = 0.0_wp
-      if (bot > top) sd_next = st%s(top + 1) * dt
-      do k = top + 1, bot
+      sgn_k = sgn_k0
+      sd_next = s(1) * dt
+      do j = 1, m
          sd = sd_next
-         if (k <= last) then
-            rk = (mesh%ma(k) * st%dua(k) + mesh%mb(k) * st%dub(k)) / dt
+         if (j <= m_whole) then
+            rk = (ma(j) * dua(j) + mb(j) * dub(j)) / dt
          else
-            rk = mesh%ma(k) * st%dua(k) / dt    ! the upper half of a split node
+            rk = ma(j) * dua(j) / dt    ! the upper half of a split node
          end if
-         iz = 1.0_wp / mesh%z(k)
+         iz = 1.0_wp / z(j)
          sgn = -sgn
          p = p + sgn * (rk + sd)
          if (with_scale) q = q + abs(rk) + abs(sd)
          u = u + (h**2 + (h + sd)**2) * iz
-         if (with_bc) then
-            v = v + sgn_k * (2.0_wp * h + sd) * iz
-            w = w + iz
-         end if
+         v = v + sgn_k * (2.0_wp * h + sd) * iz
+         w = w + iz
          sgn_k = -sgn_k
-         if (k < bot) then
-            sd_next = st%s(k + 1) * dt
+         if (j < m) then
+            sd_next = s(j + 1) * dt
             h = rk - sd_next - h
          end if
       end do

@@ -168,7 +168,11 @@ contains
       logical, intent(in), optional :: restart   !! it goes on from a checkpoint
       logical, intent(in), optional :: files     !! it writes its outputs (default .true.)
       type(wave_t) :: w0
-      sim%record = deck_record(deck)
+      logical :: with_files
+      with_files = .true.
+      if (present(files)) with_files = files
+      ! the echo only where files show it
+      sim%record = deck_record(deck, echo=with_files)
       sim%opt%history_every = deck%run%history_every
       sim%opt%field_every = deck%run%field_every
       sim%opt%profile_times = deck%run%profile_times(1:deck%run%n_profiles)
