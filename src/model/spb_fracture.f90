@@ -41,19 +41,27 @@ contains
       integer, intent(in) :: rules       !! events_admissible | events_paper
       real(wp), intent(in) :: i_top      !! load integral on the top face over the step [Pa s]
       real(wp), intent(in) :: i_bot      !! load integral on the bottom face over the step [Pa s]
-      real(wp) :: eps
+      real(wp) :: eps, s_max, du_max
+      integer :: k
       real(wp), parameter :: velocity_floor = 1.0e-12_wp   !! round-off floor, share of Z|v|
 
       if (st%coh%n_pending > 0) call crack_events(mesh, st, events)
       if (st%coh%n_active > 0) call complete_cracks(mesh, st, events)
       if (st%n_breakable == 0 .and. .not. any(on_base(st%ends))) return
-      st%s_scale = max(st%s_scale, maxval(abs(st%s(1:mesh%n))), abs(st%section(mesh%n)))
+      ! the largest stress and increment in one pass over the nodes
+      s_max = 0.0_wp
+      du_max = abs(st%dua(0))
+      do k = 1, mesh%n
+         s_max = max(s_max, abs(st%s(k)))
+         du_max = max(du_max, abs(st%dua(k)))
+      end do
+      st%s_scale = max(st%s_scale, s_max, abs(st%section(mesh%n)))
       if (on_base(st%ends(face_top))) st%s_scale = max(st%s_scale, abs(st%section(0)))
       ! the section stresses are formed from the nodes' velocities, so they round off at
       ! about epsilon Z |v| even in uniform motion, where no stress sets the scale: a floor
       ! of 1e-12 Z|v| (frame-dependent, but far below eps_rel s_scale wherever stresses act)
       eps = max(eps_rel * st%s_scale, velocity_floor * maxval(mesh%impedance * mesh%seg_area) * &
-                maxval(abs(st%dua)) / mesh%dt)
+                du_max / mesh%dt)
       if (mesh%full_mass) then
          ! the full-mass model: its own lift-off, springs instead of sections
          call full_mass_fracture(mesh, st, g, eps, events, i_top, i_bot)
