@@ -165,10 +165,15 @@ contains
    !> so the state's arrays would share their addresses modulo 4 KiB, and a load from one
    !> stalls behind a store to another at the same index (4K aliasing): measured 20% of the
    !> stepping time of a 1e5-node bar (doc/benchmarks.md). Heap arrays lie one after the
-   !> other at staggered offsets. A performance hint only: ignored where it fails.
+   !> other at staggered offsets. Freed heap memory is kept for reuse up to 1 GiB
+   !> (M_TRIM_THRESHOLD = -1), not handed back at each free: the characteristic steps
+   !> (spb_ring) allocate and free their sequences at each event, and pages handed back
+   !> fault again when they are touched anew (measured: a third of a layered bar's run,
+   !> doc/benchmarks.md). A performance hint only: ignored where it fails.
    subroutine heap_for_large_arrays()
       integer(c_int) :: rc
       rc = c_mallopt(-3_c_int, 33554432_c_int)
+      rc = c_mallopt(-1_c_int, 1073741824_c_int)
    end subroutine heap_for_large_arrays
 
    !> Terminate with an exit status and no runtime banner (error stop prints one). Every

@@ -233,6 +233,9 @@ contains
       call later_field(ck, writing, '/state', 'w_support', st%ledger%w_support)
       ! added with x_drift (0 in a checkpoint of a version without it)
       call later_field(ck, writing, '/state', 'm_drift', st%ledger%m_drift)
+      ! added with the rings' retries (0 in a checkpoint of a version without them)
+      call later_field_int(ck, writing, '/state', 'ring_next', st%ring_next)
+      call later_field_int(ck, writing, '/state', 'ring_wait', st%ring_wait)
       ! a striking mass (only a run that has one)
       if (any(is_striker(st%ends))) then
          ck%writing = writing
@@ -338,6 +341,18 @@ contains
       if (writing .or. h5_has_attr(ck%h5, group, name)) call field_real(ck, writing, group, &
                                                                        name, v)
    end subroutine later_field
+
+   !> An integer field added after checkpoints existed: read back only where the file has it
+   !> (else v keeps its value).
+   subroutine later_field_int(ck, writing, group, name, v)
+      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
+      logical, intent(in) :: writing       !! write (else read back)
+      character(len=*), intent(in) :: group   !! group path
+      character(len=*), intent(in) :: name   !! field name
+      integer, intent(inout) :: v          !! the value
+      if (writing .or. h5_has_attr(ck%h5, group, name)) call field_int(ck, writing, group, &
+                                                                      name, v)
+   end subroutine later_field_int
 
    !> A scalar field: an attribute of group, written or read back.
    subroutine field_int(ck, writing, group, name, v)

@@ -22,7 +22,8 @@ module spb_diagnostics
    public :: pick_t, pick_sample, significant, spall_end_t, impact_t, diag_t, diag_start, diag_step, &
       diag_end_samples, diag_fields, diag_close, imp_kind_names, imp_fragments, imp_base, &
       imp_impactor, pick_fraction, diag_problem, end_names, spall_row, impact_row, spall_columns, &
-      impact_columns, spall_units, impact_units, first_impacts, diag_taken
+      impact_columns, spall_units, impact_units, first_impacts, diag_taken, contact_nodes, &
+      diag_contact_samples, contacts_by_sections
 
    !> The share of the swing that confirms a peak or a pull-back minimum (doc/outputs.md,
    !> "How the peak and the pull-back are picked"): a maximum is the peak once the velocity
@@ -206,6 +207,53 @@ contains
          end do
       end do
    end subroutine diag_end_samples
+
+   !> Every episode under way is a contact of fragments (its force a section's stress), so
+   !> that a block of steps without events may sample them (contact_nodes).
+   pure logical function contacts_by_sections(d)
+      type(diag_t), intent(in) :: d        !! the record
+      integer :: k
+      contacts_by_sections = .true.
+      do k = 1, d%n_open
+         if (d%open(k)%node == hole) cycle
+         if (d%open(k)%kind /= imp_fragments) contacts_by_sections = .false.
+      end do
+   end function contacts_by_sections
+
+   !> The nodes of the episodes under way (holes left out), in their order.
+   pure subroutine contact_nodes(d, nodes)
+      type(diag_t), intent(in) :: d        !! the record
+      integer, allocatable, intent(out) :: nodes(:)   !! their nodes
+      integer :: k, c
+      c = 0
+      do k = 1, d%n_open
+         if (d%open(k)%node /= hole) c = c + 1
+      end do
+      allocate(nodes(c))
+      c = 0
+      do k = 1, d%n_open
+         if (d%open(k)%node == hole) cycle
+         c = c + 1
+         nodes(c) = d%open(k)%node
+      end do
+   end subroutine contact_nodes
+
+   !> The forces of a block of steps without events into the episodes under way: f(c, t) of
+   !> the c-th of contact_nodes at the t-th step (as diag_step adds them step by step).
+   pure subroutine diag_contact_samples(d, f, dt)
+      type(diag_t), intent(inout) :: d     !! the record
+      real(wp), intent(in) :: f(:, :)      !! (episode, step) their sections [Pa A]
+      real(wp), intent(in) :: dt           !! the step [s]
+      integer :: k, c, t
+      c = 0
+      do k = 1, d%n_open
+         if (d%open(k)%node == hole) cycle
+         c = c + 1
+         do t = 1, size(f, 2)
+            call add_force(d%open(k), f(c, t), dt)
+         end do
+      end do
+   end subroutine diag_contact_samples
 
    !> After a step with its events: the ends' samples, the fractures nearest the ends, the
    !> episodes that begin, go on and end.

@@ -60,15 +60,29 @@ contains
       integer, intent(in) :: i             !! node
       integer, intent(out) :: j   !! top node of the fragment ending at A_i (0 or a split node)
       integer, intent(out) :: k   !! bottom node of the fragment starting at B_i (n or split)
-      j = i - 1
-      do while (j > 0)
-         if (.not. st%joined(j)) exit
-         j = j - 1
+      integer :: lo, hi, mid
+      ! the split nodes are st%split(1:n_split), ascending (the interior nodes not joined):
+      ! lo = how many lie below i, by bisection (O(log n_split), not a walk over the nodes)
+      lo = 0
+      hi = st%n_split
+      do while (lo < hi)
+         mid = (lo + hi + 1) / 2
+         if (st%split(mid) < i) then
+            lo = mid
+         else
+            hi = mid - 1
+         end if
       end do
-      k = i + 1
-      do while (k < mesh%n)
-         if (.not. st%joined(k)) exit
-         k = k + 1
+      ! (none: the bar's end, or the node beyond i where i is an end itself, as a walk from
+      ! i would stop)
+      j = min(0, i - 1)
+      if (lo > 0) j = st%split(lo)
+      k = max(mesh%n, i + 1)
+      do mid = lo + 1, min(lo + 2, st%n_split)
+         if (st%split(mid) > i) then
+            k = st%split(mid)
+            exit
+         end if
       end do
    end subroutine fragment_span
 

@@ -1,36 +1,56 @@
-!> Characteristic stepping of an intact homogeneous bar (doc/method.md, "Characteristic
+!> Characteristic stepping of intact homogeneous stretches (doc/method.md, "Characteristic
 !> stepping of intact stretches (issue 36)").
 !>
 !> With dx = a dt the compact update (2.3) of a stretch of equal cells is an exact shift:
-!> du_i^n = F(n - i) + G(n + i) and s_k^n = K (F(n - k + 1) - G(n + k)), K = E A / dx. A
-!> step writes one new F at the top face and one new G at the bottom face, found by the
-!> lattice's own end-node update (loads, supports, the ledger: spb_step); every other value
-!> only moves. The section stresses (3.1)-(3.2) of a homogeneous stretch without gravity
+!> du_j^n = F(n - j) + G(n + j) and s_k^n = K (F(n - k + 1) - G(n + k)), K = E A / dx, j and
+!> k counted from the stretch's top node; gravity adds (n - n0) g dt^2 to every du (its
+!> uniform part cancels in the strains) from the conversion at step n0. The bar is cut into rings, the stretches of at
+!> least min_cells cells of one material whose interior nodes are all joined (cut at the
+!> segments' interfaces and at split nodes), and the rest, the junction nodes (each ring's
+!> two end nodes, the split nodes, the nodes of stretches too short to be a ring) and the
+!> lattice cells (the cells of those short stretches). A step writes one new F at each
+!> ring's top node and one new G at its bottom node, found by the lattice's own update of
+!> those junction nodes (spb_step advance: the same expressions, loads, supports, the
+!> ledger); every other ring value only moves. The section stresses (3.1)-(3.2) of a ring
 !> obey S_i^{n+1/2} + S_i^{n-1/2} = s_i^n + s_{i+1}^n, which the same shift carries:
 !> S_i^{n+1/2} = Ra(n - i) + Rb(n + i + 1) + (-1)^n C_i, two more characteristic sequences
 !> and one constant per node. The fracture test is bounded by block extrema of Ra and Rb
 !> (blocks of 64 values, levels of 8 blocks) and each block's weakest section (C and the
 !> strengths, found once), and evaluated node by node only where that bound reaches the
-!> strength; advance_rings stops before any step in which a node could break, with the
-!> lattice arrays rebuilt, so that the whole step (spb_sim sim_step) takes it as always.
+!> strength; a junction node's section is the lattice's own. advance_rings stops before any
+!> step in which a node could break or two split faces could touch, with the lattice arrays
+!> rebuilt, so that the whole step (spb_sim sim_step) takes it as always.
 module spb_ring
    use spb_kinds, only: wp
    use spb_mesh, only: mesh_t
    use spb_load, only: load_t
    use spb_state, only: state_t
    use spb_ends, only: face_step_t, face_top, face_bottom, has_base, is_striker
-   use spb_problem, only: end_free, end_fixed
-   use spb_step, only: end_stresses, step_load_integral, hold_end, book_end_nodes
+   use spb_problem, only: end_free, end_fixed, events_admissible
+   use spb_step, only: end_stresses, step_load_integral, hold_end, book_end_nodes, &
+                       section_stress_a
    implicit none
    private
-   public :: ring_qualifies, advance_rings, ring_span_max
+   public :: ring_qualifies, ring_layout, start_rings, advance_rings, end_rings, ring_span_max
 
-   integer, parameter :: leaf = 64   !! values per finest block
-   integer, parameter :: fan = 8     !! blocks of one level per block of the next
-   !> A node whose section stress from the characteristic sequences comes within this share
-   !> of the stress scale of its strength stops the characteristic steps: the lattice's own
-   !> section stress differs from it by round-off only (~1e-13 of the scale) [-]
-   real(wp), parameter :: guard_share = 1.0e-9_wp
+   integer, parameter :: leaf_bits = 6   !! log2 of leaf
+   integer, parameter :: fan_bits = 3    !! log2 of fan
+   integer, parameter :: leaf = 2**leaf_bits   !! values per finest block
+   integer, parameter :: fan = 2**fan_bits     !! blocks of one level per block of the next
+   !> A node whose section stress S from the characteristic sequences (or from the ring's
+   !> end cells) comes below -R - eps_rel s_scale + margin_share scale stops the
+   !> characteristic steps before the step: the lattice breaks it where S < -R - eps, eps >=
+   !> eps_rel s_scale (spb_fracture), and its own S differs from this one by round-off only
+   !> (~1e-13 of the scale), far below the margin [-]
+   real(wp), parameter :: margin_share = 1.0e-11_wp
+   !> Two split faces that would overlap by more than this share of the admissible rules'
+   !> collision test (overlap > eps_rel dx) after a step stop the characteristic steps
+   !> before it: their positions differ from the lattice's by round-off in the increments
+   !> only, far below the rest of eps_rel dx [-]
+   real(wp), parameter :: touch_part = 0.9_wp
+   !> Under the paper's rules (overlap > 0), or with eps_rel = 0, faces that would come
+   !> within this share of their cells' length of touching stop them [-]
+   real(wp), parameter :: touch_share = 1.0e-9_wp
    !> An increase of the largest stress magnitude (st%s_scale) smaller than this share of it
    !> is not looked for (it scales only the fracture test's round-off guard) [-]
    real(wp), parameter :: scale_share = 1.0e-12_wp
@@ -53,47 +73,132 @@ module spb_ring
       type(level_t), allocatable :: lev(:)      !! the levels of blocks
    end type seq_t
 
-   !> The characteristic state of the bar between the conversions.
+   !> The characteristic state of one ring between the conversions: cells c0..c0+n-1, its
+   !> local node j the bar's node c0 - 1 + j (j = 0 and n: junction nodes).
    type :: ring_t
+      integer :: c0 = 1               !! first cell
       integer :: n = 0                !! cells
       integer :: n0 = 0               !! step of the conversion
       real(wp) :: k = 0.0_wp          !! E A / dx of the cells [Pa/m A]
-      type(seq_t) :: f                !! F: du_i^n = F(n - i) + G(n + i) [m]
+      logical :: sections = .false.   !! Ra, Rb and C are kept (sections are read)
+      logical :: breaks = .false.     !! some interior node can break: the bounded test
+      type(seq_t) :: f                !! F: du_j^n = F(n - j) + G(n + j) [m]
       type(seq_t) :: g                !! G [m]
-      type(seq_t) :: ra               !! Ra: S_i^{n+1/2} = Ra(n - i) + Rb(n + i + 1) + ... [Pa]
+      type(seq_t) :: ra               !! Ra: S_j^{n+1/2} = Ra(n - j) + Rb(n + j + 1) + ... [Pa]
       type(seq_t) :: rb               !! Rb [Pa]
-      real(wp), allocatable :: c(:)   !! (1:n-1) C_i of the sections [Pa]
-      type(seq_t) :: w_even           !! (1:n-1) C_i + R_i (a step from an even n) [Pa]
-      type(seq_t) :: w_odd            !! (1:n-1) -C_i + R_i [Pa]
+      real(wp), allocatable :: c(:)   !! (1:n-1) C_j of the sections [Pa]
+      type(seq_t) :: w_even           !! (1:n-1) C_j + R_j (a step from an even n) [Pa]
+      type(seq_t) :: w_odd            !! (1:n-1) -C_j + R_j [Pa]
       real(wp) :: scale = 0.0_wp      !! largest |Ra|, |Rb|, |C| seen [Pa]
+      real(wp) :: s_ends(2) = 0.0_wp  !! s^n0 of its first and last cell (restored when it
+                                      !! takes no step) [Pa]
+      logical :: finite = .true.      !! the state it was converted from is finite
    end type ring_t
+
+   !> The rings and the junctions of a bar between start_rings and end_rings.
+   type, public :: ring_hybrid_t
+      private
+      type(ring_t), allocatable :: r(:)       !! the rings
+      integer, allocatable :: jn(:)           !! the junction nodes, ascending
+      integer, allocatable :: lc(:)           !! the lattice cells, ascending
+      integer, allocatable :: owner(:)        !! (0:n) the ring holding the node inside, 0
+      logical, allocatable :: keep(:)         !! (0:n) the nodes whose sections are kept
+      logical :: sections = .false.           !! some section is kept
+      logical :: all_sections = .false.       !! every section is kept (some can break)
+      logical :: finite = .true.              !! the converted state is finite
+      real(wp) :: touch = 0.0_wp              !! faces that would overlap by more than this
+                                              !! share of dx stop the steps [-]
+      real(wp), allocatable :: nda(:), ndb(:) !! the junctions' trial increments [m]
+      real(wp), allocatable :: nsec(:)        !! their trial sections [Pa]
+      integer, allocatable :: samples(:)      !! the nodes whose sections are sampled
+      logical :: stopped = .false.            !! a step was refused: the lattice takes it
+   end type ring_hybrid_t
+
+   !> Where the rings lie: the stretches of at least min_cells equal cells joined inside.
+   type, public :: ring_layout_t
+      integer :: nr = 0                      !! rings
+      integer, allocatable :: c0(:)          !! first cell of each
+      integer, allocatable :: nc(:)          !! cells of each
+      integer :: ring_cells = 0              !! cells in rings
+   end type ring_layout_t
 
 contains
 
    !> Whether advance_rings may stand in for whole steps (advance, contact_step,
-   !> fracture_step) of this bar: one material and cross-section (every cell's mass, impedance
-   !> and stiffness the same), no gravity, free or fixed ends with no base, striking mass or
-   !> landing, every node joined, some breakable, none by a cohesive crack or a damage
-   !> integral, the half-mass model. Breakable nodes are allowed: the steps stop before one
-   !> could break.
-   pure logical function ring_qualifies(mesh, st, g)
+   !> fracture_step) of this bar: free or fixed ends with no base, striking mass or
+   !> landing, no cohesive crack or damage integral, the half-mass model, no node whose
+   !> section test starts late (n_skip). Split nodes, interfaces and breakable nodes are
+   !> allowed: the rings end at the first two, and the steps stop before one could break or
+   !> two faces could touch.
+   pure logical function ring_qualifies(mesh, st)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
-      integer :: j, k
       ring_qualifies = .false.
-      if (mesh%n < 2 .or. abs(g) > 0.0_wp .or. mesh%full_mass) return
-      if (st%n_split /= 0 .or. st%n_breakable == 0 .or. st%fm%n_cut /= 0 .or. st%n_skip /= 0) return
+      if (mesh%n < 2 .or. mesh%full_mass) return
+      if (st%fm%n_cut /= 0 .or. st%n_skip /= 0) return
       if (st%coh%on .or. st%dmg%on) return
       if (any(has_base(st%ends) .or. is_striker(st%ends)) .or. any(st%ends%landing)) return
       if (.not. all(st%ends%kind == end_free .or. st%ends%kind == end_fixed)) return
-      do j = 1, mesh%nseg
-         k = mesh%first(j)
-         if (abs(mesh%dm(k) - mesh%dm(1)) > 0.0_wp .or. abs(mesh%z(k) - mesh%z(1)) > 0.0_wp .or. &
-             abs(mesh%stiff(k) - mesh%stiff(1)) > 0.0_wp) return
-      end do
       ring_qualifies = .true.
    end function ring_qualifies
+
+   !> The rings of the bar now: the stretches of equal cells (mass, impedance, stiffness)
+   !> cut at the split nodes, those of at least min_cells cells. O(segments + split nodes).
+   pure function ring_layout(mesh, st, min_cells) result(lay)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state (st%split ascending)
+      integer, intent(in) :: min_cells     !! the shortest ring [cells]
+      type(ring_layout_t) :: lay
+      integer :: cuts(mesh%nseg + st%n_split + 1), first(mesh%nseg + st%n_split + 1)
+      integer :: cells(mesh%nseg + st%n_split + 1), nk, j, c, a, b, k, p
+      ! the cuts: each node below which a new stretch starts (an interface between unequal
+      ! segments, a split node), merged in ascending order, and the bottom node
+      nk = 0
+      c = 1
+      do j = 1, mesh%nseg
+         if (j < mesh%nseg) then
+            k = mesh%last(j)
+            if (same_cells(mesh, k, k + 1)) cycle
+         else
+            k = mesh%n
+         end if
+         do while (c <= st%n_split)
+            if (st%split(c) >= k) exit
+            nk = nk + 1
+            cuts(nk) = st%split(c)
+            c = c + 1
+         end do
+         if (c <= st%n_split) then
+            if (st%split(c) == k) c = c + 1
+         end if
+         nk = nk + 1
+         cuts(nk) = k
+      end do
+      a = 0
+      do p = 1, nk
+         b = cuts(p)
+         if (b - a >= min_cells) then
+            lay%nr = lay%nr + 1
+            first(lay%nr) = a + 1
+            cells(lay%nr) = b - a
+         end if
+         a = b
+      end do
+      allocate(lay%c0(lay%nr), lay%nc(lay%nr))
+      lay%c0(:) = first(1:lay%nr)
+      lay%nc(:) = cells(1:lay%nr)
+      lay%ring_cells = sum(lay%nc)
+   end function ring_layout
+
+   !> Cells k and l are equal: mass, impedance, stiffness to the bit.
+   pure logical function same_cells(mesh, k, l)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      integer, intent(in) :: k             !! one cell
+      integer, intent(in) :: l             !! the other
+      same_cells = .not. (abs(mesh%dm(k) - mesh%dm(l)) > 0.0_wp .or. &
+                          abs(mesh%z(k) - mesh%z(l)) > 0.0_wp .or. &
+                          abs(mesh%stiff(k) - mesh%stiff(l)) > 0.0_wp)
+   end function same_cells
 
    !> The most steps one call of advance_rings takes for a bar of n cells: its arrays hold
    !> n + steps values per sequence.
@@ -102,230 +207,516 @@ contains
       ring_span_max = n + 4096
    end function ring_span_max
 
-   !> Up to nsteps whole steps of a bar that ring_qualifies, in characteristic form: the
-   !> lattice arrays are converted once (O(n)), each step costs O(1) at the faces and in the
-   !> bounded fracture test, and the arrays are rebuilt at the end (O(n)). It stops before a
-   !> step in which some node could break (taken < nsteps). The end nodes' bookkeeping
-   !> (book_end_nodes: ledger, support sections) is made step by step as advance makes it.
-   !> s_old is not kept (as advance_joined): the caller ends with an ordinary step.
-   pure subroutine advance_rings(mesh, load, g, st, nsteps, taken, max_sec_bottom, face_du)
+   !> Up to nsteps whole steps of a bar in characteristic form (start_rings converted its
+   !> rings, O(n); end_rings rebuilds the lattice arrays, O(n)): each step costs O(1) per ring
+   !> at its ends and in the bounded fracture test plus the lattice's update of the junction
+   !> nodes and lattice cells. It stops before a step in which some node could break or two
+   !> split faces could touch, or whose state is not finite (taken < nsteps: the lattice
+   !> takes that step after end_rings, and its check names the bad node). The end nodes'
+   !> bookkeeping (book_end_nodes: ledger, support sections) is made step by step as advance
+   !> makes it. s_old is not kept (as advance_joined): the caller ends with an ordinary step.
+   !> samples: the section stresses S^{n+1/2} of every step taken at the nodes start_rings
+   !> was given (an open contact episode's force).
+   pure subroutine advance_rings(mesh, load, g, eps_rel, st, h, nsteps, taken, &
+                                 max_sec_bottom, face_du, samples)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
-      real(wp), intent(in) :: g            !! gravity along +x [m/s^2] (0)
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      real(wp), intent(in) :: eps_rel      !! the event tests' round-off guard [-]
       type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: nsteps        !! steps to take at most (<= ring_span_max)
+      type(ring_hybrid_t), intent(inout) :: h   !! the rings (start_rings)
+      integer, intent(in) :: nsteps        !! steps to take at most (within start_rings's)
       integer, intent(out) :: taken        !! steps taken
       real(wp), intent(out) :: max_sec_bottom   !! largest sec(n) of these steps [Pa]
       real(wp), intent(out) :: face_du(2, nsteps)   !! increments of the face halves (B_0,
                                                     !! A_n) of each step [m]
-      type(ring_t) :: r
+      real(wp), intent(out) :: samples(size(h%samples), nsteps)   !! their S^{n+1/2} [Pa]
       type(face_step_t) :: fs(2)
-      real(wp) :: du0, dun, s1, sn, dt2, guard, best, a, b, thr
-      integer :: n, nc, t, lv
+      real(wp) :: guard, s_ends(2)
+      integer :: t, c
       logical :: stop_now
 
-      nc = mesh%n
-      dt2 = mesh%dt * mesh%dt
       taken = 0
       max_sec_bottom = -huge(1.0_wp)
       face_du = 0.0_wp
-      call to_rings(mesh, st, nsteps, r)
-      lv = size(r%w_even%lev)
+      samples = 0.0_wp
       do t = 1, nsteps
-         n = r%n0 + t - 1
-         ! the sequences' values S^{n+1/2} needs: Ra(n - 1), Rb(n + nc)
-         a = r%k * (r%f%v(n) + r%f%v(n - 1))
-         call push(r%ra, a - r%ra%v(n - 2))
-         b = -r%k * (r%g%v(n + nc - 1) + r%g%v(n + nc))
-         call push(r%rb, b - r%rb%v(n + nc - 1))
-         r%scale = max(r%scale, abs(r%ra%v(n - 1)), abs(r%rb%v(n + nc)))
-         ! (3.3) bounded: could some node's S^{n+1/2} < -R - eps? Then the lattice takes it.
-         guard = guard_share * max(r%scale, st%s_scale)
-         best = no_break
-         if (modulo(n, 2) == 0) then
-            call descend(r%ra, 1.0_wp, 0, r%rb, 1.0_wp, 1, n, lv, 1, nc - 1, guard, best, r%w_even)
-         else
-            call descend(r%ra, 1.0_wp, 0, r%rb, 1.0_wp, 1, n, lv, 1, nc - 1, guard, best, r%w_odd)
+         if (.not. h%finite .or. h%stopped) exit
+         ! the rings' sections S^{n+1/2} and their bounded test (3.3); could some node's
+         ! S^{n+1/2} < -R - eps? Then the lattice takes this step.
+         call rings_could_break(h, st, eps_rel, guard, stop_now)
+         if (stop_now) then
+            h%stopped = .true.
+            exit
          end if
-         stop_now = best < guard
-         if (stop_now) exit
-         ! the end nodes, as advance takes them: end stresses, (2.3)1-2, supports, booking
-         du0 = r%f%v(n) + r%g%v(n)
-         dun = r%f%v(n - nc) + r%g%v(n + nc)
-         s1 = r%k * (r%f%v(n) - r%g%v(n + 1))
-         sn = r%k * (r%f%v(n - nc + 1) - r%g%v(n + nc))
-         st%dua(0) = du0
-         st%dub(0) = du0
-         st%dua(nc) = dun
-         st%dub(nc) = dun
-         call end_stresses(mesh, load, st, fs(face_top)%s, fs(face_bottom)%s, step=n)
-         fs(face_top)%q = step_load_integral(load, n, mesh%dt, face_top)
-         fs(face_bottom)%q = step_load_integral(load, n, mesh%dt, face_bottom)
-         fs%rho = 0.0_wp
-         fs(face_top)%du_old = du0
-         fs(face_bottom)%du_old = dun
-         st%s(0) = fs(face_top)%s
-         st%s(nc + 1) = fs(face_bottom)%s
-         st%dua(0) = du0 + (st%s(0) - s1) * mesh%inv_m(0) * dt2
-         st%dub(0) = st%dua(0)
-         st%dua(nc) = dun + (sn - st%s(nc + 1)) * mesh%inv_m(nc) * dt2
-         st%dub(nc) = st%dua(nc)
-         call hold_end(mesh, st, face_top, fs(face_top))
-         call hold_end(mesh, st, face_bottom, fs(face_bottom))
-         fs(face_top)%s_cell = s1
-         fs(face_bottom)%s_cell = sn
-         call book_end_nodes(mesh, g, st, fs)
-         max_sec_bottom = max(max_sec_bottom, st%section(nc))
+         ! the junction nodes on trial (a break, a touch, a value not finite stops here)
+         s_ends = [st%s(0), st%s(mesh%n + 1)]
+         call try_junctions(mesh, load, g, st, h, guard, fs, stop_now)
+         if (stop_now) then
+            st%s(0) = s_ends(1)
+            st%s(mesh%n + 1) = s_ends(2)
+            h%stopped = .true.
+            exit
+         end if
+         call take_junctions(mesh, load, g, st, h, fs)
+         max_sec_bottom = max(max_sec_bottom, st%section(mesh%n))
          face_du(:, t) = fs%du
-         ! the new values at the faces: du_0^{n+1} = F(n+1) + G(n+1), du_n^{n+1} = ...
-         call push(r%f, st%dub(0) - r%g%v(n + 1))
-         call push(r%g, st%dua(nc) - r%f%v(n + 1 - nc))
          ! fracture_step's largest stress magnitude, |s^{n+1}| and the bottom support's
-         st%s_scale = max(st%s_scale, abs(st%section(nc)))
-         thr = -(st%s_scale / r%k) * (1.0_wp + scale_share)
-         best = no_break
-         call descend(r%f, 1.0_wp, 1, r%g, -1.0_wp, 0, n + 1, size(r%f%lev), 1, nc, thr, best)
-         call descend(r%f, -1.0_wp, 1, r%g, 1.0_wp, 0, n + 1, size(r%f%lev), 1, nc, thr, best)
-         if (best < no_break) st%s_scale = max(st%s_scale, -r%k * best)
+         if (h%all_sections) call track_scale(st, h%r, h%lc)
+         do c = 1, size(h%samples)
+            samples(c, t) = section_of(st, h, h%samples(c))
+         end do
          taken = t
       end do
-      if (taken > 0) call from_rings(r, taken, st)
    end subroutine advance_rings
 
-   !> The characteristic state of the lattice arrays at t^n0 (O(n)), with room for nsteps.
-   pure subroutine to_rings(mesh, st, nsteps, r)
+   !> The lattice arrays at the state's step from the rings (O(n)); the rings are gone.
+   pure subroutine end_rings(mesh, g, st, h)
       type(mesh_t), intent(in) :: mesh     !! the mesh
-      type(state_t), intent(in) :: st      !! the state (intact, joined)
-      integer, intent(in) :: nsteps        !! steps to make room for
-      type(ring_t), intent(out) :: r       !! its characteristic form
-      real(wp) :: fv(0:mesh%n), gv(0:mesh%n), c, sgn
-      integer :: n0, nc, i, cap
-      nc = mesh%n
-      n0 = st%step
-      r%n = nc
-      r%n0 = n0
-      r%k = mesh%stiff(1)
-      cap = nc + nsteps + 2
-      ! F(n0 - i) = fv(i), G(n0 + i) = gv(i): du_i = fv(i) + gv(i), s_k / K = fv(k-1) - gv(k).
-      ! The split of du_0 is free (an alternating pair F += c (-1)^m, G -= c (-1)^m changes
-      ! neither du nor s): it is chosen to leave no alternating part in F (tighter bounds).
-      fv(0) = 0.5_wp * st%dua(0)
-      gv(0) = st%dua(0) - fv(0)
-      do i = 1, nc
-         gv(i) = fv(i - 1) - st%s(i) / r%k
-         fv(i) = st%dua(i) - gv(i)
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state (its junctions already at the step)
+      type(ring_hybrid_t), intent(inout) :: h   !! the rings
+      integer :: q
+      do q = 1, size(h%r)
+         call from_ring(h%r(q), st, h%keep, g * mesh%dt**2)
       end do
-      ! (F(m) -= c (-1)^m, G(m) += c (-1)^m; m = n0 -+ i have the parity of n0 + i)
-      c = alternating_part(fv)
-      do i = 0, nc
-         sgn = sign_of(i)
-         fv(i) = fv(i) - c * sgn
-         gv(i) = gv(i) + c * sgn
-      end do
-      call start_seq(r%f, n0 - nc, cap, nc + nsteps + 1)
-      do i = nc, 0, -1
-         call push(r%f, fv(i))
-      end do
-      call start_seq(r%g, n0, cap, nc + nsteps + 1)
-      do i = 0, nc
-         call push(r%g, gv(i))
-      end do
-      call start_sections(st, r, nsteps)
-   end subroutine to_rings
+      deallocate(h%r)
+      st%n_skip = 0
+   end subroutine end_rings
 
-   !> Ra, Rb and C of the sections at t^n0 from st%section = S^{n0-1/2}, and the blocks'
-   !> weakest sections C + R, -C + R.
+   !> The rings of a layout (ring_layout of this state) in characteristic form, with room
+   !> for nsteps steps (at most ring_span_max): the sections advance keeps (every node's
+   !> where some can break, else the gauges' (mesh%watch); and the sampled ones), the
+   !> junction nodes and lattice cells, the rings converted (O(n)).
+   pure subroutine start_rings(mesh, st, lay, nsteps, eps_rel, rules, sample_nodes, h)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state
+      type(ring_layout_t), intent(in) :: lay   !! the rings
+      integer, intent(in) :: nsteps        !! steps to make room for
+      real(wp), intent(in) :: eps_rel      !! the event tests' round-off guard [-]
+      integer, intent(in) :: rules         !! events_admissible | events_paper
+      integer, intent(in) :: sample_nodes(:)   !! nodes whose sections are sampled (joined)
+      type(ring_hybrid_t), intent(out) :: h     !! the hybrid state
+      integer :: q
+      h%samples = sample_nodes
+      h%all_sections = st%n_breakable > 0
+      allocate(h%keep(0:mesh%n))
+      h%keep = h%all_sections
+      h%keep(mesh%watch(1:mesh%n_watch)) = .true.
+      h%keep(sample_nodes) = .true.
+      h%sections = any(h%keep)
+      call junctions(mesh%n, lay, h%jn, h%lc, h%owner)
+      allocate(h%nda(size(h%jn)), h%ndb(size(h%jn)), h%nsec(size(h%jn)))
+      h%touch = -touch_share
+      if (rules == events_admissible .and. eps_rel > 0.0_wp) h%touch = touch_part * eps_rel
+      allocate(h%r(lay%nr))
+      h%finite = .true.
+      do q = 1, lay%nr
+         call to_ring(mesh, st, lay%c0(q), lay%nc(q), nsteps, h%sections, h%r(q))
+         h%finite = h%finite .and. h%r(q)%finite
+      end do
+   end subroutine start_rings
+
+   !> The rings' sections S^{n+1/2} one value on (Ra(n - 1), Rb(n + m)), the threshold of
+   !> the fracture test, and whether some ring's node could come below it (stop).
+   pure subroutine rings_could_break(h, st, eps_rel, guard, stop)
+      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state
+      type(state_t), intent(in) :: st      !! the state at t^n
+      real(wp), intent(in) :: eps_rel      !! the event tests' round-off guard [-]
+      real(wp), intent(out) :: guard       !! the threshold of S + R [Pa]
+      logical, intent(out) :: stop         !! some node could break in this step
+      real(wp) :: scale, best
+      integer :: q, n, m
+      n = st%step
+      scale = st%s_scale
+      do q = 1, size(h%r)
+         if (h%r(q)%sections) call push_sections(h%r(q), n)
+         scale = max(scale, h%r(q)%scale)
+      end do
+      guard = -eps_rel * st%s_scale + margin_share * scale
+      stop = .false.
+      do q = 1, size(h%r)
+         if (.not. h%r(q)%breaks) cycle
+         best = no_break
+         m = h%r(q)%n
+         associate (r => h%r(q))
+            if (modulo(n, 2) == 0) then
+               call descend(r%ra, 1.0_wp, 0, r%rb, 1.0_wp, 1, n, size(r%w_even%lev), 1, m - 1, &
+                            guard, best, r%w_even)
+            else
+               call descend(r%ra, 1.0_wp, 0, r%rb, 1.0_wp, 1, n, size(r%w_odd%lev), 1, m - 1, &
+                            guard, best, r%w_odd)
+            end if
+         end associate
+         if (best < guard) stop = .true.
+      end do
+   end subroutine rings_could_break
+
+   !> The junction nodes' step on trial (nothing of the state changed but the rings' end
+   !> cells' s^n, which they read, and the end stresses s(0), s(n+1)), as advance takes
+   !> them: the end stresses, sections (3.1)-(3.2), (2.3)1-2 joined or by halves. stop: a
+   !> node's section comes below the guard, two faces would touch, or a value is not
+   !> finite.
+   pure subroutine try_junctions(mesh, load, g, st, h, guard, fs, stop)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state at t^n
+      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state (its trial values set)
+      real(wp), intent(in) :: guard        !! the threshold of S + R [Pa]
+      type(face_step_t), intent(out) :: fs(2)   !! the ends' record (their stresses)
+      logical, intent(out) :: stop         !! the lattice must take this step
+      real(wp) :: d, dt, dt2, tol
+      integer :: c, i, q, m, n, nc
+      n = st%step
+      nc = mesh%n
+      dt = mesh%dt
+      dt2 = dt * dt
+      do q = 1, size(h%r)
+         m = h%r(q)%n
+         st%s(h%r(q)%c0) = h%r(q)%k * (h%r(q)%f%v(n) - h%r(q)%g%v(n + 1))
+         st%s(h%r(q)%c0 + m - 1) = h%r(q)%k * (h%r(q)%f%v(n - m + 1) - h%r(q)%g%v(n + m))
+      end do
+      call end_stresses(mesh, load, st, fs(face_top)%s, fs(face_bottom)%s, step=n)
+      st%s(0) = fs(face_top)%s
+      st%s(nc + 1) = fs(face_bottom)%s
+      stop = .false.
+      do c = 1, size(h%jn)
+         i = h%jn(c)
+         if (st%joined(i)) then
+            d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+                * mesh%inv_m(i) * dt2
+            h%nda(c) = d
+            h%ndb(c) = d
+            h%nsec(c) = st%section(i)
+            if (i > 0 .and. i < nc .and. h%keep(i)) then
+               h%nsec(c) = section_stress_a(st%s(i), st%section(i), st%dua(i) / dt, d / dt, &
+                                            mesh%z(i), mesh%dm(i), g)
+               if (st%strength(i) >= 0.0_wp) then
+                  if (h%nsec(c) + st%strength(i) < guard) stop = .true.
+               end if
+            end if
+         else
+            h%nda(c) = st%dua(i) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
+            h%ndb(c) = st%dub(i) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
+            h%nsec(c) = st%section(i)
+            tol = h%touch * min(mesh%dx(i), mesh%dx(i + 1))
+            if ((st%ua(i) + h%nda(c)) - (st%ub(i) + h%ndb(c)) > tol) stop = .true.
+         end if
+         ! (a value not finite: the lattice's check after its step names the node)
+         if (.not. (abs(h%nda(c)) <= huge(1.0_wp) .and. abs(h%ndb(c)) <= huge(1.0_wp))) then
+            stop = .true.
+         end if
+      end do
+   end subroutine try_junctions
+
+   !> The step taken: the junction nodes' trial values, the supports, the ends' booking,
+   !> (2.3)3-4 where the lattice holds them, the rings' new values at their ends.
+   pure subroutine take_junctions(mesh, load, g, st, h, fs)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state: from t^n to t^{n+1}
+      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state
+      type(face_step_t), intent(inout) :: fs(2)   !! the ends' record
+      real(wp) :: fall, dt2
+      integer :: c, i, q, m, n, nc
+      n = st%step
+      nc = mesh%n
+      dt2 = mesh%dt**2
+      fs(face_top)%q = step_load_integral(load, n, mesh%dt, face_top)
+      fs(face_bottom)%q = step_load_integral(load, n, mesh%dt, face_bottom)
+      fs%rho = 0.0_wp
+      fs(face_top)%du_old = st%dub(0)
+      fs(face_bottom)%du_old = st%dua(nc)
+      do c = 1, size(h%jn)
+         i = h%jn(c)
+         st%dua(i) = h%nda(c)
+         st%dub(i) = h%ndb(c)
+         st%section(i) = h%nsec(c)
+      end do
+      call hold_end(mesh, st, face_top, fs(face_top))
+      call hold_end(mesh, st, face_bottom, fs(face_bottom))
+      fs(face_top)%s_cell = st%s(1)
+      fs(face_bottom)%s_cell = st%s(nc)
+      call book_end_nodes(mesh, g, st, fs)
+      do c = 1, size(h%jn)
+         i = h%jn(c)
+         st%ua(i) = st%ua(i) + st%dua(i)
+         st%ub(i) = st%ub(i) + st%dub(i)
+      end do
+      do c = 1, size(h%lc)
+         i = h%lc(c)
+         st%s(i) = st%s(i) + mesh%stiff(i) * (st%dub(i - 1) - st%dua(i))
+      end do
+      ! du_0^{n+1} = F(n+1) + G(n+1) + (n+1-n0) g dt^2, du_m^{n+1} = F(n+1-m) + G(n+1+m) + ...
+      do q = 1, size(h%r)
+         m = h%r(q)%n
+         fall = real(n + 1 - h%r(q)%n0, wp) * (g * dt2)
+         call push(h%r(q)%f, (st%dub(h%r(q)%c0 - 1) - fall) - h%r(q)%g%v(n + 1))
+         call push(h%r(q)%g, (st%dua(h%r(q)%c0 - 1 + m) - fall) - h%r(q)%f%v(n + 1 - m))
+      end do
+      st%step = n + 1
+   end subroutine take_junctions
+
+   !> The section stress S^{n+1/2} of node i after the step to t^{n+1} (st%step): a
+   !> junction's as the step left it, a ring's from its sequences.
+   pure real(wp) function section_of(st, h, i) result(sec)
+      type(state_t), intent(in) :: st      !! the state at t^{n+1}
+      type(ring_hybrid_t), intent(in) :: h      !! the hybrid state
+      integer, intent(in) :: i             !! the node
+      integer :: q, j, n
+      n = st%step - 1
+      q = h%owner(i)
+      if (q == 0) then
+         sec = st%section(i)
+      else
+         j = i - (h%r(q)%c0 - 1)
+         sec = h%r(q)%ra%v(n - j) + h%r(q)%rb%v(n + j + 1) + sign_of(n) * h%r(q)%c(j)
+      end if
+   end function section_of
+
+   !> The junction nodes (ascending), the lattice cells (ascending) and each node's ring
+   !> (0: a junction node) of a layout.
+   pure subroutine junctions(nc, lay, jn, lc, owner)
+      integer, intent(in) :: nc            !! cells of the bar
+      type(ring_layout_t), intent(in) :: lay   !! the rings
+      integer, allocatable, intent(out) :: jn(:)   !! junction nodes
+      integer, allocatable, intent(out) :: lc(:)   !! lattice cells
+      integer, allocatable, intent(out) :: owner(:)   !! (0:nc) the ring holding the node
+                                                      !! inside, 0 for none
+      logical :: in_ring(nc)
+      integer :: q, i, nj, nl
+      allocate(owner(0:nc), source=0)
+      in_ring = .false.
+      do q = 1, lay%nr
+         owner(lay%c0(q):lay%c0(q) + lay%nc(q) - 2) = q
+         in_ring(lay%c0(q):lay%c0(q) + lay%nc(q) - 1) = .true.
+      end do
+      nj = count(owner == 0)
+      nl = count(.not. in_ring)
+      allocate(jn(nj), lc(nl))
+      nj = 0
+      do i = 0, nc
+         if (owner(i) /= 0) cycle
+         nj = nj + 1
+         jn(nj) = i
+      end do
+      nl = 0
+      do i = 1, nc
+         if (in_ring(i)) cycle
+         nl = nl + 1
+         lc(nl) = i
+      end do
+   end subroutine junctions
+
+   !> The sequences Ra, Rb of a ring one value on, with what S^{n+1/2} needs: Ra(n - 1),
+   !> Rb(n + m).
+   pure subroutine push_sections(r, n)
+      type(ring_t), intent(inout) :: r     !! the ring
+      integer, intent(in) :: n             !! the step index
+      real(wp) :: a, b
+      integer :: m
+      m = r%n
+      a = r%k * (r%f%v(n) + r%f%v(n - 1))
+      call push(r%ra, a - r%ra%v(n - 2))
+      b = -r%k * (r%g%v(n + m - 1) + r%g%v(n + m))
+      call push(r%rb, b - r%rb%v(n + m - 1))
+      r%scale = max(r%scale, abs(r%ra%v(n - 1)), abs(r%rb%v(n + m)))
+   end subroutine push_sections
+
+   !> st%s_scale after a step at t^n (st%step = n): the largest |s^n| of the lattice cells,
+   !> of each ring's cells (bounded by its blocks), and the bottom support's section.
+   pure subroutine track_scale(st, r, lc)
+      type(state_t), intent(inout) :: st   !! the state
+      type(ring_t), intent(in) :: r(:)     !! the rings
+      integer, intent(in) :: lc(:)         !! the lattice cells
+      real(wp) :: thr, best
+      integer :: c, q, n
+      n = st%step
+      st%s_scale = max(st%s_scale, abs(st%section(size(st%section) - 1)))
+      do c = 1, size(lc)
+         st%s_scale = max(st%s_scale, abs(st%s(lc(c))))
+      end do
+      do q = 1, size(r)
+         thr = -(st%s_scale / r(q)%k) * (1.0_wp + scale_share)
+         best = no_break
+         call descend(r(q)%f, 1.0_wp, 1, r(q)%g, -1.0_wp, 0, n, size(r(q)%f%lev), 1, r(q)%n, &
+                      thr, best)
+         call descend(r(q)%f, -1.0_wp, 1, r(q)%g, 1.0_wp, 0, n, size(r(q)%f%lev), 1, r(q)%n, &
+                      thr, best)
+         if (best < no_break) st%s_scale = max(st%s_scale, -r(q)%k * best)
+      end do
+   end subroutine track_scale
+
+   !> The characteristic state of the ring of cells c0..c0+m-1 at t^n0 (O(m)), with room for
+   !> nsteps; with sections, its Ra, Rb, C and the blocks' weakest sections too.
+   pure subroutine to_ring(mesh, st, c0, m, nsteps, sections, r)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(state_t), intent(in) :: st      !! the state (the ring's interior joined)
+      integer, intent(in) :: c0            !! first cell
+      integer, intent(in) :: m             !! cells
+      integer, intent(in) :: nsteps        !! steps to make room for
+      logical, intent(in) :: sections      !! the section sequences are kept
+      type(ring_t), intent(out) :: r       !! its characteristic form
+      real(wp) :: c, sgn
+      integer :: n0, b, j, cap
+      b = c0 - 1
+      n0 = st%step
+      r%c0 = c0
+      r%n = m
+      r%n0 = n0
+      r%k = mesh%stiff(c0)
+      cap = m + nsteps + 2
+      call start_seq(r%f, n0 - m, cap, m + nsteps + 1)
+      call start_seq(r%g, n0, cap, m + nsteps + 1)
+      associate (f => r%f%v, g => r%g%v)
+         ! F(n0 - j), G(n0 + j): du_j = F(n0 - j) + G(n0 + j), s_k / K = F(n0 - k + 1) - G(n0 + k);
+         ! du_0 is the top node's lower half, du_m the bottom node's upper half. The split of
+         ! du_0 is free (an alternating pair F += c (-1)^m, G -= c (-1)^m changes neither du
+         ! nor s): it is chosen to leave no alternating part in F (tighter bounds): c the
+         ! mean of (-1)^(j-1) (F(n0 - j + 1) - F(n0 - j)) / 2.
+         f(n0) = 0.5_wp * st%dub(b)
+         g(n0) = st%dub(b) - f(n0)
+         c = 0.0_wp
+         sgn = 1.0_wp
+         do j = 1, m
+            g(n0 + j) = f(n0 - j + 1) - st%s(b + j) / r%k
+            f(n0 - j) = st%dua(b + j) - g(n0 + j)
+            c = c + sgn * (f(n0 - j + 1) - f(n0 - j))
+            sgn = -sgn
+         end do
+         c = 0.5_wp * c / real(m, wp)
+         ! (F(i) -= c (-1)^i, G(i) += c (-1)^i; i = n0 -+ j have the parity of n0 + j)
+         sgn = c
+         do j = 0, m
+            f(n0 - j) = f(n0 - j) - sgn
+            g(n0 + j) = g(n0 + j) + sgn
+            sgn = -sgn
+         end do
+      end associate
+      call blocks(r%f, m + 1)
+      call blocks(r%g, m + 1)
+      r%finite = all(abs(r%f%v(n0 - m:n0)) <= huge(1.0_wp)) .and. &
+                 all(abs(r%g%v(n0:n0 + m)) <= huge(1.0_wp))
+      r%s_ends = [st%s(c0), st%s(b + m)]
+      r%sections = sections
+      if (.not. sections) return
+      r%breaks = any(st%strength(c0:b + m - 1) >= 0.0_wp)
+      call start_sections(st, r, nsteps)
+   end subroutine to_ring
+
+   !> Ra, Rb and C of a ring's sections at t^n0 from st%section = S^{n0-1/2}, and, where it
+   !> can break, the blocks' weakest sections C + R, -C + R.
    pure subroutine start_sections(st, r, nsteps)
       type(state_t), intent(in) :: st      !! the state
-      type(ring_t), intent(inout) :: r     !! the rings (F and G set)
+      type(ring_t), intent(inout) :: r     !! the ring (F and G set)
       integer, intent(in) :: nsteps        !! steps to make room for
-      real(wp) :: ra(r%n0 - r%n:r%n0 - 2), rb(r%n0 + 1:r%n0 + r%n - 1), c, w
-      integer :: n0, nc, j, i, cap
+      real(wp) :: c, w
+      integer :: n0, m, j, i, cap, b
       n0 = r%n0
-      nc = r%n
-      cap = nc + nsteps + 2
-      ! Ra(j) + Ra(j - 1) = K (F(j + 1) + F(j)); Rb(j) + Rb(j - 1) = -K (G(j - 1) + G(j)):
-      ! each from its first value, its alternating part then removed (C takes what is left)
-      ra(n0 - nc) = 0.5_wp * r%k * (r%f%v(n0 - nc + 1) + r%f%v(n0 - nc))
-      do j = n0 - nc + 1, n0 - 2
-         ra(j) = r%k * (r%f%v(j + 1) + r%f%v(j)) - ra(j - 1)
-      end do
-      c = alternating_part(ra)
-      do j = n0 - nc, n0 - 2
-         ra(j) = ra(j) - c * sign_of(j - (n0 - nc))
-      end do
-      rb(n0 + 1) = -0.5_wp * r%k * (r%g%v(n0) + r%g%v(n0 + 1))
-      do j = n0 + 2, n0 + nc - 1
-         rb(j) = -r%k * (r%g%v(j - 1) + r%g%v(j)) - rb(j - 1)
-      end do
-      c = alternating_part(rb)
-      do j = n0 + 1, n0 + nc - 1
-         rb(j) = rb(j) - c * sign_of(j - (n0 + 1))
-      end do
-      call start_seq(r%ra, n0 - nc, cap, nc + nsteps + 1)
-      do j = n0 - nc, n0 - 2
-         call push(r%ra, ra(j))
-      end do
-      call start_seq(r%rb, n0 + 1, cap, nc + nsteps + 1)
-      do j = n0 + 1, n0 + nc - 1
-         call push(r%rb, rb(j))
-      end do
-      ! C_i = (-1)^(n0-1) (S_i^{n0-1/2} - Ra(n0 - 1 - i) - Rb(n0 + i))
-      allocate(r%c(nc - 1))
-      call start_seq(r%w_even, 1, nc - 1, nc - 1)
-      call start_seq(r%w_odd, 1, nc - 1, nc - 1)
-      r%scale = max(maxval(abs(ra)), maxval(abs(rb)), 0.0_wp)
-      do i = 1, nc - 1
-         r%c(i) = sign_of(n0 - 1) * (st%section(i) - ra(n0 - 1 - i) - rb(n0 + i))
-         r%scale = max(r%scale, abs(r%c(i)))
+      m = r%n
+      b = r%c0 - 1
+      cap = m + nsteps + 2
+      call start_seq(r%ra, n0 - m, cap, m + nsteps + 1)
+      call start_seq(r%rb, n0 + 1, cap, m + nsteps + 1)
+      associate (ra => r%ra%v, rb => r%rb%v, f => r%f%v, g => r%g%v)
+         ! Ra(j) + Ra(j - 1) = K (F(j + 1) + F(j)); Rb(j) + Rb(j - 1) = -K (G(j - 1) + G(j)):
+         ! each from its first value, its alternating part then removed (C takes what is
+         ! left)
+         ra(n0 - m) = 0.5_wp * r%k * (f(n0 - m + 1) + f(n0 - m))
+         do j = n0 - m + 1, n0 - 2
+            ra(j) = r%k * (f(j + 1) + f(j)) - ra(j - 1)
+         end do
+         c = alternating_part(ra(n0 - m:n0 - 2))
+         do j = n0 - m, n0 - 2
+            ra(j) = ra(j) - c
+            c = -c
+         end do
+         rb(n0 + 1) = -0.5_wp * r%k * (g(n0) + g(n0 + 1))
+         do j = n0 + 2, n0 + m - 1
+            rb(j) = -r%k * (g(j - 1) + g(j)) - rb(j - 1)
+         end do
+         c = alternating_part(rb(n0 + 1:n0 + m - 1))
+         do j = n0 + 1, n0 + m - 1
+            rb(j) = rb(j) - c
+            c = -c
+         end do
+         ! C_i = (-1)^(n0-1) (S_i^{n0-1/2} - Ra(n0 - 1 - i) - Rb(n0 + i))
+         allocate(r%c(m - 1))
+         r%scale = 0.0_wp
+         w = sign_of(n0 - 1)
+         do i = 1, m - 1
+            r%c(i) = w * (st%section(b + i) - ra(n0 - 1 - i) - rb(n0 + i))
+            r%scale = max(r%scale, abs(ra(n0 - 1 - i)), abs(rb(n0 + i)), abs(r%c(i)))
+         end do
+      end associate
+      call blocks(r%ra, m - 1)
+      call blocks(r%rb, m - 1)
+      if (.not. r%breaks) return
+      call start_seq(r%w_even, 1, m - 1, m - 1)
+      call start_seq(r%w_odd, 1, m - 1, m - 1)
+      do i = 1, m - 1
          w = no_break
-         if (st%strength(i) >= 0.0_wp) w = st%strength(i)
-         call push(r%w_even, merge(w + r%c(i), w, w < no_break))
-         call push(r%w_odd, merge(w - r%c(i), w, w < no_break))
+         if (st%strength(b + i) >= 0.0_wp) w = st%strength(b + i)
+         r%w_even%v(i) = merge(w + r%c(i), w, w < no_break)
+         r%w_odd%v(i) = merge(w - r%c(i), w, w < no_break)
       end do
+      call blocks(r%w_even, m - 1)
+      call blocks(r%w_odd, m - 1)
    end subroutine start_sections
 
-   !> The lattice arrays at t^(n0 + taken) from the characteristic state (O(n)): increments,
-   !> cell stresses, displacements (u^n0 plus the sums of the increments), the section
-   !> stresses S^{n-1/2} (every interior node: the bar has breakable ones).
-   pure subroutine from_rings(r, taken, st)
+   !> The lattice arrays of a ring's interior nodes and cells at t^n (st%step) from its
+   !> characteristic state (O(m)): increments, cell stresses, displacements (u^n0 plus the
+   !> sums of the increments), the section stresses S^{n-1/2} where keep (the nodes whose
+   !> sections advance keeps). A ring that took no step leaves them as they were.
+   pure subroutine from_ring(r, st, keep, gdt2)
       type(ring_t), intent(in) :: r        !! the characteristic state
-      integer, intent(in) :: taken         !! steps taken since the conversion
-      type(state_t), intent(inout) :: st   !! the state (its end nodes already set)
+      type(state_t), intent(inout) :: st   !! the state (its junction nodes already set)
+      logical, intent(in) :: keep(0:)      !! the nodes whose sections are kept
+      real(wp), intent(in) :: gdt2         !! g dt^2, each step's increment of every du by
+                                           !! gravity [m]
       real(wp), allocatable :: cf(:), cg(:)
-      real(wp) :: d
-      integer :: n, n0, nc, i, j
-      nc = r%n
+      real(wp) :: d, fall, fallen
+      integer :: n, n0, m, i, j, b
+      m = r%n
       n0 = r%n0
-      n = n0 + taken
-      ! running sums of F and G: u_i^n - u_i^n0 = sum over m = n0+1..n of F(m - i) + G(m + i)
-      allocate(cf(n0 - nc:n), cg(n0:n + nc))
-      cf(n0 - nc) = r%f%v(n0 - nc)
-      do j = n0 - nc + 1, n
+      n = st%step
+      b = r%c0 - 1
+      if (n == n0) then
+         st%s(r%c0) = r%s_ends(1)
+         st%s(b + m) = r%s_ends(2)
+         return
+      end if
+      ! running sums of F and G: u_j^n - u_j^n0 = sum over k = n0+1..n of F(k - j) + G(k + j)
+      allocate(cf(n0 - m:n), cg(n0:n + m))
+      cf(n0 - m) = r%f%v(n0 - m)
+      do j = n0 - m + 1, n
          cf(j) = cf(j - 1) + r%f%v(j)
       end do
       cg(n0) = r%g%v(n0)
-      do j = n0 + 1, n + nc
+      do j = n0 + 1, n + m
          cg(j) = cg(j - 1) + r%g%v(j)
       end do
-      do i = 0, nc
-         d = (cf(n - i) - cf(n0 - i)) + (cg(n + i) - cg(n0 + i))
-         st%ua(i) = st%ua(i) + d
-         st%ub(i) = st%ub(i) + d
+      ! gravity's part: (k - n0) g dt^2 in du^k, its sum over k = n0+1..n in u^n
+      fall = real(n - n0, wp) * gdt2
+      fallen = 0.5_wp * real(n - n0, wp) * real(n - n0 + 1, wp) * gdt2
+      do i = 1, m - 1
+         d = (cf(n - i) - cf(n0 - i)) + (cg(n + i) - cg(n0 + i)) + fallen
+         st%ua(b + i) = st%ua(b + i) + d
+         st%ub(b + i) = st%ub(b + i) + d
+         st%dua(b + i) = r%f%v(n - i) + r%g%v(n + i) + fall
+         st%dub(b + i) = st%dua(b + i)
       end do
-      do i = 1, nc - 1
-         st%dua(i) = r%f%v(n - i) + r%g%v(n + i)
-         st%dub(i) = st%dua(i)
+      do i = 1, m
+         st%s(b + i) = r%k * (r%f%v(n - i + 1) - r%g%v(n + i))
       end do
-      do i = 1, nc
-         st%s(i) = r%k * (r%f%v(n - i + 1) - r%g%v(n + i))
+      if (.not. r%sections) return
+      d = sign_of(n - 1)
+      do i = 1, m - 1
+         if (keep(b + i)) st%section(b + i) = r%ra%v(n - 1 - i) + r%rb%v(n + i) + d * r%c(i)
       end do
-      do i = 1, nc - 1
-         st%section(i) = r%ra%v(n - 1 - i) + r%rb%v(n + i) + sign_of(n - 1) * r%c(i)
-      end do
-      st%step = n
-      st%n_skip = 0
-   end subroutine from_rings
+   end subroutine from_ring
 
    !> The smallest value of sx X(n - p + cx) + sy Y(n + p + cy) + W(p) over positions p of
    !> block b of level l within p0..p1 that lies below thr (best: the smallest found, or
@@ -420,27 +811,54 @@ contains
       end do
    end subroutine start_seq
 
-   !> Append v(hi + 1) = val, keeping the extrema of the blocks that hold it.
+   !> Append v(hi + 1) = val, keeping the extrema of the blocks that hold it (block sizes
+   !> are powers of two: leaf 2^6, fan 2^3).
    pure subroutine push(x, val)
       type(seq_t), intent(inout) :: x      !! the sequence
       real(wp), intent(in) :: val          !! the value
-      integer :: l, o, bs, b
+      integer :: l, o, b, sh
       x%hi = x%hi + 1
       x%v(x%hi) = val
       o = x%hi - x%lo
-      bs = leaf
+      sh = leaf_bits
       do l = 1, size(x%lev)
-         b = o / bs
-         if (o - b * bs == 0) then
+         b = shiftr(o, sh)
+         if (iand(o, shiftl(1, sh) - 1) == 0) then
             x%lev(l)%mn(b) = val
             x%lev(l)%mx(b) = val
          else
             x%lev(l)%mn(b) = min(x%lev(l)%mn(b), val)
             x%lev(l)%mx(b) = max(x%lev(l)%mx(b), val)
          end if
-         bs = bs * fan
+         sh = sh + fan_bits
       end do
    end subroutine push
+
+   !> The first nv values of an empty sequence, written in x%v, taken in (as many pushes:
+   !> the blocks' extrema made level by level from the one below, O(nv)).
+   pure subroutine blocks(x, nv)
+      type(seq_t), intent(inout) :: x      !! the sequence (its values written, hi not yet)
+      integer, intent(in) :: nv            !! how many
+      integer :: l, nb, b, a, e
+      x%hi = x%lo + nv - 1
+      if (nv <= 0) return
+      nb = (nv - 1) / leaf + 1
+      do b = 0, nb - 1
+         a = x%lo + b * leaf
+         e = min(x%hi, a + leaf - 1)
+         x%lev(1)%mn(b) = minval(x%v(a:e))
+         x%lev(1)%mx(b) = maxval(x%v(a:e))
+      end do
+      do l = 2, size(x%lev)
+         e = nb - 1
+         nb = (nb - 1) / fan + 1
+         do b = 0, nb - 1
+            a = b * fan
+            x%lev(l)%mn(b) = minval(x%lev(l - 1)%mn(a:min(e, a + fan - 1)))
+            x%lev(l)%mx(b) = maxval(x%lev(l - 1)%mx(a:min(e, a + fan - 1)))
+         end do
+      end do
+   end subroutine blocks
 
    !> The alternating part c of a sequence v(j) (c (-1)^j), estimated as the mean of
    !> (-1)^j (v(j) - v(j + 1)) / 2: a sequence with a smooth part keeps it, c is removed.
@@ -448,11 +866,14 @@ contains
       real(wp), intent(in) :: v(:)         !! the sequence (its first value at an index of
                                            !! the parity its caller applies c with)
       integer :: j, m
+      real(wp) :: sgn
       m = size(v) - 1
       c = 0.0_wp
       if (m < 1) return
+      sgn = 1.0_wp
       do j = 1, m
-         c = c + sign_of(j - 1) * (v(j) - v(j + 1))
+         c = c + sgn * (v(j) - v(j + 1))
+         sgn = -sgn
       end do
       c = 0.5_wp * c / real(m, wp)
    end function alternating_part
@@ -460,6 +881,6 @@ contains
    !> (-1)^m for any integer m.
    pure real(wp) function sign_of(m)
       integer, intent(in) :: m             !! the exponent
-      sign_of = merge(1.0_wp, -1.0_wp, modulo(m, 2) == 0)
+      sign_of = 1.0_wp - 2.0_wp * real(iand(m, 1), wp)   ! (two's complement: odd m, low bit 1)
    end function sign_of
 end module spb_ring

@@ -111,6 +111,11 @@ module spb_state
       type(full_mass_t) :: fm                 !! the full-mass model's cut springs
       type(cohesive_t) :: coh                 !! cohesive cracks
       type(damage_t) :: dmg                   !! time-dependent fracture (Tuler-Butcher)
+      integer :: ring_next = 0                !! the characteristic steps (spb_ring) are not
+                                              !! tried before this step: the last try stopped
+                                              !! early (its state, that a restart repeats it)
+      integer :: ring_wait = 0                !! steps waited after that try (doubles while
+                                              !! tries stop early, 0 after one that did not)
    end type state_t
 
    !> The state's history columns (PREFIX.his, /history): their ids (spb_columns).

@@ -183,6 +183,8 @@ contains
       real(wp), intent(in) :: dub(0:m)     !! [m]
       integer :: j
       e = 0.0_wp
+      ! without gravity every term is a zero (of either sign): the sum is 0 exactly
+      if (.not. abs(g) > 0.0_wp) return
       if (first_a) e = e - g * ma(0) * (ua(0) - 0.5_wp * dua(0))
       if (m > 0 .or. last_b) e = e - g * mb(0) * (ub(0) - 0.5_wp * dub(0))
       do j = 1, m - 1

@@ -19,7 +19,8 @@ module spb_sim
    use spb_state, only: state_t, init_state
    use spb_full_mass, only: init_full_mass
    use spb_step, only: advance, advance_joined, joined_only, face_load_integrals
-   use spb_ring, only: ring_qualifies, advance_rings, ring_span_max
+   use spb_ring, only: ring_qualifies, ring_layout_t, ring_layout, ring_hybrid_t, start_rings, &
+      advance_rings, end_rings, ring_span_max
    use spb_ends, only: face_top, face_bottom, is_velocity_end, is_striker, strike_events
    use spb_fragments, only: fragment_span
    use spb_wave, only: wave_t, wave_energy, start_without_zigzag
@@ -41,7 +42,7 @@ module spb_sim
    use spb_checkpoint, only: checkpoint_t, write_checkpoint, check_checkpoint_path
    use spb_estimate, only: progress_period
    use spb_diagnostics, only: diag_t, diag_start, diag_step, diag_end_samples, diag_close, &
-      diag_taken
+      diag_taken, contact_nodes, diag_contact_samples, contacts_by_sections
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index
    implicit none
@@ -58,6 +59,11 @@ module spb_sim
    !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
    integer, parameter :: ring_min_steps = 40
    integer, parameter :: ring_min_cells = 16
+   !> A try of the characteristic steps that stops within ring_min_steps steps before a step
+   !> without events waits before the next (twice as long after each such try, at most this
+   !> many steps): a bar whose tests come near their thresholds in nearly every step (zero
+   !> strength) keeps the lattice's cost.
+   integer, parameter :: ring_wait_max = 4096
    !> In a batch log the first progress line comes after this at the latest, whatever
    !> --progress asks for the lines after it: with the set-up (4 s for 5e6 cells) and a look
    !> at the clock every 2^24 cell-steps, within 10 s of the start (issue 32) [s].
@@ -521,21 +527,27 @@ contains
 
    !> The steps up to the next one at which an action is due: those before it in one
    !> cache-blocked call where the bar is joined and nothing can break, or in characteristic
-   !> form where it is intact, homogeneous and breakable (spb_ring: they stop before a step
-   !> in which a node could break), then that step with its events (written and counted).
+   !> form where most of it lies in intact homogeneous stretches (spb_ring: they stop before a
+   !> step in which a node could break or two faces could touch), then that step with its
+   !> events (written and counted).
    subroutine take_steps(sim, run, summary)
       type(sim_t), intent(inout) :: sim    !! the simulation
       type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
-      integer :: k, j, n0
+      type(ring_layout_t) :: lay
+      integer :: k, j, n0, short
       real(wp) :: sec_max
       real(wp), allocatable :: face_du(:, :)
       k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
+      short = -1
       if (use_rings(sim, summary)) then
          k = ring_span(sim, run)
          if (k - 1 >= ring_min_steps) then
-            call ring_steps(sim, summary, k - 1)
-            k = 0
+            lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
+            if (4 * lay%ring_cells >= 3 * sim%mesh%n) then
+               call ring_steps(sim, run, summary, lay, k - 1, short)
+               k = 0
+            end if
          end if
       end if
       if (k > 1 .and. joined_only(sim%mesh, sim%st)) then
@@ -548,6 +560,14 @@ contains
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
+      ! a try of the characteristic steps that stopped early before a step without events
+      ! makes the next wait (twice as long after each such try, at most ring_wait_max steps)
+      if (short == 1 .and. run%events%n == 0) then
+         sim%st%ring_wait = min(max(2 * sim%st%ring_wait, ring_min_steps), ring_wait_max)
+         sim%st%ring_next = sim%st%step + sim%st%ring_wait
+      else if (short >= 0) then
+         sim%st%ring_wait = 0
+      end if
       call summary_reaction(summary, sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       call diag_step(summary%diag, sim%mesh, sim%st, run%events)
       call take_impacts(run, summary%diag)
@@ -563,13 +583,16 @@ contains
       call summary_events(summary, run%events)
    end subroutine take_steps
 
-   !> The characteristic steps serve this bar now (spb_ring ring_qualifies, long enough), and
-   !> no contact episode is under way (spb_diagnostics: its force is summed step by step).
+   !> The characteristic steps may serve this bar now (spb_ring ring_qualifies), the last
+   !> try's wait is over, and every contact episode under way is one a section carries
+   !> (spb_diagnostics: its force is sampled step by step).
    pure logical function use_rings(sim, summary)
       type(sim_t), intent(in) :: sim       !! the simulation
       type(run_summary_t), intent(in) :: summary   !! the run's summary (its episodes)
-      use_rings = sim%opt%rings .and. sim%mesh%n >= ring_min_cells .and. summary%diag%n_open == 0
-      if (use_rings) use_rings = ring_qualifies(sim%mesh, sim%st, sim%prob%gravity)
+      use_rings = sim%opt%rings .and. sim%mesh%n >= ring_min_cells .and. &
+                  sim%st%step >= sim%st%ring_next
+      if (use_rings) use_rings = contacts_by_sections(summary%diag)
+      if (use_rings) use_rings = ring_qualifies(sim%mesh, sim%st)
    end function use_rings
 
    !> Steps to the next due action but the check between rows and the progress line: the
@@ -585,31 +608,58 @@ contains
       k = next_due(sched, sim%st%step, run%next_profile) - sim%st%step
    end function ring_span
 
-   !> Up to nsteps characteristic steps (spb_ring advance_rings, in calls of at most
-   !> ring_span_max steps), with what the run books of each: the bottom reaction, the ends'
-   !> samples. They stop early before a step in which a node could break.
-   subroutine ring_steps(sim, summary, nsteps)
+   !> Up to nsteps characteristic steps (spb_ring: each conversion for at most ring_span_max
+   !> steps), with what the run books of each: the bottom reaction, the ends' samples, the
+   !> contact episodes' forces; the progress line where it is due. They stop early before a
+   !> step in which a node could break or two faces could touch (short = 1: within
+   !> ring_min_steps steps, else 0).
+   subroutine ring_steps(sim, run, summary, lay, nsteps, short)
       type(sim_t), intent(inout) :: sim    !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (its schedule, clock)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
+      type(ring_layout_t), intent(in) :: lay   !! the rings (ring_layout of this state)
       integer, intent(in) :: nsteps        !! steps to take at most
-      real(wp), allocatable :: face_du(:, :)
+      integer, intent(out) :: short        !! 1: they stopped within ring_min_steps steps
+      type(ring_hybrid_t) :: h
+      real(wp), allocatable :: face_du(:, :), samples(:, :)
+      integer, allocatable :: nodes(:)
       real(wp) :: sec_max
-      integer :: left, m, taken, n0
+      integer :: left, m, k, taken, n0, total, period
+      logical :: stopped
       left = nsteps
-      do while (left > 0)
+      total = 0
+      stopped = .false.
+      call contact_nodes(summary%diag, nodes)
+      period = run%sched%every(act_progress)
+      do while (left > 0 .and. .not. stopped)
          m = min(left, ring_span_max(sim%mesh%n))
-         if (allocated(face_du)) deallocate(face_du)
-         allocate(face_du(2, m))
-         n0 = sim%st%step
-         call advance_rings(sim%mesh, sim%load, sim%prob%gravity, sim%st, m, taken, sec_max, &
-                            face_du)
-         if (taken > 0) then
-            call summary_reaction(summary, sec_max / sim%mesh%area(sim%mesh%n))
-            call diag_end_samples(summary%diag, sim%mesh, n0, face_du(:, 1:taken))
-         end if
-         left = left - taken
-         if (taken < m) exit
+         call start_rings(sim%mesh, sim%st, lay, m, sim%prob%eps_rel, sim%prob%events, nodes, h)
+         ! the conversion's steps in blocks that end where the progress line is due
+         do while (m > 0)
+            k = m
+            if (period > 0) k = min(m, period - modulo(sim%st%step, period))
+            if (allocated(face_du)) deallocate(face_du, samples)
+            allocate(face_du(2, k), samples(size(nodes), k))
+            n0 = sim%st%step
+            call advance_rings(sim%mesh, sim%load, sim%prob%gravity, sim%prob%eps_rel, sim%st, &
+                               h, k, taken, sec_max, face_du, samples)
+            if (taken > 0) then
+               call summary_reaction(summary, sec_max / sim%mesh%area(sim%mesh%n))
+               call diag_end_samples(summary%diag, sim%mesh, n0, face_du(:, 1:taken))
+               call diag_contact_samples(summary%diag, samples(:, 1:taken), sim%mesh%dt)
+            end if
+            m = m - taken
+            left = left - taken
+            total = total + taken
+            if (taken < k) then
+               stopped = .true.
+               exit
+            end if
+            if (period > 0 .and. m > 0) call progress_lines(sim, run, sim%st%step)
+         end do
+         call end_rings(sim%mesh, sim%prob%gravity, sim%st, h)
       end do
+      short = merge(1, 0, stopped .and. total < ring_min_steps)
    end subroutine ring_steps
 
    !> The contact episodes that ended: their rows written (PREFIX.imp, /impacts), then gone
@@ -674,23 +724,36 @@ contains
       if (is_due(run%sched, act_progress, n)) then
          call system_clock(c_now)
          if (real(c_now - run%c_last, wp) > 0.5_wp * real(run%rate, wp)) then
-            run%c_last = c_now
             if (run%to_files) call flush_outputs(run%out)
             if (run%to_files) call check_written(run%out, err)
             if (allocated(err)) return
-            if (run%progress) call show_progress(sim, n, real(c_now - run%c0, wp) / &
-                                                 real(run%rate, wp))
          end if
-         if (run%batch_seconds > 0.0_wp .and. real(c_now - run%c_batch, wp) >= &
-             batch_interval(run) * real(run%rate, wp)) then
-            run%c_batch = c_now
-            run%batch_shown = .true.
-            call show_progress(sim, n, real(c_now - run%c0, wp) / real(run%rate, wp), &
-                               batch=.true.)
-         end if
+         call progress_lines(sim, run, n)
       end if
       stop_now = .false.
    end subroutine after_step
+
+   !> At step n, where the progress line is due: the line on a terminal if half a second has
+   !> passed since the last, a batch log's line if its interval has (the outputs' flush is
+   !> after_step's, at the end of a span of characteristic steps).
+   subroutine progress_lines(sim, run, n)
+      type(sim_t), intent(in) :: sim       !! the simulation
+      type(run_t), intent(inout) :: run    !! the run's context (its clock)
+      integer, intent(in) :: n             !! the step
+      integer(int64) :: c_now
+      call system_clock(c_now)
+      if (real(c_now - run%c_last, wp) > 0.5_wp * real(run%rate, wp)) then
+         run%c_last = c_now
+         if (run%progress) call show_progress(sim, n, real(c_now - run%c0, wp) / &
+                                              real(run%rate, wp))
+      end if
+      if (run%batch_seconds > 0.0_wp .and. real(c_now - run%c_batch, wp) >= &
+          batch_interval(run) * real(run%rate, wp)) then
+         run%c_batch = c_now
+         run%batch_shown = .true.
+         call show_progress(sim, n, real(c_now - run%c0, wp) / real(run%rate, wp), batch=.true.)
+      end if
+   end subroutine progress_lines
 
    !> Seconds between batch progress lines: --progress SECONDS, but the first comes after
    !> first_batch_seconds at the latest [s].
