@@ -126,6 +126,12 @@ def no_history(work, deck, name):
     return path
 
 
+def lattice(cmd):
+    """CMD with every step on the lattice arrays (SPALLBAR_STEPPING=lattice, through env(1):
+    its exec is part of the same process's CPU time)."""
+    return ["env", "SPALLBAR_STEPPING=lattice"] + list(cmd)
+
+
 def timed_together(cmds, cwd, repeats):
     """Run the commands of CMDS ({name: argv}) one after the other, REPEATS rounds, so that
     the VM's slow and fast spells fall on all of them alike. Returns {name: (median, min,
@@ -153,9 +159,11 @@ def intact_rows(exe, work, rep, fc):
         raise SystemExit(f"references disagree with spallbar beyond {TOLERANCE:.0e}: "
                          f"{describe(result)}")
     numpy_ref = os.path.join(HERE, "numpy_ref.py")
-    cmds = {"spallbar": [exe, intact_deck(work, cells, steps), "-q"],
+    # the lattice's steps (SPALLBAR_STEPPING=lattice): an intact bar is stepped in
+    # characteristic form by default (spb_ring), which the scaling rows time apart
+    cmds = {"spallbar": lattice([exe, intact_deck(work, cells, steps), "-q"]),
             # start-up, deck, set-up of 1e5 nodes and outputs: the same deck for one step
-            "spallbar_1": [exe, intact_deck(work, cells, 1), "-q"],
+            "spallbar_1": lattice([exe, intact_deck(work, cells, 1), "-q"]),
             "naive": [naive, str(cells), str(steps)],
             "naive_1": [naive, str(cells), "1"],
             "numpy": [sys.executable, numpy_ref, str(cells), str(steps)],
@@ -170,7 +178,7 @@ def intact_rows(exe, work, rep, fc):
     def span(x):
         return f"{x[0]:.3f} s ({x[1]:.3f}-{x[2]:.3f})"
 
-    rows = [("intact bar, N = 1e5, 2000 steps", span(spb),
+    rows = [("intact bar, N = 1e5, 2000 steps, the lattice's steps", span(spb),
              f"{ns / spb[0]:.3g} node-steps/s; the same deck for 1 step (start-up, set-up, "
              f"outputs) {spb1[0]:.3f} s, so the steps take {spb_steps:.3f} s "
              f"({ns / spb_steps:.3g} node-steps/s)")]
@@ -201,6 +209,7 @@ def intact_rows(exe, work, rep, fc):
 SCALING_SIZES = (1000, 10000, 100000, 1000000)
 SCALING_NODE_STEPS = 1.0e9
 MIN_STEPS = 2000
+RING_STEPS = 400000
 
 # Issue 36 target 2: a 1e5-cell layered bar (steel, aluminium, steel, aluminium: three
 # interfaces) under a 200 us triangular pulse on its free top, the top segment breakable:
@@ -236,18 +245,24 @@ LAYERED = """&run
 
 
 def scaling_runs(exe, naive, work, rep):
-    """CPU time per step of the intact bar, spallbar's lattice and the naive loop, at each
-    size of SCALING_SIZES: {name: [seconds per step]}, and the steps of each size."""
-    per_step = {"lattice": [], "naive": []}
+    """CPU time per step of the intact bar, spallbar's lattice (SPALLBAR_STEPPING=lattice),
+    spallbar's characteristic rings (the default) and the naive loop, at each size of
+    SCALING_SIZES: {name: [seconds per step]}, and the steps of each size."""
+    per_step = {"lattice": [], "rings": [], "naive": []}
     steps_of = []
     for n in SCALING_SIZES:
         st = max(MIN_STEPS, int(SCALING_NODE_STEPS / n))
         steps_of.append(st)
-        r = timed_together({"spb": [exe, intact_deck(work, n, st), "-q"],
-                            "spb_1": [exe, intact_deck(work, n, 1), "-q"],
+        # the rings' steps cost about a microsecond whatever N: RING_STEPS of them, so that
+        # they stand out of the set-up
+        sr = max(st, RING_STEPS)
+        r = timed_together({"spb": lattice([exe, intact_deck(work, n, st), "-q"]),
+                            "spb_1": lattice([exe, intact_deck(work, n, 1), "-q"]),
+                            "ring": [exe, intact_deck(work, n, sr), "-q"],
                             "naive": [naive, str(n), str(st)],
                             "naive_1": [naive, str(n), "1"]}, work, rep)
         per_step["lattice"].append((r["spb"][0] - r["spb_1"][0]) / (st - 1))
+        per_step["rings"].append((r["ring"][0] - r["spb_1"][0]) / (sr - 1))
         per_step["naive"].append((r["naive"][0] - r["naive_1"][0]) / (st - 1))
     return per_step, steps_of
 
@@ -255,9 +270,12 @@ def scaling_runs(exe, naive, work, rep):
 def scaling_row(per_step, steps_of):
     """The table's row of the scaling runs: ns per node-step and the ratio to the naive loop."""
     cells = []
-    for n, st, a, b in zip(SCALING_SIZES, steps_of, per_step["lattice"], per_step["naive"]):
-        cells.append(f"N = {n:.0e}, {st} steps: {a / (n + 1) * 1e9:.2f} ns "
-                     f"(naive {b / (n + 1) * 1e9:.2f} ns, spallbar / naive **{b / a:.2f}**)")
+    for n, st, a, b, c in zip(SCALING_SIZES, steps_of, per_step["lattice"], per_step["naive"],
+                              per_step["rings"]):
+        cells.append(f"N = {n:.0e}, {st} steps: lattice {a / (n + 1) * 1e9:.2f} ns "
+                     f"(naive {b / (n + 1) * 1e9:.2f} ns, lattice / naive **{b / a:.2f}**); "
+                     f"rings ({max(st, RING_STEPS)} steps) {c * 1e6:.3g} us a step, "
+                     f"{c / (n + 1) * 1e9:.3g} ns a node-step")
     return ("time per node-step, intact bar (CPU time of the steps: the run less the same "
             "run for one step)", "; ".join(cells),
             f"{SCALING_NODE_STEPS:.0e} node-steps per run, at least {MIN_STEPS} steps; "
@@ -463,15 +481,38 @@ def main():
         # scaling with N (intact): the lattice and the naive loop, enough steps
         per_step, steps_of = scaling_runs(exe, naive, work, 3)
         rows.append(scaling_row(per_step, steps_of))
-        pieces, per_frag = [1, 10, 100], []
+        # fragments flying apart: the lattice's steps (SPALLBAR_STEPPING=lattice) and the
+        # default's (rings for fragments of 16 cells or more)
+        pieces, per_frag, per_frag_rings = [1, 10, 100], [], []
         for k in pieces:
-            r = timed_together({"run": [exe, flying_deck(work, 100000, MIN_STEPS, k), "-q"],
-                                "one": [exe, flying_deck(work, 100000, 1, k), "-q"]}, work, 3)
+            r = timed_together({"run": lattice([exe, flying_deck(work, 100000, MIN_STEPS, k),
+                                                "-q"]),
+                                "ring": [exe, flying_deck(work, 100000, MIN_STEPS, k), "-q"],
+                                "one": lattice([exe, flying_deck(work, 100000, 1, k), "-q"])},
+                               work, 3)
             per_frag.append((r["run"][0] - r["one"][0]) / (100001 * (MIN_STEPS - 1)) * 1e9)
+            per_frag_rings.append((r["ring"][0] - r["one"][0]) / (100001 * (MIN_STEPS - 1)) *
+                                  1e9)
         rows.append((f"time per node-step, N = 1e5 flying apart in 1, 10, 100 fragments "
-                     f"(no events after t = 0; {MIN_STEPS} steps less 1 step)",
-                     ", ".join(f"{x:.2f} ns" for x in per_frag),
+                     f"(no events after t = 0; {MIN_STEPS} steps less 1 step), the lattice's "
+                     f"steps", ", ".join(f"{x:.2f} ns" for x in per_frag),
                      "flat = independent of the number of fragments"))
+        rows.append(("the same, default stepping (a ring per fragment)",
+                     ", ".join(f"{x:.3g} ns" for x in per_frag_rings),
+                     "effective: the steps cost O(1) per fragment"))
+        # short fragments (case 2: zero strength, fragments of a few cells): the default's
+        # tries of the rings back off; not slower than the lattice's steps
+        deck = os.path.join(ROOT, "input", "example3_case2", "accelerate_fragment_h190.nml")
+        r = timed_together({"default": [exe, no_history(work, deck, "short_d"), "-q", "--output",
+                                        os.path.join(work, "short_d")],
+                            "lattice": lattice([exe, no_history(work, deck, "short_l"), "-q",
+                                                "--output", os.path.join(work, "short_l")])},
+                           work, rep)
+        rows.append(("short fragments: case 2 accelerate/fragment h/190 without history rows, "
+                     "default against SPALLBAR_STEPPING=lattice",
+                     f"{r['default'][0]:.3f} s vs {r['lattice'][0]:.3f} s",
+                     f"default / lattice = **{r['default'][0] / r['lattice'][0]:.2f}** (target: "
+                     f"not slower, <= 1 within the timer's noise)"))
         fits = {}
         for cells in (95, 190):
             evs, walls = [], []
@@ -509,6 +550,7 @@ def main():
         # cost per step against N, one curve per stepping (the characteristic rings of
         # issue 36 add theirs here: a name and its seconds per step at SCALING_SIZES)
         styles = {"lattice": ("o-", "C0", "spallbar, lattice"),
+                  "rings": ("^-", "C3", "spallbar, characteristic rings (default)"),
                   "naive": ("s--", "C2", "naive Fortran loop")}
         for name, ys in per_step.items():
             mk, col, label = styles.get(name, ("^-", "C3", name))
@@ -517,8 +559,11 @@ def main():
         a1.set_ylabel("CPU time per step [us]")
         a1.set_title("intact bar: cost per step vs N", fontsize=9)
         a1.legend(fontsize=8)
-        a2.semilogx(pieces, per_frag, "o-", color="C0")
+        a2.semilogx(pieces, per_frag, "o-", color="C0", label="lattice")
+        a2.semilogx(pieces, [max(x, 1e-3) for x in per_frag_rings], "^-", color="C3",
+                    label="default (rings)")
         a2.set_ylim(0, max(per_frag) * 1.5)
+        a2.legend(fontsize=8)
         a2.set_xlabel(f"fragments (N = 1e5, {MIN_STEPS} steps)")
         a2.set_ylabel("CPU time per node-step [ns]")
         a2.set_title("no events: cost per step vs number of fragments", fontsize=9)

@@ -10,7 +10,7 @@ module spb_driver
    use spb_strings, only: itoa
    use spb_cli, only: cli_t
    use spb_deck, only: deck_t, read_deck, deck_warnings
-   use spb_sim, only: sim_t, checkpoint_t
+   use spb_sim, only: sim_t, checkpoint_t, ring_span_at_start
    use spb_summary, only: run_summary_t, write_summary
    use spb_diag, only: frag_info_t, fragment_list
    use spb_output, only: write_mesh_summary
@@ -51,7 +51,8 @@ contains
          end if
          first = ck%st%step
       end if
-      est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, first, .true.)
+      est = estimate_run(deck, sim%mesh%n, sim%mesh%nsteps, sim%mesh%dt, first, .true., &
+                         ring_span=ring_span_at_start(sim))
       if (.not. cli%quiet) then
          write(unit, '(a)') program_identity() // ': ' // trim(deck%run%title)
          call write_mesh_summary(unit, sim%mesh, sim%report, '  ')

@@ -34,6 +34,15 @@ module spb_estimate
    !> the cache-blocked stepper at): 1e4 cells, 2e4 steps took 6.4 s with history_every = 1
    !> and 1.3 s with 1e5 [s].
    real(wp), parameter :: sec_cell_row = 25.0e-9_wp
+   !> A bar stepped in characteristic form from the start (spb_ring, doc/method.md
+   !> "Characteristic stepping of intact stretches"): seconds per step (a ring's ends, its
+   !> bounded fracture test; 0.87 us a step measured on a breakable 1e6-cell bar to its
+   !> first fracture, bench/run.py target 1) [s]
+   real(wp), parameter :: sec_ring_step = 1.0e-6_wp
+   !> and seconds per cell and span (the conversion to the rings and back, about 30 ns a
+   !> cell each, measured on the layered bar of bench/run.py target 2) [s]. Events cost more
+   !> (each a lattice step and two conversions): the estimate does not know them.
+   real(wp), parameter :: sec_cell_span = 60.0e-9_wp
    !> Seconds per history row besides (its 34 numbers formatted, the wave measure's sums
    !> over the fragments): example3_case1 (19 cells) wrote 2130 rows in 17 to 25 ms [s].
    real(wp), parameter :: sec_row = 10.0e-6_wp
@@ -74,13 +83,15 @@ contains
    !> The estimate of a run of a validated deck on a mesh of cells cells and nsteps steps of
    !> dt, from step first (0, or a restart's checkpoint step) on; files = .false.: no
    !> outputs (a sweep's case).
-   pure function estimate_run(deck, cells, nsteps, dt, first, files) result(est)
+   pure function estimate_run(deck, cells, nsteps, dt, first, files, ring_span) result(est)
       type(deck_t), intent(in) :: deck     !! the deck (its &run, &gauges)
       integer, intent(in) :: cells         !! cells of the mesh
       integer, intent(in) :: nsteps        !! steps to t_end
       real(wp), intent(in) :: dt           !! the time step [s]
       integer, intent(in) :: first         !! the step it starts from
       logical, intent(in) :: files         !! it writes its outputs
+      integer, intent(in), optional :: ring_span   !! > 0: the bar starts in characteristic
+                                                   !! form, converted every so many steps
       type(estimate_t) :: est
       real(wp) :: his_row     ! bytes of a history row [bytes]
       real(wp) :: gau_rows    ! gauge rows [-]
@@ -97,6 +108,11 @@ contains
       if (real(cells, wp) * cell_bytes > cache_bytes) c_step = sec_cell_step_large
       est%row_seconds = est%rows * (real(cells, wp) * sec_cell_row + sec_row)
       est%seconds = est%cell_steps * c_step + est%row_seconds
+      if (present(ring_span)) then
+         if (ring_span > 0) est%seconds = real(est%steps, wp) * sec_ring_step + &
+            (real(est%steps / ring_span, wp) + 1.0_wp) * real(cells, wp) * sec_cell_span + &
+            est%row_seconds
+      end if
       if (.not. files) return
       ng = deck%gauges%n
       g_every = deck%gauges%every

@@ -48,7 +48,7 @@ module spb_sim
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
-      run_options_t, memory_text, run_base_bytes, run_cell_bytes
+      run_options_t, memory_text, run_base_bytes, run_cell_bytes, ring_span_at_start
 
    !> The between-step actions run every check_every steps (finiteness, energy guard) and
    !> every progress_period(cells) steps (a look at the clock: the progress line, the flush;
@@ -594,6 +594,25 @@ contains
       if (use_rings) use_rings = contacts_by_sections(summary%diag)
       if (use_rings) use_rings = ring_qualifies(sim%mesh, sim%st)
    end function use_rings
+
+   !> For the estimate before a run: the steps between the conversions where the
+   !> characteristic steps serve the bar at its state now (use_rings, the rings holding three
+   !> quarters of it), from the periods of the outputs that end a span (history rows, gauge
+   !> rows, x-t fields, checkpoints); 0 where they do not serve it or the spans are too short.
+   pure integer function ring_span_at_start(sim) result(span)
+      type(sim_t), intent(in) :: sim       !! the simulation, set up
+      type(ring_layout_t) :: lay
+      type(run_summary_t) :: none
+      span = 0
+      if (.not. use_rings(sim, none)) return
+      lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
+      if (4 * lay%ring_cells < 3 * sim%mesh%n) return
+      span = min(max(sim%opt%history_every, 1), ring_span_max(sim%mesh%n))
+      if (size(sim%gauges) > 0) span = min(span, max(sim%opt%gauge_every, 1))
+      if (sim%opt%field_every > 0) span = min(span, sim%opt%field_every)
+      if (sim%opt%checkpoint_every > 0) span = min(span, sim%opt%checkpoint_every)
+      if (span - 1 < ring_min_steps) span = 0
+   end function ring_span_at_start
 
    !> Steps to the next due action but the check between rows and the progress line: the
    !> characteristic steps keep no lattice arrays to check, so that check (finiteness, the
