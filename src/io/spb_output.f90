@@ -105,6 +105,7 @@ module spb_output
       type(row_buffer_t) :: rows(n_text)                       !! rows not yet written, per text
                                                           !! file (text_extensions order)
       type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
+      type(row_cache_t) :: imp_cache                      !! .imp's last row's text
       integer(int64) :: n_his = 0, n_evt = 0, n_imp = 0   !! .his, .evt, .imp rows written here
       integer(int64) :: expect(n_text) = 0                     !! bytes each text file should
                                                           !! hold: check_written's measure
@@ -1630,24 +1631,12 @@ contains
    subroutine write_impacts(out, ended)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(impact_t), intent(in) :: ended(:)   !! the episodes that ended
-      character(len=10 * 21 + 17) :: line
       real(wp) :: v(11)
-      integer :: k, c, at
+      integer :: k
       do k = 1, size(ended)
          v = impact_row(ended(k))
-         ! 1x,es20.12e3 per column, the kind's word right-aligned in 1x,a16
-         at = 0
-         do c = 1, 11
-            if (c == 4) then
-               line(at + 1:at + 17) = ' ' // adjustr(imp_kind_names(ended(k)%kind) // '       ')
-               at = at + 17
-            else
-               line(at + 1:at + 1) = ' '
-               call es_into(v(c), line(at + 2:at + 21))
-               at = at + 21
-            end if
-         end do
-         call put_row(out, 5, line)
+         call impact_line(v, ended(k)%kind, out%imp_cache)
+         call put_row(out, 5, out%imp_cache%line)
          out%n_imp = out%n_imp + 1
          if (.not. out%hdf5) cycle
          ! the text reaches the file before PREFIX.h5 writes a block of rows (write_events)
@@ -1655,4 +1644,35 @@ contains
          call h5_append(out%h5, out%h_imp, v)
       end do
    end subroutine write_impacts
+
+   !> One row of PREFIX.imp into cache%line: 1x,es20.12e3 per column, the kind's word
+   !> right-aligned in 1x,a16 (the fourth); a value with the bits of the row before keeps its
+   !> text (table_line: consecutive episodes often share their times).
+   pure subroutine impact_line(v, kind, cache)
+      real(wp), intent(in) :: v(11)        !! the row's values (impact_row; v(4) unused)
+      integer, intent(in) :: kind          !! the episode's kind (imp_* constant)
+      type(row_cache_t), intent(inout) :: cache   !! the last row, then this one
+      integer :: c, at
+      integer(int64) :: bits
+      if (.not. allocated(cache%line)) then
+         cache%line = repeat(' ', 10 * 21 + 17)
+         allocate(cache%bits(11), cache%set(11))
+         cache%set = .false.
+      end if
+      at = 0
+      do c = 1, 11
+         if (c == 4) then
+            cache%line(at + 1:at + 17) = ' ' // adjustr(imp_kind_names(kind) // '       ')
+            at = at + 17
+         else
+            bits = transfer(v(c), 0_int64)
+            if (.not. cache%set(c) .or. cache%bits(c) /= bits) then
+               call es_into(v(c), cache%line(at + 2:at + 21))
+               cache%bits(c) = bits
+               cache%set(c) = .true.
+            end if
+            at = at + 21
+         end if
+      end do
+   end subroutine impact_line
 end module spb_output
