@@ -1292,17 +1292,15 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
       real(wp) :: v(size(out%evt_table))
-      character(len=:), allocatable :: line   ! the row and its kind_code (1x,i9)
-      integer :: k, n
+      character(len=10) :: code   ! the row's kind_code (1x,i9)
+      integer :: k
+      code(1:1) = ' '
       do k = 1, events%n
          associate (e => events%e(k))
             call post_event_columns(out%evt_id, e, v)
             call table_line(out%evt_table, v, out%evt_cache)
-            n = len(out%evt_cache%line)
-            if (.not. allocated(line)) line = repeat(' ', n + 10)
-            line(1:n) = out%evt_cache%line
-            call int_into(e%kind, line(n + 2:n + 10))
-            call put_row(out, 3, line)
+            call int_into(e%kind, code(2:10))
+            call put_row(out, 3, out%evt_cache%line, code)
             out%n_evt = out%n_evt + 1
             if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
                call drain_one(out, 3)
@@ -1313,25 +1311,33 @@ contains
    end subroutine write_events
 
    !> Collect one row of text file k (text_extensions order); the rows are written when the
-   !> buffer is full and by drain_rows.
-   subroutine put_row(out, k, line)
+   !> buffer is full and by drain_rows. With tail: the row is line // tail (copied once).
+   subroutine put_row(out, k, line, tail)
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k                !! text file (text_extensions)
       character(len=*), intent(in) :: line    !! the row, without its newline
-      integer :: u, ios
+      character(len=*), intent(in), optional :: tail   !! the rest of the row
+      integer :: u, ios, n
       u = text_unit(out, k)
       if (u == no_unit) return
-      out%expect(k) = out%expect(k) + len(line) + 1
+      n = len(line)
+      if (present(tail)) n = n + len(tail)
+      out%expect(k) = out%expect(k) + n + 1
       associate (b => out%rows(k))
          if (.not. allocated(b%text)) allocate(character(len=row_buffer_len) :: b%text)
-         if (b%n + len(line) + 1 > row_buffer_len) call drain_one(out, k)
-         if (len(line) + 1 > row_buffer_len) then
-            write(u, '(a)', iostat=ios) line
+         if (b%n + n + 1 > row_buffer_len) call drain_one(out, k)
+         if (n + 1 > row_buffer_len) then
+            if (present(tail)) then
+               write(u, '(2a)', iostat=ios) line, tail
+            else
+               write(u, '(a)', iostat=ios) line
+            end if
             if (ios /= 0) out%refused(k) = .true.    ! check_written tells
          else
             b%text(b%n + 1:b%n + len(line)) = line
-            b%text(b%n + len(line) + 1:b%n + len(line) + 1) = new_line('a')
-            b%n = b%n + len(line) + 1
+            if (present(tail)) b%text(b%n + len(line) + 1:b%n + n) = tail
+            b%text(b%n + n + 1:b%n + n + 1) = new_line('a')
+            b%n = b%n + n + 1
          end if
       end associate
    end subroutine put_row
