@@ -108,18 +108,11 @@ contains
       !> 10^k correctly rounded to 113 bits (compile time; checked against exact fractions)
       !> for every k that ES20.12 of a double needs: 12 - e, e = -324 (subnormals) .. 308
       real(qp), parameter :: pow10_q(-300:340) = [(10.0_qp**k, k = -300, 340)]
-      !> 10^k rounded to a double: the decade's first guess (a guess only: the scaling below
-      !> decides, and corrects it)
-      real(wp), parameter :: pow10_d(-300:300) = [(10.0_wp**k, k = -300, 300)]
       ! the decade from the binary exponent (within one; corrected below): exponent(a) - 1,
       ! read from the bits where a is normal (exponent() is a library call)
       be = int(ibits(transfer(a, 0_int64), 52, 11))
       if (be == 0) be = exponent(a) + 1022
       e = floor(real(be - 1023, wp) * 0.30102999566398120_wp)
-      ! one low in about a third of the cases: one comparison saves a scaling
-      if (e >= -301 .and. e <= 299) then
-         if (a >= pow10_d(e + 1)) e = e + 1
-      end if
       ok = .false.
       m = 0
       do j = 1, 3
@@ -237,17 +230,24 @@ contains
       ! the caller's part of a row receives the digits
       ! allow(assumed-size-character-intent)
       character(len=*), intent(out) :: field   !! the field
-      integer(int64) :: m
-      integer :: j
+      integer(int64) :: m, q
+      integer :: j, r
       m = abs(int(k, int64))
       field = ' '
       j = len(field)
-      do
-         field(j:j) = achar(48 + int(mod(m, 10_int64)))
-         m = m / 10_int64
-         j = j - 1
-         if (m == 0 .or. j < 1) exit
+      ! two digits per division while two are left and fit
+      do while (m >= 10_int64 .and. j >= 2)
+         q = m / 100_int64
+         r = int(m - 100_int64 * q)
+         field(j - 1:j) = pair(r)
+         j = j - 2
+         m = q
       end do
+      ! the last digit (0 for k = 0; the lowest digit left where the field is too narrow)
+      if ((m > 0 .or. j == len(field)) .and. j >= 1) then
+         field(j:j) = achar(48 + int(mod(m, 10_int64)))
+         j = j - 1
+      end if
       if (k < 0 .and. j >= 1) field(j:j) = '-'
    end subroutine int_into
 
