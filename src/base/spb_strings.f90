@@ -230,17 +230,24 @@ contains
       ! the caller's part of a row receives the digits
       ! allow(assumed-size-character-intent)
       character(len=*), intent(out) :: field   !! the field
-      integer(int64) :: m
-      integer :: j
+      integer(int64) :: m, q
+      integer :: j, r
       m = abs(int(k, int64))
       field = ' '
       j = len(field)
-      do
-         field(j:j) = achar(48 + int(mod(m, 10_int64)))
-         m = m / 10_int64
-         j = j - 1
-         if (m == 0 .or. j < 1) exit
+      ! two digits per division while two are left and fit
+      do while (m >= 10_int64 .and. j >= 2)
+         q = m / 100_int64
+         r = int(m - 100_int64 * q)
+         field(j - 1:j) = pair(r)
+         j = j - 2
+         m = q
       end do
+      ! the last digit (0 for k = 0; the lowest digit left where the field is too narrow)
+      if ((m > 0 .or. j == len(field)) .and. j >= 1) then
+         field(j:j) = achar(48 + int(mod(m, 10_int64)))
+         j = j - 1
+      end if
       if (k < 0 .and. j >= 1) field(j:j) = '-'
    end subroutine int_into
 

@@ -105,6 +105,7 @@ module spb_output
       type(row_buffer_t) :: rows(n_text)                       !! rows not yet written, per text
                                                           !! file (text_extensions order)
       type(row_cache_t) :: his_cache, evt_cache           !! the last row's texts
+      type(row_cache_t) :: imp_cache                      !! .imp's last row's text
       integer(int64) :: n_his = 0, n_evt = 0, n_imp = 0   !! .his, .evt, .imp rows written here
       integer(int64) :: expect(n_text) = 0                     !! bytes each text file should
                                                           !! hold: check_written's measure
@@ -1291,17 +1292,15 @@ contains
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(event_list_t), intent(in) :: events   !! events of the step (appended)
       real(wp) :: v(size(out%evt_table))
-      character(len=:), allocatable :: line   ! the row and its kind_code (1x,i9)
-      integer :: k, n
+      character(len=10) :: code   ! the row's kind_code (1x,i9)
+      integer :: k
+      code(1:1) = ' '
       do k = 1, events%n
          associate (e => events%e(k))
             call post_event_columns(out%evt_id, e, v)
             call table_line(out%evt_table, v, out%evt_cache)
-            n = len(out%evt_cache%line)
-            if (.not. allocated(line)) line = repeat(' ', n + 10)
-            line(1:n) = out%evt_cache%line
-            call int_into(e%kind, line(n + 2:n + 10))
-            call put_row(out, 3, line)
+            call int_into(e%kind, code(2:10))
+            call put_row(out, 3, out%evt_cache%line, code)
             out%n_evt = out%n_evt + 1
             if (out%hdf5 .and. mod(out%n_evt, int(buffer_rows, int64)) == 0) then
                call drain_one(out, 3)
@@ -1312,25 +1311,33 @@ contains
    end subroutine write_events
 
    !> Collect one row of text file k (text_extensions order); the rows are written when the
-   !> buffer is full and by drain_rows.
-   subroutine put_row(out, k, line)
+   !> buffer is full and by drain_rows. With tail: the row is line // tail (copied once).
+   subroutine put_row(out, k, line, tail)
       type(outputs_t), intent(inout) :: out   !! the outputs
       integer, intent(in) :: k                !! text file (text_extensions)
       character(len=*), intent(in) :: line    !! the row, without its newline
-      integer :: u, ios
+      character(len=*), intent(in), optional :: tail   !! the rest of the row
+      integer :: u, ios, n
       u = text_unit(out, k)
       if (u == no_unit) return
-      out%expect(k) = out%expect(k) + len(line) + 1
+      n = len(line)
+      if (present(tail)) n = n + len(tail)
+      out%expect(k) = out%expect(k) + n + 1
       associate (b => out%rows(k))
          if (.not. allocated(b%text)) allocate(character(len=row_buffer_len) :: b%text)
-         if (b%n + len(line) + 1 > row_buffer_len) call drain_one(out, k)
-         if (len(line) + 1 > row_buffer_len) then
-            write(u, '(a)', iostat=ios) line
+         if (b%n + n + 1 > row_buffer_len) call drain_one(out, k)
+         if (n + 1 > row_buffer_len) then
+            if (present(tail)) then
+               write(u, '(2a)', iostat=ios) line, tail
+            else
+               write(u, '(a)', iostat=ios) line
+            end if
             if (ios /= 0) out%refused(k) = .true.    ! check_written tells
          else
             b%text(b%n + 1:b%n + len(line)) = line
-            b%text(b%n + len(line) + 1:b%n + len(line) + 1) = new_line('a')
-            b%n = b%n + len(line) + 1
+            if (present(tail)) b%text(b%n + len(line) + 1:b%n + n) = tail
+            b%text(b%n + n + 1:b%n + n + 1) = new_line('a')
+            b%n = b%n + n + 1
          end if
       end associate
    end subroutine put_row
@@ -1630,24 +1637,12 @@ contains
    subroutine write_impacts(out, ended)
       type(outputs_t), intent(inout) :: out   !! the outputs
       type(impact_t), intent(in) :: ended(:)   !! the episodes that ended
-      character(len=10 * 21 + 17) :: line
       real(wp) :: v(11)
-      integer :: k, c, at
+      integer :: k
       do k = 1, size(ended)
          v = impact_row(ended(k))
-         ! 1x,es20.12e3 per column, the kind's word right-aligned in 1x,a16
-         at = 0
-         do c = 1, 11
-            if (c == 4) then
-               line(at + 1:at + 17) = ' ' // adjustr(imp_kind_names(ended(k)%kind) // '       ')
-               at = at + 17
-            else
-               line(at + 1:at + 1) = ' '
-               call es_into(v(c), line(at + 2:at + 21))
-               at = at + 21
-            end if
-         end do
-         call put_row(out, 5, line)
+         call impact_line(v, ended(k)%kind, out%imp_cache)
+         call put_row(out, 5, out%imp_cache%line)
          out%n_imp = out%n_imp + 1
          if (.not. out%hdf5) cycle
          ! the text reaches the file before PREFIX.h5 writes a block of rows (write_events)
@@ -1655,4 +1650,35 @@ contains
          call h5_append(out%h5, out%h_imp, v)
       end do
    end subroutine write_impacts
+
+   !> One row of PREFIX.imp into cache%line: 1x,es20.12e3 per column, the kind's word
+   !> right-aligned in 1x,a16 (the fourth); a value with the bits of the row before keeps its
+   !> text (table_line: consecutive episodes often share their times).
+   pure subroutine impact_line(v, kind, cache)
+      real(wp), intent(in) :: v(11)        !! the row's values (impact_row; v(4) unused)
+      integer, intent(in) :: kind          !! the episode's kind (imp_* constant)
+      type(row_cache_t), intent(inout) :: cache   !! the last row, then this one
+      integer :: c, at
+      integer(int64) :: bits
+      if (.not. allocated(cache%line)) then
+         cache%line = repeat(' ', 10 * 21 + 17)
+         allocate(cache%bits(11), cache%set(11))
+         cache%set = .false.
+      end if
+      at = 0
+      do c = 1, 11
+         if (c == 4) then
+            cache%line(at + 1:at + 17) = ' ' // adjustr(imp_kind_names(kind) // '       ')
+            at = at + 17
+         else
+            bits = transfer(v(c), 0_int64)
+            if (.not. cache%set(c) .or. cache%bits(c) /= bits) then
+               call es_into(v(c), cache%line(at + 2:at + 21))
+               cache%bits(c) = bits
+               cache%set(c) = .true.
+            end if
+            at = at + 21
+         end if
+      end do
+   end subroutine impact_line
 end module spb_output

@@ -26,6 +26,10 @@ module spb_diag
       real(wp) :: e_lost = 0.0_wp     !! removed by events [J/m^2]
       real(wp) :: ledger = 0.0_wp     !! e_kin + e_strain + e_pot - w_ext + e_lost [J/m^2]
       real(wp) :: momentum = 0.0_wp   !! [kg/(m s)]
+      real(wp) :: defect = 0.0_wp     !! the cells' length no stress explains, sum over the
+                                      !! cells of (u_A(k) - u_B(k-1)) + s_k / stiff_k, in the
+                                      !! same pass (the half-mass model's spb_history
+                                      !! length_defect; not a history column of its own) [m]
    end type energies_t
 
    !> The energies' history columns (PREFIX.his, /history): their ids (spb_columns).
@@ -81,11 +85,12 @@ contains
       real(wp), intent(in) :: g       !! gravity [m/s^2]
       type(energies_t) :: e
       integer :: n
-      real(wp) :: dt, s_kin, s_strain, s_pot, s_mom
+      real(wp) :: dt, s_kin, s_strain, s_pot, s_mom, d_u, d_s
       n = mesh%n
       dt = mesh%dt
       call energy_sums(n, mesh%ma, mesh%mb, st%ua, st%ub, st%dua, st%dub, st%s_old(1:n), &
-                       st%s(1:n), mesh%stiff, s_kin, s_pot, s_mom, s_strain)
+                       st%s(1:n), mesh%stiff, s_kin, s_pot, s_mom, s_strain, d_u, d_s)
+      e%defect = d_u + d_s
       e%e_kin = 0.5_wp * s_kin / dt**2
       e%e_strain = 0.5_wp * s_strain
       e%e_pot = 0.0_wp - g * s_pot
@@ -117,11 +122,11 @@ contains
    end function energies
 
    !> The sums of energies in one pass, each in the order sum() takes (i = 0, 1, ..., n;
-   !> the strain's from 1): the same bits as four separate sums of the arrays, in less time
-   !> (each sum is a chain of additions; one pass runs the four side by side, and explicit
-   !> shapes let the compiler keep the arrays' addresses in registers).
+   !> the strain's and the length defect's from 1): the same bits as six separate sums of the
+   !> arrays, in less time (each sum is a chain of additions; one pass runs the six side by
+   !> side, and explicit shapes let the compiler keep the arrays' addresses in registers).
    pure subroutine energy_sums(n, ma, mb, ua, ub, dua, dub, s_old, s, stiff, s_kin, s_pot, &
-                               s_mom, s_strain)
+                               s_mom, s_strain, d_u, d_s)
       integer, intent(in) :: n                 !! cells
       real(wp), intent(in) :: ma(0:n)          !! upper half masses [kg/m^2 A]
       real(wp), intent(in) :: mb(0:n)          !! lower half masses [kg/m^2 A]
@@ -136,18 +141,22 @@ contains
       real(wp), intent(out) :: s_pot           !! sum m (u - du/2) [kg m/m^2 A]
       real(wp), intent(out) :: s_mom           !! sum m du [kg m/m^2 A]
       real(wp), intent(out) :: s_strain        !! sum s_old s / stiff [J/m^2]
+      real(wp), intent(out) :: d_u             !! sum over the cells of u_A(k) - u_B(k-1) [m]
+      real(wp), intent(out) :: d_s             !! sum over the cells of s_k / stiff_k [m]
       integer :: i
-      s_kin = 0.0_wp
-      s_pot = 0.0_wp
-      s_mom = 0.0_wp
       s_strain = 0.0_wp
-      do i = 0, n
+      d_u = 0.0_wp
+      d_s = 0.0_wp
+      s_kin = 0.0_wp + (ma(0) * dua(0)**2 + mb(0) * dub(0)**2)
+      s_pot = 0.0_wp + (ma(0) * (ua(0) - 0.5_wp * dua(0)) + mb(0) * (ub(0) - 0.5_wp * dub(0)))
+      s_mom = 0.0_wp + (ma(0) * dua(0) + mb(0) * dub(0))
+      do i = 1, n
          s_kin = s_kin + (ma(i) * dua(i)**2 + mb(i) * dub(i)**2)
          s_pot = s_pot + (ma(i) * (ua(i) - 0.5_wp * dua(i)) + mb(i) * (ub(i) - 0.5_wp * dub(i)))
          s_mom = s_mom + (ma(i) * dua(i) + mb(i) * dub(i))
-      end do
-      do i = 1, n
          s_strain = s_strain + s_old(i) * s(i) / stiff(i)
+         d_u = d_u + (ua(i) - ub(i - 1))
+         d_s = d_s + s(i) / stiff(i)
       end do
    end subroutine energy_sums
 

@@ -108,6 +108,12 @@ module spb_diagnostics
                                                !! them (PREFIX.imp's rows; diag_taken),
                                                !! first n_ended used
       integer :: n_ended = 0
+      !> open_at's index: the open episodes other than a striking mass's at each node 0..n,
+      !> and the slot of one of them (where there is one, it is that one's): a separation
+      !> finds its episode without a search (millions when every cell is a contact).
+      !> Built at the first step that needs it (index_open; a checkpoint does not keep it).
+      integer, allocatable :: n_at(:)
+      integer, allocatable :: slot_at(:)
    end type diag_t
 
 contains
@@ -266,6 +272,7 @@ contains
       integer :: j, k
       du(:, 1) = [st%dub(0), st%dua(mesh%n)]
       call diag_end_samples(d, mesh, st%step - 1, du)
+      if (events%n > 0 .and. .not. allocated(d%n_at)) call index_open(d, mesh%n)
       do j = 1, events%n
          associate (ev => events%e(j))
             select case (ev%kind)
@@ -322,11 +329,23 @@ contains
       end associate
    end subroutine fracture_seen
 
-   !> The open episode at node (a striking mass's: release), 0 if none.
+   !> The open episode at node (a striking mass's: release), 0 if none; the first of them
+   !> in the order they began.
    pure integer function open_at(d, node, release) result(k)
       type(diag_t), intent(in) :: d        !! the record
       integer, intent(in) :: node          !! the node of the event
       logical, intent(in) :: release       !! the event is a striking mass's release
+      if (.not. release .and. allocated(d%n_at)) then
+         if (node >= lbound(d%n_at, 1) .and. node <= ubound(d%n_at, 1)) then
+            ! the index: none, or the only one (its slot checked), else the search
+            k = 0
+            if (d%n_at(node) == 0) return
+            k = d%slot_at(node)
+            if (d%n_at(node) == 1 .and. k >= 1 .and. k <= d%n_open) then
+               if (d%open(k)%node == node .and. d%open(k)%kind /= imp_impactor) return
+            end if
+         end if
+      end if
       do k = 1, d%n_open
          if (d%open(k)%node /= node) cycle
          if (release .eqv. (d%open(k)%kind == imp_impactor)) return
@@ -401,6 +420,10 @@ contains
       e%x = mesh%x(node)
       e%v(1:2) = side_velocities(mesh, st, kind, node)
       call push(d%open, d%n_open, e)
+      if (kind /= imp_impactor .and. allocated(d%n_at)) then
+         d%n_at(node) = d%n_at(node) + 1
+         d%slot_at(node) = d%n_open
+      end if
    end subroutine begin
 
    !> Episode k ends at t: its sides' velocities after, it moves to the ended ones.
@@ -415,6 +438,7 @@ contains
       e%t_end = t
       e%v(3:4) = side_velocities(mesh, st, e%kind, e%node)
       call ended(d, e)
+      if (e%kind /= imp_impactor .and. allocated(d%n_at)) d%n_at(e%node) = d%n_at(e%node) - 1
       d%open(k)%node = hole
       d%n_holes = d%n_holes + 1
       if (2 * d%n_holes >= d%n_open) call pack_open(d)
@@ -430,10 +454,28 @@ contains
          if (d%open(k)%node == hole) cycle
          m = m + 1
          if (m < k) d%open(m) = d%open(k)
+         if (allocated(d%n_at) .and. d%open(m)%kind /= imp_impactor) d%slot_at(d%open(m)%node) = m
       end do
       d%n_open = m
       d%n_holes = 0
    end subroutine pack_open
+
+   !> open_at's index of the open episodes (diag_t n_at, slot_at) for nodes 0..n.
+   pure subroutine index_open(d, n)
+      type(diag_t), intent(inout) :: d     !! the record
+      integer, intent(in) :: n             !! cells of the bar
+      integer :: k, i
+      if (allocated(d%n_at)) deallocate(d%n_at, d%slot_at)
+      allocate(d%n_at(0:n), d%slot_at(0:n))
+      d%n_at = 0
+      d%slot_at = 0
+      do k = d%n_open, 1, -1
+         i = d%open(k)%node
+         if (i == hole .or. d%open(k)%kind == imp_impactor) cycle
+         d%n_at(i) = d%n_at(i) + 1
+         d%slot_at(i) = k
+      end do
+   end subroutine index_open
 
    !> An episode ended (or open at the end of the run): counted, kept among the first ones
    !> while there are fewer than first_impacts, and among those the caller takes next.
@@ -478,6 +520,7 @@ contains
          call ended(d, d%open(k))
       end do
       d%n_open = 0
+      if (allocated(d%n_at)) deallocate(d%n_at, d%slot_at)
    end subroutine diag_close
 
    !> The columns of PREFIX.spl (after the word end) and their units.
@@ -668,6 +711,7 @@ contains
       call io%later_reals('impacts', a)
       if (io%writing .or. .not. allocated(a)) return
       if (size(a) < 1) return
+      if (allocated(d%n_at)) deallocate(d%n_at, d%slot_at)
       d%n_open = 0
       d%n_ended = 0
       n_open = whole(a(1))

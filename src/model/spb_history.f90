@@ -108,7 +108,7 @@ contains
       row(id%overlap) = largest_overlap(mesh, st)
       row(id%x_cm) = (mu_a + mu_b) / (m_a + m_b)
       row(id%x_drift) = st%ledger%m_drift / (m_a + m_b)
-      row(id%l_defect) = length_defect(mesh, st)
+      row(id%l_defect) = length_defect(mesh, st, e)
    end subroutine post_history
 
    !> The energy measure of the outputs and the guard: the wave measure (spb_wave) of the
@@ -169,12 +169,18 @@ contains
    !> s_k dx_k / E_k [m]: 0 while every displacement change came with its increment and stress
    !> (the scheme, rigid shifts, redone steps); a correction that moves a face alone (shift =
    !> 'face', a join with both sides held) leaves its amount here (doc/outputs.md). The
-   !> full-mass model's cut cells are left out (their length change is an opening).
-   pure real(wp) function length_defect(mesh, st) result(d)
+   !> full-mass model's cut cells are left out (their length change is an opening). With e,
+   !> the energies of this state: the half-mass model's defect summed in their pass.
+   pure real(wp) function length_defect(mesh, st, e) result(d)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
+      type(energies_t), intent(in), optional :: e   !! the state's energies (spb_diag energies)
       integer :: k
       real(wp) :: d_u, d_s
+      if (.not. mesh%full_mass .and. present(e)) then
+         d = e%defect
+         return
+      end if
       if (.not. mesh%full_mass) then
          ! the two sums of one pass, each in sum()'s order: the same bits, in half the time
          d_u = 0.0_wp

@@ -156,7 +156,8 @@ contains
          if (t > 0 .and. b < mesh%n .and. .not. loaded(st, t, b)) then
             call inner_wave(mesh, st, t, b, .false., e, jp, jr, ja)
          else
-            call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja, w_sup=ws)
+            call fragment_wave(mesh, st, g, t, b, i_top, i_bot, e, jp, jr, ja, w_sup=ws, &
+                               scale=.false.)
             e_sum = e_sum - ws
          end if
          e_sum = e_sum + e - 0.5_wp * g * mesh%dt * jp
@@ -217,9 +218,10 @@ contains
    !> B = sum (-1)^(bot-k) (2 hd + s dt)/Z and C = sum 1/Z the energy is
    !> (A + 2 beta B + 2 beta^2 C)/dt. rho: at a transmitting end, the reading's incoming
    !> interval minus the one its equation gives (the fragment's zig-zag content, not zero where
-   !> the other face gives an equation too; transmit_residuals).
+   !> the other face gives an equation too; transmit_residuals). scale = .false.: the
+   !> momentum scale is not summed (jordan 0; the other results the same).
    pure subroutine fragment_wave(mesh, st, g, top, bot, i_top, i_bot, e, jprime, jordan, &
-                                 jordan_abs, rho, w_sup)
+                                 jordan_abs, rho, w_sup, scale)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(state_t), intent(in) :: st      !! the state
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
@@ -236,8 +238,12 @@ contains
                                                  !! 0) [m]
       real(wp), intent(out), optional :: w_sup   !! V Z f_end summed over the fragment's
                                                  !! constant-velocity ends (wave_t) [J/m^2]
+      logical, intent(in), optional :: scale     !! sum the momentum scale (default .true.)
       real(wp) :: dt, r, hd, hd_1, a, b, c, d, beta
+      logical :: with_scale
       type(faces_t) :: fc
+      with_scale = .true.
+      if (present(scale)) with_scale = scale
       dt = mesh%dt
       fc = face_equations(mesh, st, g, top, bot, i_top, i_bot)
       r = node_momentum(mesh, st, top, bot, top)
@@ -253,8 +259,9 @@ contains
       ! the pass over the cells (node_momentum of each node below top written out there)
       if (bot > top) call cell_sums(bot - top, merge(bot - top, bot - top - 1, bot == mesh%n), &
          dt, mesh%ma(top + 1:bot), mesh%mb(top + 1:bot), st%dua(top + 1:bot), &
-         st%dub(top + 1:bot), st%s(top + 1:bot), mesh%z(top + 1:bot), .true., &
+         st%dub(top + 1:bot), st%s(top + 1:bot), mesh%z(top + 1:bot), with_scale, &
          merge(1.0_wp, -1.0_wp, mod(bot - top - 1, 2) == 0), hd, r, jprime, jordan, a, b, c)
+      if (.not. with_scale) jordan = 0.0_wp
       call face_terms(mesh, st, top, bot, fc, jprime)
       jordan_abs = 0.0_wp
       e = 0.0_wp
@@ -443,7 +450,8 @@ contains
          if (st%n_split > 0) bot = st%split(1)
          fc = face_equations(mesh, st, g, 0, bot, i_top, i_bot)
          if (fc%eq_bot) then
-            call fragment_wave(mesh, st, g, 0, bot, i_top, i_bot, e, jp, jr, ja, rho)
+            call fragment_wave(mesh, st, g, 0, bot, i_top, i_bot, e, jp, jr, ja, rho, &
+                               scale=.false.)
             rho_top = rho(1)
          end if
       end if
@@ -452,7 +460,8 @@ contains
          if (st%n_split > 0) top = st%split(st%n_split)
          fc = face_equations(mesh, st, g, top, mesh%n, i_top, i_bot)
          if (fc%eq_top) then
-            call fragment_wave(mesh, st, g, top, mesh%n, i_top, i_bot, e, jp, jr, ja, rho)
+            call fragment_wave(mesh, st, g, top, mesh%n, i_top, i_bot, e, jp, jr, ja, rho, &
+                               scale=.false.)
             rho_bot = rho(2)
          end if
       end if

@@ -902,7 +902,7 @@ contains
          ! the positions the event corrections moved with no momentum (x_drift) or left in the
          ! cells' lengths (l_defect): beyond position_guard of the bar's length the positions
          ! (gauges' u, gaps, profiles) mean nothing (doc/method.md, "Chatter")
-         if (limit > 0.0_wp) call position_guard(sim, err)
+         if (limit > 0.0_wp) call position_guard(sim, e, err)
       end associate
    end subroutine guard
 
@@ -910,13 +910,14 @@ contains
    !> in the cells' lengths (|l_defect|, doc/outputs.md), with the energy guard. (x_drift is not
    !> guarded: a long run of many events, repeated blows, drifts by a share that grows with
    !> its length; doc/method.md, "Chatter".)
-   subroutine position_guard(sim, err)
+   subroutine position_guard(sim, e, err)
       type(sim_t), intent(in) :: sim       !! the simulation
+      type(energies_t), intent(in) :: e    !! the state's energies (their pass sums l_defect)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       real(wp), parameter :: position_share = 0.05_wp
       real(wp) :: moved, length
       length = sim%mesh%x(sim%mesh%n) - sim%mesh%x(0)
-      moved = abs(length_defect(sim%mesh, sim%st))
+      moved = abs(length_defect(sim%mesh, sim%st, e))
       if (moved > position_share * length) then
          call make_error(err, 'run: the event corrections have left ' // rtoa(moved) // &
             ' m in the cells'' lengths (l_defect), more than ' // rtoa(position_share) // &
