@@ -194,6 +194,7 @@ contains
       type(state_t), intent(inout) :: st   !! the state
       logical, intent(in) :: writing       !! write (else read back)
       logical :: offsets
+      real(wp) :: retry(2)
       call field(ck, writing, '/state', 'n', st%step)   ! names as in 0.1 checkpoints
       call field(ck, writing, '/state', 'n_breakable', st%n_breakable)
       call field(ck, writing, '/state', 'n_split', st%n_split)
@@ -233,9 +234,16 @@ contains
       call later_field(ck, writing, '/state', 'w_support', st%ledger%w_support)
       ! added with x_drift (0 in a checkpoint of a version without it)
       call later_field(ck, writing, '/state', 'm_drift', st%ledger%m_drift)
-      ! added with the rings' retries (0 in a checkpoint of a version without them)
-      call later_field_int(ck, writing, '/state', 'ring_next', st%ring_next)
-      call later_field_int(ck, writing, '/state', 'ring_wait', st%ring_wait)
+      ! added with the rings' retries (0 in a checkpoint of a version without them): steps,
+      ! as reals (exact below 2^53)
+      retry = real([st%ring_next, st%ring_wait], wp)
+      call later_field(ck, writing, '/state', 'ring_next', retry(1))
+      call later_field(ck, writing, '/state', 'ring_wait', retry(2))
+      ! (a value that is no step count is kept as -1: state_problem refuses it)
+      st%ring_next = -1
+      st%ring_wait = -1
+      if (retry(1) >= 0.0_wp .and. retry(1) <= real(huge(1), wp)) st%ring_next = nint(retry(1))
+      if (retry(2) >= 0.0_wp .and. retry(2) <= real(huge(1), wp)) st%ring_wait = nint(retry(2))
       ! a striking mass (only a run that has one)
       if (any(is_striker(st%ends))) then
          ck%writing = writing
@@ -341,18 +349,6 @@ contains
       if (writing .or. h5_has_attr(ck%h5, group, name)) call field_real(ck, writing, group, &
                                                                        name, v)
    end subroutine later_field
-
-   !> An integer field added after checkpoints existed: read back only where the file has it
-   !> (else v keeps its value).
-   subroutine later_field_int(ck, writing, group, name, v)
-      type(ck_file_t), intent(inout) :: ck   !! the checkpoint file and its checksum
-      logical, intent(in) :: writing       !! write (else read back)
-      character(len=*), intent(in) :: group   !! group path
-      character(len=*), intent(in) :: name   !! field name
-      integer, intent(inout) :: v          !! the value
-      if (writing .or. h5_has_attr(ck%h5, group, name)) call field_int(ck, writing, group, &
-                                                                      name, v)
-   end subroutine later_field_int
 
    !> A scalar field: an attribute of group, written or read back.
    subroutine field_int(ck, writing, group, name, v)
@@ -787,7 +783,8 @@ contains
                all(ieee_is_finite(st%section)))) then
          why = 'is damaged: a displacement or stress of its state is not finite'
       else if (st%step < 0 .or. st%n_split < 0 .or. st%n_skip < 0 .or. st%fm%n_cut < 0 .or. &
-               st%gen%n_frag_ids < 1 .or. st%n_breakable < 0 .or. st%n_breakable > n) then
+               st%gen%n_frag_ids < 1 .or. st%n_breakable < 0 .or. st%n_breakable > n .or. &
+               st%ring_next < 0 .or. st%ring_wait < 0) then
          why = 'is damaged: a count of its state is out of range'
       else if (st%coh%on .and. .not. (bounds_are(st%coh%gc, 0, n) .and. &
                bounds_are(st%coh%r, 0, n) .and. bounds_are(st%coh%dc, 0, n) .and. &
