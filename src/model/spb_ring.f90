@@ -47,7 +47,7 @@ module spb_ring
    !> collision test (overlap > eps_rel dx) after a step stop the characteristic steps
    !> before it: their positions differ from the lattice's by round-off in the increments
    !> only, far below the rest of eps_rel dx [-]
-   real(wp), parameter :: touch_part = 0.9_wp
+   real(wp), parameter :: touch_part = 0.99_wp
    !> Under the paper's rules (overlap > 0), or with eps_rel = 0, faces that would come
    !> within this share of their cells' length of touching stop them [-]
    real(wp), parameter :: touch_share = 1.0e-9_wp
@@ -101,7 +101,6 @@ module spb_ring
       type(ring_t), allocatable :: r(:)       !! the rings
       integer, allocatable :: jn(:)           !! the junction nodes, ascending
       integer, allocatable :: lc(:)           !! the lattice cells, ascending
-      integer, allocatable :: owner(:)        !! (0:n) the ring holding the node inside, 0
       logical, allocatable :: keep(:)         !! (0:n) the nodes whose sections are kept
       logical :: sections = .false.           !! some section is kept
       logical :: all_sections = .false.       !! every section is kept (some can break)
@@ -305,7 +304,7 @@ contains
       h%keep(mesh%watch(1:mesh%n_watch)) = .true.
       h%keep(sample_nodes) = .true.
       h%sections = any(h%keep)
-      call junctions(mesh%n, lay, h%jn, h%lc, h%owner)
+      call junctions(mesh%n, lay, h%jn, h%lc)
       allocate(h%nda(size(h%jn)), h%ndb(size(h%jn)), h%nsec(size(h%jn)))
       h%touch = -touch_share
       if (rules == events_admissible .and. eps_rel > 0.0_wp) h%touch = touch_part * eps_rel
@@ -467,7 +466,7 @@ contains
       integer, intent(in) :: i             !! the node
       integer :: q, j, n
       n = st%step - 1
-      q = h%owner(i)
+      q = ring_of(h, i)
       if (q == 0) then
          sec = st%section(i)
       else
@@ -476,39 +475,51 @@ contains
       end if
    end function section_of
 
-   !> The junction nodes (ascending), the lattice cells (ascending) and each node's ring
-   !> (0: a junction node) of a layout.
-   pure subroutine junctions(nc, lay, jn, lc, owner)
+   !> The junction nodes (ascending) and the lattice cells (ascending) of a layout: the
+   !> nodes no ring holds inside, the cells no ring holds (O(rings + their count)).
+   pure subroutine junctions(nc, lay, jn, lc)
       integer, intent(in) :: nc            !! cells of the bar
-      type(ring_layout_t), intent(in) :: lay   !! the rings
+      type(ring_layout_t), intent(in) :: lay   !! the rings (ascending, apart)
       integer, allocatable, intent(out) :: jn(:)   !! junction nodes
       integer, allocatable, intent(out) :: lc(:)   !! lattice cells
-      integer, allocatable, intent(out) :: owner(:)   !! (0:nc) the ring holding the node
-                                                      !! inside, 0 for none
-      logical :: in_ring(nc)
-      integer :: q, i, nj, nl
-      allocate(owner(0:nc), source=0)
-      in_ring = .false.
-      do q = 1, lay%nr
-         owner(lay%c0(q):lay%c0(q) + lay%nc(q) - 2) = q
-         in_ring(lay%c0(q):lay%c0(q) + lay%nc(q) - 1) = .true.
-      end do
-      nj = count(owner == 0)
-      nl = count(.not. in_ring)
-      allocate(jn(nj), lc(nl))
+      integer :: q, i, nj, nl, node, cell
+      ! ring q holds cells c0..c0+m-1 and, inside, nodes c0..c0+m-2
+      allocate(jn(nc + 1 - sum(max(lay%nc(1:lay%nr) - 1, 0))), lc(nc - lay%ring_cells))
       nj = 0
-      do i = 0, nc
-         if (owner(i) /= 0) cycle
+      nl = 0
+      node = 0
+      cell = 1
+      do q = 1, lay%nr
+         do i = node, lay%c0(q) - 1
+            nj = nj + 1
+            jn(nj) = i
+         end do
+         do i = cell, lay%c0(q) - 1
+            nl = nl + 1
+            lc(nl) = i
+         end do
+         node = lay%c0(q) + lay%nc(q) - 1
+         cell = lay%c0(q) + lay%nc(q)
+      end do
+      do i = node, nc
          nj = nj + 1
          jn(nj) = i
       end do
-      nl = 0
-      do i = 1, nc
-         if (in_ring(i)) cycle
+      do i = cell, nc
          nl = nl + 1
          lc(nl) = i
       end do
    end subroutine junctions
+
+   !> The ring holding node i inside (0: a junction node).
+   pure integer function ring_of(h, i) result(q)
+      type(ring_hybrid_t), intent(in) :: h   !! the hybrid state
+      integer, intent(in) :: i             !! the node
+      do q = 1, size(h%r)
+         if (i >= h%r(q)%c0 .and. i <= h%r(q)%c0 + h%r(q)%n - 2) return
+      end do
+      q = 0
+   end function ring_of
 
    !> The sequences Ra, Rb of a ring one value on, with what S^{n+1/2} needs: Ra(n - 1),
    !> Rb(n + m).
@@ -597,8 +608,10 @@ contains
       end associate
       call blocks(r%f, m + 1)
       call blocks(r%g, m + 1)
-      r%finite = all(abs(r%f%v(n0 - m:n0)) <= huge(1.0_wp)) .and. &
-                 all(abs(r%g%v(n0:n0 + m)) <= huge(1.0_wp))
+      ! (a value not finite makes its sum not finite; a sum that overflows only stops the
+      ! characteristic steps: the lattice takes over)
+      r%finite = abs(sum(r%f%v(n0 - m:n0))) <= huge(1.0_wp) .and. &
+                 abs(sum(r%g%v(n0:n0 + m))) <= huge(1.0_wp)
       r%s_ends = [st%s(c0), st%s(b + m)]
       r%sections = sections
       if (.not. sections) return
@@ -644,12 +657,12 @@ contains
          end do
          ! C_i = (-1)^(n0-1) (S_i^{n0-1/2} - Ra(n0 - 1 - i) - Rb(n0 + i))
          allocate(r%c(m - 1))
-         r%scale = 0.0_wp
          w = sign_of(n0 - 1)
          do i = 1, m - 1
             r%c(i) = w * (st%section(b + i) - ra(n0 - 1 - i) - rb(n0 + i))
-            r%scale = max(r%scale, abs(ra(n0 - 1 - i)), abs(rb(n0 + i)), abs(r%c(i)))
          end do
+         r%scale = max(maxval(abs(ra(n0 - m:n0 - 2))), maxval(abs(rb(n0 + 1:n0 + m - 1))), &
+                       maxval(abs(r%c)), 0.0_wp)
       end associate
       call blocks(r%ra, m - 1)
       call blocks(r%rb, m - 1)
@@ -741,7 +754,12 @@ contains
       real(wp) :: bound, val
       bs = leaf * fan**(l - 1)
       if (.not. present(b)) then
+         ! the whole range's bound first: most steps no value comes near thr
+         bound = extremum(x, sx, l, n - p1 + cx, n - p0 + cx) + extremum(y, sy, l, n + p0 + cy, &
+                                                                          n + p1 + cy)
          nb = (p1 - 1) / bs + 1
+         if (present(w)) bound = bound + minval(w%lev(l)%mn(0:nb - 1))
+         if (.not. bound < thr) return
          do c = 0, nb - 1
             call descend(x, sx, cx, y, sy, cy, n, l, p0, p1, thr, best, w, c)
          end do

@@ -591,8 +591,8 @@ contains
       type(run_summary_t), intent(in) :: summary   !! the run's summary (its episodes)
       use_rings = sim%opt%rings .and. sim%mesh%n >= ring_min_cells .and. &
                   sim%st%step >= sim%st%ring_next
-      if (use_rings) use_rings = contacts_by_sections(summary%diag)
       if (use_rings) use_rings = ring_qualifies(sim%mesh, sim%st)
+      if (use_rings) use_rings = contacts_by_sections(summary%diag)
    end function use_rings
 
    !> For the estimate before a run: the steps between the conversions where the
