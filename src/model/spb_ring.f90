@@ -110,7 +110,6 @@ module spb_ring
       real(wp), allocatable :: nda(:), ndb(:) !! the junctions' trial increments [m]
       real(wp), allocatable :: nsec(:)        !! their trial sections [Pa]
       integer, allocatable :: samples(:)      !! the nodes whose sections are sampled
-      logical :: stopped = .false.            !! a step was refused: the lattice takes it
    end type ring_hybrid_t
 
    !> Where the rings lie: the stretches of at least min_cells equal cells joined inside.
@@ -119,6 +118,9 @@ module spb_ring
       integer, allocatable :: c0(:)          !! first cell of each
       integer, allocatable :: nc(:)          !! cells of each
       integer :: ring_cells = 0              !! cells in rings
+      logical :: worth = .false.             !! the rings hold three quarters of the bar or
+                                             !! more: below, the junctions' updates cost
+                                             !! about what the lattice's step does
    end type ring_layout_t
 
 contains
@@ -187,6 +189,7 @@ contains
       lay%c0(:) = first(1:lay%nr)
       lay%nc(:) = cells(1:lay%nr)
       lay%ring_cells = sum(lay%nc)
+      lay%worth = 4 * lay%ring_cells >= 3 * mesh%n
    end function ring_layout
 
    !> Cells k and l are equal: mass, impedance, stiffness to the bit.
@@ -240,21 +243,17 @@ contains
       face_du = 0.0_wp
       samples = 0.0_wp
       do t = 1, nsteps
-         if (.not. h%finite .or. h%stopped) exit
+         if (.not. h%finite) exit
          ! the rings' sections S^{n+1/2} and their bounded test (3.3); could some node's
          ! S^{n+1/2} < -R - eps? Then the lattice takes this step.
          call rings_could_break(h, st, eps_rel, guard, stop_now)
-         if (stop_now) then
-            h%stopped = .true.
-            exit
-         end if
+         if (stop_now) exit
          ! the junction nodes on trial (a break, a touch, a value not finite stops here)
          s_ends = [st%s(0), st%s(mesh%n + 1)]
          call try_junctions(mesh, load, g, st, h, guard, fs, stop_now)
          if (stop_now) then
             st%s(0) = s_ends(1)
             st%s(mesh%n + 1) = s_ends(2)
-            h%stopped = .true.
             exit
          end if
          call take_junctions(mesh, load, g, st, h, fs)

@@ -544,7 +544,7 @@ contains
          k = ring_span(sim, run)
          if (k - 1 >= ring_min_steps) then
             lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
-            if (4 * lay%ring_cells >= 3 * sim%mesh%n) then
+            if (lay%worth) then
                call ring_steps(sim, run, summary, lay, k - 1, short)
                k = 0
             end if
@@ -606,7 +606,7 @@ contains
       span = 0
       if (.not. use_rings(sim, none)) return
       lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
-      if (4 * lay%ring_cells < 3 * sim%mesh%n) return
+      if (.not. lay%worth) return
       span = min(max(sim%opt%history_every, 1), ring_span_max(sim%mesh%n))
       if (size(sim%gauges) > 0) span = min(span, max(sim%opt%gauge_every, 1))
       if (sim%opt%field_every > 0) span = min(span, sim%opt%field_every)
