@@ -40,7 +40,7 @@ program spallbar
    if (allocated(err)) call fail(err)
    call sim_setup(deck, sim, err, restart=len(cli%restart) > 0)
    if (allocated(err)) call fail(err)
-   sim%opt%rings = .not. lattice_only()
+   sim%opt%rings = .not. cli%lattice
    if (len(cli%restart) > 0) then
       allocate(ck)
       call read_checkpoint(cli%restart, sim%record, sim%mesh, sim%load, ck, err, &
@@ -55,15 +55,6 @@ program spallbar
    if (.not. cli%quiet) call write_report(output_unit, sim, summary, cli%prefix)
 
 contains
-
-   !> SPALLBAR_STEPPING=lattice: every step on the lattice arrays, never in characteristic
-   !> form (spb_ring; doc/method.md): the equality tests' reference (tests/cli_rings.py).
-   logical function lattice_only()
-      character(len=16) :: text
-      integer :: length, status
-      call get_environment_variable('SPALLBAR_STEPPING', text, length, status)
-      lattice_only = status == 0 .and. trim(text) == 'lattice'
-   end function lattice_only
 
    !> Write the error's message to standard error and exit with its code.
    subroutine fail(e)

@@ -2,7 +2,9 @@
 """Sweeps (issue 8): spallbar --sweep on 1 and 2 MPI ranks, static and dynamic, gives the
 same PREFIX.sweep to the byte and the same PREFIX_sweep.h5 datasets; the realizations
 differ; one realization re-run alone as an ordinary deck (its seed from the table) gives
-its row; bad &sweep input exits 2 with one line naming &sweep and writes nothing.
+its row; a case keeps no history rows (its max_excess and ledger_drift from the checks every
+64 steps stay round-off) and the energy guard still stops a case (status 3, at the check
+that sees it); bad &sweep input exits 2 with one line naming &sweep and writes nothing.
 
 usage: cli_sweep.py SPALLBAR INPUT_DIR WORK_DIR MPIEXEC|-
 """
@@ -106,7 +108,10 @@ def ranks_of(pid):
 
 def stopped_sweep(tag, to_ranks):
     d = os.path.join(work, "stop.nml")
-    open(d, "w").write(open(deck).read().replace("realizations = 32", "realizations = 300"))
+    # 900 cases of 30 ms of bar time: longer than the 2.5 s (+ 1 s of mpirun) before the
+    # signal, in the Release build too
+    open(d, "w").write(open(deck).read().replace("realizations = 32", "realizations = 300")
+                       .replace("t_end = 1.0e-3", "t_end = 3.0e-2"))
     prefix = os.path.join(work, tag)
     proc = subprocess.Popen([mpiexec, "--oversubscribe", "-np", "2", exe, "--sweep", d, "-o",
                              prefix, "-q"], cwd=work, stdin=subprocess.DEVNULL,
@@ -175,6 +180,33 @@ first = [e for e in evt if e[2] == "fracture"]
 check(first and float(first[0][0]) == float(r[k["first_fracture_t"]]),
       "first fracture time alone = row")
 check(sum(1 for e in evt if e[2] == "fracture") == int(r[k["fractures"]]), "fracture count alone = row")
+
+# -- a case keeps no history rows (doc/sweeps.md, "What a case computes"): its summary's
+# running values come from the checks every 64 steps and the end; they stay round-off, and
+# the energy guard still stops a case (status 3) at the check that sees it
+for r in ref_rows:
+    scale = max(abs(float(r[k["w_ext_end"]])), abs(float(r[k["e_kin_end"]])))
+    check(0.0 <= float(r[k["max_excess"]]) < 1e-12, f"case {r[0]}: max_excess {r[k['max_excess']]}")
+    check(float(r[k["ledger_drift"]]) < 1e-12 * scale,
+          f"case {r[0]}: ledger_drift {r[k['ledger_drift']]} of a scale {scale}")
+# the case of cli_runtime.py: two one-cell bars meeting under the paper's rules, whose energy
+# the wave measure sees grow to 2.25 times the impact's one step after they part (a run
+# with rows at every step stops at step 3)
+guard_deck = os.path.join(work, "guard.nml")
+open(guard_deck, "w").write(
+    "&run t_end = 2e-3, events = 'paper' /\n&mesh dt = 1e-5 /\n"
+    "&segments n = 2, length = 0.01, 0.01, young = 2e9, 2e9, density = 2000, 2000,\n"
+    "          strength = 0, 0, velocity = 1, -1 /\n"
+    "&sweep vary = 'velocity(1)', values = 1.0, 2.0, 3.0 /\n")
+p = run(exe, ["--sweep", guard_deck, "-o", os.path.join(work, "guard"), "-q"], work)
+check(p.returncode == 3 and "3 of 3 cases went wrong" in p.stderr,
+      f"the energy guard in a sweep: exit {p.returncode}, expected 3: {p.stderr.strip()[:300]}")
+g_cols, g_rows = rows(os.path.join(work, "guard"))
+gk = {c: i for i, c in enumerate(g_cols)}
+check(len(g_rows) == 3 and all(int(x[gk["status"]]) == 3 for x in g_rows),
+      f"every case stopped by the guard: {[x[gk['status']] for x in g_rows]}")
+check(all(int(x[gk["steps"]]) == 64 for x in g_rows),
+      f"each at the first check, step 64: {[x[gk['steps']] for x in g_rows]}")
 
 # -- bad input: exit 2, one line naming &sweep (and the variable), no file
 bad = {  # (what the &sweep group gets instead, the variable the message must name)

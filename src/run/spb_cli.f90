@@ -37,6 +37,9 @@ module spb_cli
                                            !! terminal, not --quiet)
       real(wp) :: batch = 30.0_wp          !! seconds between progress lines when stderr is
                                            !! not a terminal (--progress; 0: none) [s]
+      logical :: lattice = .false.         !! SPALLBAR_STEPPING=lattice: every step on the
+                                           !! lattice arrays, never in characteristic form
+                                           !! (spb_ring; doc/method.md), single runs and sweeps
    end type cli_t
 
 contains
@@ -51,7 +54,17 @@ contains
                            cli%any_version, cli%batch, cli%request, e)
       if (cli%quiet .or. stderr_is_terminal()) cli%batch = 0.0_wp
       cli%progress = (.not. cli%quiet) .and. stderr_is_terminal()
+      cli%lattice = lattice_only()
    end subroutine parse_command_line
+
+   !> SPALLBAR_STEPPING=lattice in the environment: the equality tests' reference
+   !> (tests/cli_rings.py).
+   logical function lattice_only()
+      character(len=16) :: text
+      integer :: length, status
+      call get_environment_variable('SPALLBAR_STEPPING', text, length, status)
+      lattice_only = status == 0 .and. trim(text) == 'lattice'
+   end function lattice_only
 
    !> The arguments, one by one (see parse_command_line); request: the first of --help,
    !> --version, --deck-help (the arguments after it are not read).

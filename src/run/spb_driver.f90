@@ -109,7 +109,7 @@ contains
          call catch_stop_signals()
          call run_sweep(deck, cli%prefix, rank == 0 .and. cli%progress, ssum, err, &
                         batch_seconds=merge(cli%batch, 0.0_wp, rank == 0), &
-                        echo=rank == 0 .and. .not. cli%quiet)
+                        echo=rank == 0 .and. .not. cli%quiet, rings=.not. cli%lattice)
       end if
       if (rank == 0 .and. .not. cli%quiet .and. ssum%cases > 0) then
          write(output_unit, '(a,i0,a,i0,a,a,a,a,a,f0.3,a)') '  done: ', ssum%cases, ' cases on ', &

@@ -10,12 +10,18 @@ module spb_schedule
    private
    public :: schedule_t, schedule_every, schedule_at, is_due, next_due, row_count, row_index
    public :: act_row, act_check, act_field, act_checkpoint, act_progress, act_gauge
+   public :: check_every
 
    !> The actions: a history row; the finiteness and energy-guard check between rows; a
    !> profile; an x-t field row; a checkpoint; the progress line and the flush of the outputs;
    !> a row of the gauges.
    integer, parameter :: act_row = 1, act_check = 2, act_profile = 3, act_field = 4, &
                          act_checkpoint = 5, act_progress = 6, act_gauge = 7, n_actions = 7
+
+   !> The check between rows (finiteness, energy guard) runs every check_every steps; a run
+   !> that keeps no rows (a sweep's case without ensemble columns) takes its summary's
+   !> running values there too (doc/sweeps.md).
+   integer, parameter :: check_every = 64
 
    type :: schedule_t
       integer :: n_end = 0                       !! the last step of the run

@@ -44,16 +44,17 @@ module spb_sim
    use spb_diagnostics, only: diag_t, diag_start, diag_step, diag_end_samples, diag_close, &
       diag_taken, contact_nodes, diag_contact_samples, contacts_by_sections
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
-      act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index
+      act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index, &
+      check_every
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
       run_options_t, memory_text, run_base_bytes, run_cell_bytes, ring_span_at_start
 
-   !> The between-step actions run every check_every steps (finiteness, energy guard) and
-   !> every progress_period(cells) steps (a look at the clock: the progress line, the flush;
-   !> 1024 steps, fewer on a large mesh, spb_estimate), besides the deck's own periods.
-   integer, parameter :: check_every = 64
+   ! The between-step actions run every check_every steps (spb_schedule: finiteness, energy
+   ! guard) and every progress_period(cells) steps (a look at the clock: the progress line,
+   ! the flush; 1024 steps, fewer on a large mesh, spb_estimate), besides the deck's own
+   ! periods.
    !> The characteristic steps (spb_ring) stand in for the lattice's over a span of at least
    !> ring_min_steps steps of a bar of at least ring_min_cells cells: below either the
    !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
@@ -481,7 +482,13 @@ contains
             if (allocated(err)) return
          end if
          run%sched%n_end = sim%mesh%nsteps
-         call schedule_every(run%sched, act_row, opt%history_every)
+         ! rows where they are written or kept (a sweep's case without ensemble columns
+         ! keeps none: its running values are taken at the checks, doc/sweeps.md)
+         if (run%to_files .or. run%sampler%on) then
+            call schedule_every(run%sched, act_row, opt%history_every)
+         else
+            call schedule_every(run%sched, act_row, 0)
+         end if
          call schedule_every(run%sched, act_check, check_every)
          call schedule_every(run%sched, act_field, opt%field_every)
          if (run%ck_on) call schedule_every(run%sched, act_checkpoint, opt%checkpoint_every)
@@ -794,6 +801,9 @@ contains
       e = energies(sim%mesh, sim%st, sim%prob%gravity)
       if (ieee_is_finite(e%ledger)) then
          call measure(sim%mesh, sim%load, sim%st, sim%prob%gravity, e, wv, w_w, e_l)
+         ! a run without rows takes the summary's running values here
+         if (run%sched%every(act_row) == 0) call summary_row(summary, sim%st%step, e, wv, &
+                                                             w_w, e_l)
          call guard(sim, summary, e, wv, w_w, err)
          if (allocated(err)) call row(sim, run, summary, err)
       else

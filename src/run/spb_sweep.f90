@@ -174,13 +174,15 @@ contains
    !> Run case c without files: its table row and fragment-length histogram over
    !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin),
    !> and the ensemble's history columns at its rows (series: (column, row) in column order).
-   subroutine run_case(deck, c, nbins, l_hist, ids, row, hist, series)
+   subroutine run_case(deck, c, nbins, l_hist, ids, rings, row, hist, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: c               !! case number
       integer, intent(in) :: nbins           !! histogram bins
       real(wp), intent(in) :: l_hist         !! histogram range [m]
       integer, intent(in) :: ids(:)          !! the ensemble's columns (history_set places;
                                              !! none: no ensemble)
+      logical, intent(in) :: rings           !! characteristic steps where they serve
+                                             !! (spb_ring; .false.: the lattice always)
       real(wp), intent(out) :: row(n_columns)   !! the case's table row (sweep_table columns)
       integer, intent(out) :: hist(nbins)    !! fragments per length bin
       real(wp), intent(out) :: series(:)     !! the ensemble's columns at the history rows
@@ -204,6 +206,7 @@ contains
       if (allocated(err)) return              ! checked before any case runs
       call sim_setup(cdeck, sim, err, files=.false.)
       if (allocated(err)) return
+      sim%opt%rings = rings
       if (size(ids) > 0) then
          call sim_run(sim, '', .false., summary, err, files=.false., sample_ids=ids, &
                       samples=samples)
@@ -262,7 +265,7 @@ contains
 
    !> Check every case's deck and mesh (every rank, the same answer), then run the cases
    !> over the ranks; rank 0 writes PREFIX.sweep and PREFIX_sweep.h5.
-   subroutine run_sweep(deck, prefix, progress, summary, err, batch_seconds, echo)
+   subroutine run_sweep(deck, prefix, progress, summary, err, batch_seconds, echo, rings)
       type(deck_t), intent(in) :: deck     !! the deck
       character(len=*), intent(in) :: prefix   !! output path prefix
       logical, intent(in) :: progress          !! progress line on stderr (rank 0)
@@ -272,6 +275,8 @@ contains
                                                         !! many seconds (stderr not a terminal)
       logical, intent(in), optional :: echo    !! rank 0: the estimate on stdout (its
                                                !! warnings go to stderr all the same)
+      logical, intent(in), optional :: rings   !! characteristic steps where they serve
+                                               !! (default; .false.: the lattice always)
       type(estimate_t), allocatable :: est_values(:)
       type(ensemble_t) :: ens
       real(wp), allocatable :: rows(:, :), series(:, :)
@@ -279,8 +284,11 @@ contains
       real(wp) :: l_hist, t0, tables
       integer :: nc, nbins, rank, nranks, c
       type(meter_t) :: meter
+      logical :: on
 
       t0 = par_wtime()
+      on = .true.
+      if (present(rings)) on = rings
       meter%terminal = progress
       if (present(batch_seconds)) meter%every = batch_seconds
       meter%t0 = t0
@@ -313,11 +321,11 @@ contains
       summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
-         call run_static(deck, 1, 0, l_hist, ens%ids, meter, rows, hists, series)
+         call run_static(deck, 1, 0, l_hist, ens%ids, on, meter, rows, hists, series)
       else if (deck%sweep%distribution == 'dynamic') then
-         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, meter, rows, hists, series)
+         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, on, meter, rows, hists, series)
       else
-         call run_static(deck, nranks, rank, l_hist, ens%ids, meter, rows, hists, series)
+         call run_static(deck, nranks, rank, l_hist, ens%ids, on, meter, rows, hists, series)
       end if
       summary%wall = par_wtime() - t0
       ! every rank learns whether one was stopped (and waits here until all are done)
@@ -355,12 +363,13 @@ contains
 
    !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
    !> case order (rank 0 receives in the same order: no deadlock).
-   subroutine run_static(deck, k, me, l_hist, ids, meter, rows, hists, series)
+   subroutine run_static(deck, k, me, l_hist, ids, rings, meter, rows, hists, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: k                 !! ranks
       integer, intent(in) :: me                !! this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
+      logical, intent(in) :: rings             !! characteristic steps where they serve
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
@@ -372,7 +381,8 @@ contains
       done = 0
       do c = me + 1, nc, k
          if (stop_signal() /= 0) exit
-         call run_case(deck, c, nbins, l_hist, ids, rows(:, c), hists(:, c), series(:, c))
+         call run_case(deck, c, nbins, l_hist, ids, rings, rows(:, c), hists(:, c), &
+                          series(:, c))
          done = done + 1
          if (me == 0) call show(meter, done * k, nc)
       end do
@@ -416,12 +426,13 @@ contains
 
    !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
    !> the other ranks compute. Case 0 means stop.
-   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, meter, rows, hists, series)
+   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, rings, meter, rows, hists, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: rank              !! this rank
       integer, intent(in) :: nranks            !! ranks
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
+      logical, intent(in) :: rings             !! characteristic steps where they serve
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
@@ -461,7 +472,8 @@ contains
             end if
             call par_recv(c, 0, tag_work)
             if (c == 0) exit
-            call run_case(deck, c, nbins, l_hist, ids, rows(:, c), hists(:, c), series(:, c))
+            call run_case(deck, c, nbins, l_hist, ids, rings, rows(:, c), hists(:, c), &
+                          series(:, c))
          end do
       end if
    end subroutine run_dynamic
