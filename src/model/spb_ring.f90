@@ -725,6 +725,13 @@ contains
       end do
       if (.not. r%sections) return
       d = sign_of(n - 1)
+      if (all(keep(b + 1:b + m - 1))) then
+         ! (every section kept, as where some node can break: one pass without tests)
+         do i = 1, m - 1
+            st%section(b + i) = r%ra%v(n - 1 - i) + r%rb%v(n + i) + d * r%c(i)
+         end do
+         return
+      end if
       do i = 1, m - 1
          if (keep(b + i)) st%section(b + i) = r%ra%v(n - 1 - i) + r%rb%v(n + i) + d * r%c(i)
       end do
@@ -843,6 +850,10 @@ contains
          if (iand(o, shiftl(1, sh) - 1) == 0) then
             x%lev(l)%mn(b) = val
             x%lev(l)%mx(b) = val
+         else if (val >= x%lev(l)%mn(b) .and. val <= x%lev(l)%mx(b)) then
+            ! within this block's extrema, so within those of the blocks above that hold
+            ! it (none of which starts here, since this one does not)
+            exit
          else
             x%lev(l)%mn(b) = min(x%lev(l)%mn(b), val)
             x%lev(l)%mx(b) = max(x%lev(l)%mx(b), val)
@@ -856,15 +867,24 @@ contains
    pure subroutine blocks(x, nv)
       type(seq_t), intent(inout) :: x      !! the sequence (its values written, hi not yet)
       integer, intent(in) :: nv            !! how many
-      integer :: l, nb, b, a, e
+      integer :: l, nb, b, a, e, j
+      real(wp) :: mn, mx
       x%hi = x%lo + nv - 1
       if (nv <= 0) return
       nb = (nv - 1) / leaf + 1
       do b = 0, nb - 1
          a = x%lo + b * leaf
          e = min(x%hi, a + leaf - 1)
-         x%lev(1)%mn(b) = minval(x%v(a:e))
-         x%lev(1)%mx(b) = maxval(x%v(a:e))
+         ! both extrema in one pass (a bound's zero may take either sign: it is only
+         ! compared and added)
+         mn = x%v(a)
+         mx = x%v(a)
+         do j = a + 1, e
+            mn = min(mn, x%v(j))
+            mx = max(mx, x%v(j))
+         end do
+         x%lev(1)%mn(b) = mn
+         x%lev(1)%mx(b) = mx
       end do
       do l = 2, size(x%lev)
          e = nb - 1
