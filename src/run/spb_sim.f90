@@ -119,6 +119,8 @@ module spb_sim
       integer(int64) :: c0 = 0, c_last = 0, rate = 1 !! system_clock at the start, at the
                                                      !! last progress line; ticks per second
       type(sampler_t) :: sampler                     !! history columns kept at the rows
+      logical :: span_ended = .false.                !! this step ended a span of
+                                                     !! characteristic steps (its check)
    end type run_t
 
    !> What the run loop does besides stepping (the deck's &run settings).
@@ -553,6 +555,7 @@ contains
             lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
             if (lay%worth) then
                call ring_steps(sim, run, summary, lay, k - 1, short)
+               run%span_ended = .true.
                k = 0
             end if
          end if
@@ -716,10 +719,13 @@ contains
          call row(sim, run, summary, err)
          wrote_row = .true.
          if (allocated(err)) return
-      else if (is_due(run%sched, act_check, n)) then
+      else if (is_due(run%sched, act_check, n) .or. run%span_ended) then
+         ! (every 64 steps, and after a span of characteristic steps, which passes over
+         ! the checks due inside it)
          call check_between_rows(sim, run, summary, err)
          if (allocated(err)) return
       end if
+      run%span_ended = .false.
       if (is_due(run%sched, act_gauge, n)) call gauge_row(sim, run)
       call profiles(sim, run)
       if (is_due(run%sched, act_field, n) .and. run%to_files) then

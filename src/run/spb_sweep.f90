@@ -12,7 +12,7 @@ module spb_sweep
    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
    use spb_kinds, only: wp
    use spb_error, only: spb_error_t, make_error, exit_runtime
-   use spb_strings, only: itoa, rtoa
+   use spb_strings, only: itoa, rtoa, es_into, int_into
    use spb_sys, only: stop_signal, sys_rename, sys_file_size, sys_memory_limit, sys_write_trouble
    use spb_deck, only: deck_t, validate_deck, set_deck_value, deck_value, write_echo, deck_record
    use spb_mesh, only: mesh_t
@@ -708,10 +708,9 @@ contains
       character(len=*), intent(in) :: prefix   !! output path prefix
       real(wp), intent(in) :: rows(:, :)       !! (column, case)
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
-      character(len=24) :: cell
-      character(len=:), allocatable :: line
+      character(len=22 * n_columns) :: line
       type(column_t) :: table(n_columns)
-      integer :: u, c, k
+      integer :: u, c, k, at
       call open_part(prefix // '.sweep', u, err)
       if (allocated(err)) return
       if (deck%run%header == 'names') write(u, '(a)') sweep_columns()
@@ -731,18 +730,25 @@ contains
          trim(deck%sweep%perturb) // ' x (1 + spread u_i) of realization i (PREFIX.ens)'
       write(u, '(a)') '# ' // sweep_columns()
       table = sweep_table()
+      ! each field as (1x,i12) or (1x,es20.12e3) would write it, the fields a blank apart
+      ! (es_into, int_into: the text without the run-time library's formatted I/O)
       do c = 1, size(rows, 2)
-         line = ''
+         at = 0
          do k = 1, n_columns
-            if (table(k)%whole) then
-               write(cell, '(1x,i12)') nint(rows(k, c))
-            else
-               write(cell, '(1x,es20.12e3)') rows(k, c)
+            if (k > 1) then
+               line(at + 1:at + 1) = ' '
+               at = at + 1
             end if
-            line = line // trim(cell)
-            if (k < n_columns) line = line // ' '
+            line(at + 1:at + 1) = ' '
+            if (table(k)%whole) then
+               call int_into(nint(rows(k, c)), line(at + 2:at + 13))
+               at = at + 13
+            else
+               call es_into(rows(k, c), line(at + 2:at + 21))
+               at = at + 21
+            end if
          end do
-         write(u, '(a)') line
+         write(u, '(a)') line(1:at)
       end do
       call close_part(prefix // '.sweep', u, err)
    end subroutine write_table
