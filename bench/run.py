@@ -368,26 +368,33 @@ def target_rows(exe, work, rep, mpiexec, case2_190, fc):
         times[name] = timed([exe, deck, "-q", "--output", prefix], work, rep)
         times[name + "_events"] = count_events(prefix)
     b, u = times["breakable"], times["unbreakable"]
-    verdict = f"**not met** ({b[0] / 0.2:.0f}x over)" if b[0] > 0.2 else "met"
+    verdict = f"**not met** ({b[0] / 0.2:.2f}x over)" if b[0] > 0.2 else "met"
     rows.append(("**target 2**: 1e5-cell layered bar (3 interfaces), one breakable segment, "
                  "40 000 steps, <= 0.2 s", f"{b[0]:.2f} s ({b[1]:.2f}-{b[2]:.2f})",
                  f"{times['breakable_events']} events; the same bar unbreakable {u[0]:.2f} s "
                  f"({times['unbreakable_events']} events); target {verdict}"))
     # target 3: the sweep, one rank and two
     deck = sweep_deck(work)
-    one = [run_cpu([exe, "--sweep", deck, "--output", os.path.join(work, "sw1")], work,
-                   capture=True) for _ in range(max(1, rep // 2))]
+    # one rank and two ranks alternately, rep times each (a sweep takes about a second)
+    one, two = [], []
+    for _ in range(rep):
+        one.append(run_cpu([exe, "--sweep", deck, "--output", os.path.join(work, "sw1")], work,
+                           capture=True))
+        if mpiexec:
+            two.append(run_cpu([mpiexec, "--oversubscribe", "-np", "2", exe, "--sweep", deck,
+                                "--output", os.path.join(work, "sw2")], work, capture=True))
     cpu1 = statistics.median(x[0] for x in one)
     wall1 = statistics.median(sweep_wall(x[2]) for x in one)
-    text = (f"1 rank: sweep wall {wall1:.3f} s; target <= 0.5 s on one core "
+    text = (f"1 rank: sweep wall {wall1:.3f} s (its own clock, after MPI's start; "
+            f"{min(sweep_wall(x[2]) for x in one):.3f}-{max(sweep_wall(x[2]) for x in one):.3f}); "
+            "target <= 0.5 s on one core (the process's CPU time) "
             + ("met" if cpu1 <= 0.5 else f"**not met** ({cpu1 / 0.5:.1f}x over)"))
     if mpiexec:
-        two = [run_cpu([mpiexec, "--oversubscribe", "-np", "2", exe, "--sweep", deck,
-                        "--output", os.path.join(work, "sw2")], work, capture=True)
-               for _ in range(max(1, rep // 2))]
-        wall2 = statistics.median(sweep_wall(x[2]) for x in two)
-        text += (f"; 2 ranks (mpirun -np 2): sweep wall {wall2:.3f} s, **{wall1 / wall2:.2f}x** "
-                 "(target >= 1.8x; the sweep's own wall times: two ranks need two idle cores)")
+        walls2 = [sweep_wall(x[2]) for x in two]
+        wall2 = statistics.median(walls2)
+        text += (f"; 2 ranks (mpirun -np 2): sweep wall {wall2:.3f} s ({min(walls2):.3f}-"
+                 f"{max(walls2):.3f}), **{wall1 / wall2:.2f}x** (target >= 1.8x; the sweep's "
+                 "own wall times: two ranks need two idle cores)")
         if table_rows(os.path.join(work, "sw1.sweep")) != \
                 table_rows(os.path.join(work, "sw2.sweep")):
             raise SystemExit("the sweep tables of 1 and 2 ranks differ")
