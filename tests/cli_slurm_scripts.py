@@ -56,11 +56,11 @@ if mpiexec != "-":
     # the sweep script stopped by SIGTERM (as --signal=B:TERM@60 does): it passes the signal
     # to mpirun once; the ranks write the table (cases not run: status -1); mpirun exits 1,
     # the script 143
-    # 900 cases of 30 ms of bar time: longer than the 2.5 s before the signal (a case of
-    # 1 ms takes about a millisecond in the Release build)
+    # 900 cases of 100 ms of bar time: far longer than the 2.5 s before the signal (a case
+    # of 1 ms takes about a millisecond in the Release build)
     open(os.path.join(work, "long.nml"), "w").write(
         deck.replace("realizations = 4", "realizations = 300").replace("t_end = 1.0e-3",
-                                                                       "t_end = 3.0e-2"))
+                                                                       "t_end = 1.0e-1"))
     proc = subprocess.Popen(["bash", os.path.join(scripts, "slurm-sweep-mpi.sbatch"), "long.nml",
                              "stopped"], cwd=work, stdin=subprocess.DEVNULL,
                             env=dict(env, SLURM_NTASKS="2", MPIRUN=mpiexec,

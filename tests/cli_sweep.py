@@ -108,10 +108,10 @@ def ranks_of(pid):
 
 def stopped_sweep(tag, to_ranks):
     d = os.path.join(work, "stop.nml")
-    # 900 cases of 30 ms of bar time: longer than the 2.5 s (+ 1 s of mpirun) before the
+    # 900 cases of 100 ms of bar time: far longer than the 2.5 s (+ 1 s of mpirun) before the
     # signal, in the Release build too
     open(d, "w").write(open(deck).read().replace("realizations = 32", "realizations = 300")
-                       .replace("t_end = 1.0e-3", "t_end = 3.0e-2"))
+                       .replace("t_end = 1.0e-3", "t_end = 1.0e-1"))
     prefix = os.path.join(work, tag)
     proc = subprocess.Popen([mpiexec, "--oversubscribe", "-np", "2", exe, "--sweep", d, "-o",
                              prefix, "-q"], cwd=work, stdin=subprocess.DEVNULL,

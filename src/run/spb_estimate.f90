@@ -13,7 +13,7 @@ module spb_estimate
    use spb_deck_types, only: deck_t
    use spb_columns, only: column_set_t
    use spb_history, only: history_set
-   use spb_schedule, only: check_every
+   use spb_schedule, only: check_every, keeps_rows
    implicit none
    private
    public :: estimate_t, estimate_run, estimate_line, estimate_warnings, progress_period, &
@@ -106,8 +106,8 @@ contains
       est%cell_steps = real(cells, wp) * real(est%steps, wp)
       est%rows = rows_between(first, nsteps, deck%run%history_every)
       ! a sweep's case keeps rows only for its ensemble; else the checks take a row's work
-      if (.not. files .and. deck%sweep%n_ensemble == 0) est%rows = rows_between(first, nsteps, &
-                                                                              check_every)
+      if (.not. keeps_rows(files, deck%sweep%n_ensemble > 0)) est%rows = &
+         rows_between(first, nsteps, check_every)
       c_step = sec_cell_step_cached
       if (real(cells, wp) * cell_bytes > cache_bytes) c_step = sec_cell_step_large
       est%row_seconds = est%rows * (real(cells, wp) * sec_cell_row + sec_row)

@@ -10,7 +10,7 @@ module spb_schedule
    private
    public :: schedule_t, schedule_every, schedule_at, is_due, next_due, row_count, row_index
    public :: act_row, act_check, act_field, act_checkpoint, act_progress, act_gauge
-   public :: check_every
+   public :: check_every, keeps_rows
 
    !> The actions: a history row; the finiteness and energy-guard check between rows; a
    !> profile; an x-t field row; a checkpoint; the progress line and the flush of the outputs;
@@ -18,9 +18,9 @@ module spb_schedule
    integer, parameter :: act_row = 1, act_check = 2, act_profile = 3, act_field = 4, &
                          act_checkpoint = 5, act_progress = 6, act_gauge = 7, n_actions = 7
 
-   !> The check between rows (finiteness, energy guard) runs every check_every steps; a run
-   !> that keeps no rows (a sweep's case without ensemble columns) takes its summary's
-   !> running values there too (doc/sweeps.md).
+   !> The check between rows (finiteness, energy guard) runs every check_every steps (and
+   !> after each span of characteristic steps); a run that keeps no rows (keeps_rows) takes
+   !> its summary's running values there too (doc/sweeps.md).
    integer, parameter :: check_every = 64
 
    type :: schedule_t
@@ -30,6 +30,15 @@ module spb_schedule
    end type schedule_t
 
 contains
+
+   !> A run computes history rows only where it writes them (files) or keeps some of their
+   !> columns (sampling: a sweep's case with ensemble columns); a sweep's case without an
+   !> ensemble computes none (doc/sweeps.md, "What a case computes").
+   pure logical function keeps_rows(files, sampling)
+      logical, intent(in) :: files         !! the run writes its outputs
+      logical, intent(in) :: sampling      !! it keeps history columns in memory
+      keeps_rows = files .or. sampling
+   end function keeps_rows
 
    !> Action act is due at every multiple of period (period <= 0: never by period).
    pure subroutine schedule_every(sched, act, period)

@@ -45,16 +45,12 @@ module spb_sim
       diag_taken, contact_nodes, diag_contact_samples, contacts_by_sections
    use spb_schedule, only: schedule_t, schedule_every, schedule_at, is_due, next_due, act_row, &
       act_check, act_field, act_checkpoint, act_progress, act_gauge, row_count, row_index, &
-      check_every
+      check_every, keeps_rows
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
       run_options_t, memory_text, run_base_bytes, run_cell_bytes, ring_span_at_start
 
-   ! The between-step actions run every check_every steps (spb_schedule: finiteness, energy
-   ! guard) and every progress_period(cells) steps (a look at the clock: the progress line,
-   ! the flush; 1024 steps, fewer on a large mesh, spb_estimate), besides the deck's own
-   ! periods.
    !> The characteristic steps (spb_ring) stand in for the lattice's over a span of at least
    !> ring_min_steps steps of a bar of at least ring_min_cells cells: below either the
    !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
@@ -486,18 +482,24 @@ contains
          run%sched%n_end = sim%mesh%nsteps
          ! rows where they are written or kept (a sweep's case without ensemble columns
          ! keeps none: its running values are taken at the checks, doc/sweeps.md)
-         if (run%to_files .or. run%sampler%on) then
+         if (keeps_rows(run%to_files, run%sampler%on)) then
             call schedule_every(run%sched, act_row, opt%history_every)
          else
             call schedule_every(run%sched, act_row, 0)
          end if
          call schedule_every(run%sched, act_check, check_every)
-         call schedule_every(run%sched, act_field, opt%field_every)
+         ! x-t field rows and profiles only where they are written (they end the spans of
+         ! characteristic steps)
+         if (run%to_files) call schedule_every(run%sched, act_field, opt%field_every)
          if (run%ck_on) call schedule_every(run%sched, act_checkpoint, opt%checkpoint_every)
          if (size(sim%gauges) > 0 .and. run%to_files) call schedule_every(run%sched, act_gauge, &
                                                                           opt%gauge_every)
          call schedule_every(run%sched, act_progress, progress_period(sim%mesh%n))
-         call schedule_at(run%sched, nint(opt%profile_times / sim%mesh%dt))
+         if (run%to_files) then
+            call schedule_at(run%sched, nint(opt%profile_times / sim%mesh%dt))
+         else
+            call schedule_at(run%sched, [integer ::])
+         end if
       end associate
       ! the first profile still to write
       run%next_profile = 1
@@ -808,8 +810,8 @@ contains
       if (ieee_is_finite(e%ledger)) then
          call measure(sim%mesh, sim%load, sim%st, sim%prob%gravity, e, wv, w_w, e_l)
          ! a run without rows takes the summary's running values here
-         if (run%sched%every(act_row) == 0) call summary_row(summary, sim%st%step, e, wv, &
-                                                             w_w, e_l)
+         if (.not. keeps_rows(run%to_files, run%sampler%on)) call summary_row(summary, &
+            sim%st%step, e, wv, w_w, e_l)
          call guard(sim, summary, e, wv, w_w, err)
          if (allocated(err)) call row(sim, run, summary, err)
       else
