@@ -38,9 +38,8 @@ program spallbar
    end if
    call read_deck(cli%deck, deck, err)
    if (allocated(err)) call fail(err)
-   call sim_setup(deck, sim, err, restart=len(cli%restart) > 0)
+   call sim_setup(deck, sim, err, restart=len(cli%restart) > 0, rings=.not. cli%lattice)
    if (allocated(err)) call fail(err)
-   sim%opt%rings = .not. cli%lattice
    if (len(cli%restart) > 0) then
       allocate(ck)
       call read_checkpoint(cli%restart, sim%record, sim%mesh, sim%load, ck, err, &

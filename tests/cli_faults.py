@@ -18,7 +18,9 @@ lost, nothing half made.
     exit 2 naming the variable;
   * memory: a mesh, an x-t buffer or a sweep table beyond the limit (SPALLBAR_MEMORY_LIMIT,
     ulimit -v) is refused before it is allocated (exit 2 naming the variable, nothing
-    written); the x-t buffer shrinks first, with the same fields;
+    written); the x-t buffer shrinks first, with the same fields; a bar the characteristic
+    steps serve from its start is refused where their arrays do not fit, and runs on the
+    lattice (SPALLBAR_STEPPING=lattice) where it fits;
   * a Weibull field whose draws overflow (or underflow) is refused before it is drawn;
   * a sweep's output that is a folder: exit 2 before any case runs, nothing created;
   * issue 32: a reader holding PREFIX.h5 does not stop a rerun (temporaries, renamed at the
@@ -481,6 +483,24 @@ def memory_limits(exe, work, check):
           f"1e6 cells under 50 MB: exit {r.returncode} {r.stderr!r}")
     check(only_deck(d, "big") == [], f"1e6 cells under 50 MB wrote {only_deck(d, 'big')}")
     print(f"ok   1e6 cells, limit 50 MB: {lines[0] if lines else ''}")
+
+    # a bar the characteristic steps serve from its start (rows every 1e6 steps) needs their
+    # arrays too (about 80 bytes a cell: 1e6 cells need ~304 MB, ~224 MB on the lattice)
+    with open(os.path.join(d, "ringbig.nml"), "w") as f:
+        f.write(MEM_DECK.format(t_end="2e-9", cells=1000000, extra=", history_every = 1000000"))
+    lim = {"SPALLBAR_MEMORY_LIMIT": str(280 * 10**6)}
+    r = run_env(exe, ["ringbig.nml", "--quiet"], d, lim)
+    lines = one_line(r)
+    check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 1000000" in lines[0]
+          and "characteristic steps" in lines[0] and "280.0 MB" in lines[0],
+          f"1e6 cells in characteristic form under 280 MB: exit {r.returncode} {r.stderr!r}")
+    check(only_deck(d, "ringbig") == [], f"ringbig under 280 MB wrote {only_deck(d, 'ringbig')}")
+    r = run_env(exe, ["ringbig.nml", "--quiet"], d, dict(lim, SPALLBAR_STEPPING="lattice"))
+    check(r.returncode == 0, f"the same on the lattice fits in 280 MB: exit {r.returncode} "
+          f"{r.stderr!r}")
+    for f in only_deck(d, "ringbig"):      # (the folder holds only decks for the checks below)
+        os.remove(os.path.join(d, f))
+    print(f"ok   1e6 cells in characteristic form, limit 280 MB: {lines[0] if lines else ''}")
 
     # the largest mesh the deck reader takes, under ulimit -v 3 GB: refused, not
     # "Error allocating"

@@ -74,6 +74,9 @@ module spb_sim
    !> 20) 8 more (measured 809 MB with 4e6 cells: 204 per cell).
    real(wp), parameter :: run_base_bytes = 16.0e6_wp      !! program, libraries [bytes]
    real(wp), parameter :: run_cell_bytes = 208.0_wp       !! per cell [bytes]
+   !> The characteristic steps' arrays per cell while they last (spb_ring: the sequences,
+   !> their blocks, the conversion back; measured 75 at 1e6 cells) [bytes]
+   real(wp), parameter :: ring_cell_bytes = 80.0_wp
    !> --restart reads the checkpoint's state beside the run's: measured 372 bytes per cell
    !> (4e5 and 8e5 cells), 176 more than a run.
    real(wp), parameter :: restart_cell_bytes = 200.0_wp   !! per cell [bytes]
@@ -166,16 +169,19 @@ contains
 
    !> Build mesh, load and initial state from a validated deck, once the memory they need
    !> (and the outputs', a restart's) is known to fit.
-   subroutine sim_setup(deck, sim, err, restart, files)
+   subroutine sim_setup(deck, sim, err, restart, files, rings)
       type(deck_t), intent(in) :: deck     !! the deck
       type(sim_t), intent(out) :: sim      !! the simulation
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       logical, intent(in), optional :: restart   !! it goes on from a checkpoint
       logical, intent(in), optional :: files     !! it writes its outputs (default .true.)
+      logical, intent(in), optional :: rings     !! characteristic steps where they serve
+                                                 !! (default; .false.: the lattice always)
       type(wave_t) :: w0
-      logical :: with_files
+      logical :: with_files, restarted
       with_files = .true.
       if (present(files)) with_files = files
+      if (present(rings)) sim%opt%rings = rings
       ! the echo only where files show it
       sim%record = deck_record(deck, echo=with_files)
       sim%opt%history_every = deck%run%history_every
@@ -205,6 +211,16 @@ contains
       if (any(is_velocity_end(sim%st%ends))) then
          w0 = wave_energy(sim%mesh, sim%st, sim%prob%gravity, 0.0_wp, 0.0_wp)
          sim%st%ledger%w_wave = -w0%w_support
+      end if
+      ! a bar the characteristic steps serve from its start needs their arrays too: the
+      ! memory checked again with them (doc/method.md), before anything is written (a
+      ! run; a sweep checks its cases before any runs, without them)
+      if (with_files .and. ring_span_at_start(sim) > 0) then
+         restarted = .false.
+         if (present(restart)) restarted = restart
+         call plan_memory(deck, sim%mesh%n, .true., restarted, &
+                          real(sim%mesh%n, wp) * ring_cell_bytes, sim%opt%xt_rows, err, &
+                          rings=.true.)
       end if
    end subroutine sim_setup
 
@@ -264,7 +280,7 @@ contains
    !> before anything of its size is allocated: the mesh and state (refused naming &mesh
    !> cells or dt), then with hdf5 and field_every the x-t buffer, which holds 64 times or
    !> as many as fit, at least one (refused naming field_every).
-   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err)
+   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err, rings)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: n             !! cells of the mesh
       logical, intent(in) :: files         !! the run writes its outputs
@@ -272,8 +288,15 @@ contains
       real(wp), intent(in) :: extra        !! memory needed besides [bytes]
       integer, intent(out) :: xt_rows      !! x-t times it may buffer
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      logical, intent(in), optional :: rings   !! extra holds the characteristic steps' arrays
+                                               !! (the message says so)
       real(wp) :: limit, need, per_time, one
-      character(len=:), allocatable :: what
+      character(len=:), allocatable :: what, why
+      why = ''
+      if (present(rings)) then
+         if (rings) why = ' with the arrays of its characteristic steps (doc/method.md; ' // &
+                          'SPALLBAR_STEPPING=lattice needs less)'
+      end if
       limit = real(sys_memory_limit(), wp)
       need = extra + run_base_bytes + real(n, wp) * run_cell_bytes
       if (restart) need = need + real(n, wp) * restart_cell_bytes
@@ -285,7 +308,7 @@ contains
       end if
       if (need > limit) then
          call make_error(err, what // ' needs about ' // memory_text(need) // &
-                         ' of memory; the limit here is ' // memory_text(limit))
+                         ' of memory' // why // '; the limit here is ' // memory_text(limit))
          return
       end if
       if (.not. (files .and. deck%run%hdf5 .and. deck%run%field_every > 0)) return

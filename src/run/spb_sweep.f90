@@ -204,9 +204,8 @@ contains
       row(col_realization) = real(realization, wp)
       row(col_seed) = real(cdeck%field%seed, wp)
       if (allocated(err)) return              ! checked before any case runs
-      call sim_setup(cdeck, sim, err, files=.false.)
+      call sim_setup(cdeck, sim, err, files=.false., rings=rings)
       if (allocated(err)) return
-      sim%opt%rings = rings
       if (size(ids) > 0) then
          call sim_run(sim, '', .false., summary, err, files=.false., sample_ids=ids, &
                       samples=samples)
