@@ -473,34 +473,31 @@ def memory_limits(exe, work, check):
     (SPALLBAR_MEMORY_LIMIT lowers the machine's limit; ulimit -v is the address space)."""
     d = os.path.join(work, "memory")
     os.makedirs(d)
-    small = {"SPALLBAR_MEMORY_LIMIT": str(50 * 10**6)}
-    with open(os.path.join(d, "big.nml"), "w") as f:
-        f.write(MEM_DECK.format(t_end="2e-9", cells=1000000, extra=""))
-    r = run_env(exe, ["big.nml", "--quiet"], d, small)
-    lines = one_line(r)
-    check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 1000000" in lines[0]
-          and "memory" in lines[0] and "50.0 MB" in lines[0],
-          f"1e6 cells under 50 MB: exit {r.returncode} {r.stderr!r}")
-    check(only_deck(d, "big") == [], f"1e6 cells under 50 MB wrote {only_deck(d, 'big')}")
-    print(f"ok   1e6 cells, limit 50 MB: {lines[0] if lines else ''}")
+    def mesh_refused(name, extra, mb, words):
+        """The 1e6-cell deck NAME under a limit of MB megabytes: exit 2, one line naming
+        &mesh cells, the limit and words, nothing written."""
+        with open(os.path.join(d, name + ".nml"), "w") as f:
+            f.write(MEM_DECK.format(t_end="2e-9", cells=1000000, extra=extra))
+        r = run_env(exe, [name + ".nml", "--quiet"], d,
+                    {"SPALLBAR_MEMORY_LIMIT": str(mb * 10**6)})
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 1000000" in lines[0]
+              and words in lines[0] and f"{mb}.0 MB" in lines[0],
+              f"{name}, 1e6 cells under {mb} MB: exit {r.returncode} {r.stderr!r}")
+        check(only_deck(d, name) == [], f"{name} under {mb} MB wrote {only_deck(d, name)}")
+        print(f"ok   {name}, 1e6 cells, limit {mb} MB: {lines[0] if lines else ''}")
+
+    mesh_refused("big", "", 50, "memory")
 
     # a bar the characteristic steps serve from its start (rows every 1e6 steps) needs their
     # arrays too (about 80 bytes a cell: 1e6 cells need ~304 MB, ~224 MB on the lattice)
-    with open(os.path.join(d, "ringbig.nml"), "w") as f:
-        f.write(MEM_DECK.format(t_end="2e-9", cells=1000000, extra=", history_every = 1000000"))
-    lim = {"SPALLBAR_MEMORY_LIMIT": str(280 * 10**6)}
-    r = run_env(exe, ["ringbig.nml", "--quiet"], d, lim)
-    lines = one_line(r)
-    check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 1000000" in lines[0]
-          and "characteristic steps" in lines[0] and "280.0 MB" in lines[0],
-          f"1e6 cells in characteristic form under 280 MB: exit {r.returncode} {r.stderr!r}")
-    check(only_deck(d, "ringbig") == [], f"ringbig under 280 MB wrote {only_deck(d, 'ringbig')}")
-    r = run_env(exe, ["ringbig.nml", "--quiet"], d, dict(lim, SPALLBAR_STEPPING="lattice"))
+    mesh_refused("ringbig", ", history_every = 1000000", 280, "characteristic steps")
+    r = run_env(exe, ["ringbig.nml", "--quiet"], d,
+                {"SPALLBAR_MEMORY_LIMIT": str(280 * 10**6), "SPALLBAR_STEPPING": "lattice"})
     check(r.returncode == 0, f"the same on the lattice fits in 280 MB: exit {r.returncode} "
           f"{r.stderr!r}")
     for f in only_deck(d, "ringbig"):      # (the folder holds only decks for the checks below)
         os.remove(os.path.join(d, f))
-    print(f"ok   1e6 cells in characteristic form, limit 280 MB: {lines[0] if lines else ''}")
 
     # the largest mesh the deck reader takes, under ulimit -v 3 GB: refused, not
     # "Error allocating"
