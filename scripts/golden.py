@@ -269,7 +269,7 @@ def added_only(a, b, hdf5):
             return f"row {k + 1}: {len(wy)} values, its header names {len(hb)}"
         if [wy[c] for c in cols if c < len(wy)] != wx:
             bad = [ha[i] for i, c in enumerate(cols) if c >= len(wy) or i >= len(wx) or wy[c] != wx[i]]
-            return f"row {k + 1}: {', '.join(bad[:5])} differ"
+            return f"row {k + 1}: {', '.join(n.decode() for n in bad[:5])} differ"
     return ""
 
 

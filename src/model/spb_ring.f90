@@ -27,8 +27,7 @@ module spb_ring
    use spb_state, only: state_t
    use spb_ends, only: face_step_t, face_top, face_bottom, has_base, is_striker
    use spb_problem, only: end_free, end_fixed, events_admissible
-   use spb_step, only: end_stresses, step_load_integral, hold_end, book_end_nodes, &
-                       section_stress_a
+   use spb_step, only: end_stresses, step_load_integral, hold_end, book_end_nodes
    implicit none
    private
    public :: ring_qualifies, ring_layout, start_rings, advance_rings, end_rings, ring_span_max
@@ -119,9 +118,18 @@ module spb_ring
       integer, allocatable :: nc(:)          !! cells of each
       integer :: ring_cells = 0              !! cells in rings
       logical :: worth = .false.             !! the rings hold three quarters of the bar or
-                                             !! more: below, the junctions' updates cost
-                                             !! about what the lattice's step does
+                                             !! more (below, the junctions' updates cost
+                                             !! about what the lattice's step does), and
+                                             !! their steps cost less than the lattice's
    end type ring_layout_t
+
+   !> A ring's step (its four pushes, its bounded tests, its ends) costs about as much as the
+   !> lattice's step of this many nodes (callgrind, Release: about 1500 instructions against
+   !> 25-36 a node on breakable bars; doc/method.md, "When") [-]
+   integer, parameter :: ring_step_nodes = 60
+   !> A junction node's update in the hybrid state (the general path, node by node) against
+   !> a node of the lattice's vectorised step (about 135 instructions against 25-36) [-]
+   integer, parameter :: junction_step_nodes = 4
 
 contains
 
@@ -189,7 +197,11 @@ contains
       lay%c0(:) = first(1:lay%nr)
       lay%nc(:) = cells(1:lay%nr)
       lay%ring_cells = sum(lay%nc)
-      lay%worth = 4 * lay%ring_cells >= 3 * mesh%n
+      ! the rings' step against the lattice's (a bar of many short fragments, 70 rings of 28
+      ! cells in 2000, stays on the lattice: 3.6 times its cost as rings)
+      lay%worth = 4 * lay%ring_cells >= 3 * mesh%n .and. &
+                  ring_step_nodes * lay%nr + junction_step_nodes * (mesh%n + 1 - lay%ring_cells &
+                  + lay%nr) < mesh%n + 1
    end function ring_layout
 
    !> Cells k and l are equal: mass, impedance, stiffness to the bit.
@@ -364,7 +376,7 @@ contains
       real(wp), intent(in) :: guard        !! the threshold of S + R [Pa]
       type(face_step_t), intent(out) :: fs(2)   !! the ends' record (their stresses)
       logical, intent(out) :: stop         !! the lattice must take this step
-      real(wp) :: d, dt, dt2, tol
+      real(wp) :: da, db, sec, dt, dt2, tol
       integer :: c, i, q, m, n, nc
       n = st%step
       nc = mesh%n
@@ -381,30 +393,29 @@ contains
       stop = .false.
       do c = 1, size(h%jn)
          i = h%jn(c)
+         sec = st%section(i)
          if (st%joined(i)) then
-            d = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
-                * mesh%inv_m(i) * dt2
-            h%nda(c) = d
-            h%ndb(c) = d
-            h%nsec(c) = st%section(i)
+            da = st%dua(i) + ((st%s(i) + mesh%ma(i) * g) + (mesh%mb(i) * g - st%s(i + 1))) &
+                 * mesh%inv_m(i) * dt2
+            db = da
             if (i > 0 .and. i < nc .and. h%keep(i)) then
-               h%nsec(c) = section_stress_a(st%s(i), st%section(i), st%dua(i) / dt, d / dt, &
-                                            mesh%z(i), mesh%dm(i), g)
+               sec = section_stress_a(st%s(i), sec, st%dua(i) / dt, da / dt, mesh%z(i), &
+                                      mesh%dm(i), g)
                if (st%strength(i) >= 0.0_wp) then
-                  if (h%nsec(c) + st%strength(i) < guard) stop = .true.
+                  if (sec + st%strength(i) < guard) stop = .true.
                end if
             end if
          else
-            h%nda(c) = st%dua(i) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
-            h%ndb(c) = st%dub(i) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
-            h%nsec(c) = st%section(i)
+            da = st%dua(i) + (st%s(i) + mesh%ma(i) * g) / mesh%ma(i) * dt2
+            db = st%dub(i) + (mesh%mb(i) * g - st%s(i + 1)) / mesh%mb(i) * dt2
             tol = h%touch * min(mesh%dx(i), mesh%dx(i + 1))
-            if ((st%ua(i) + h%nda(c)) - (st%ub(i) + h%ndb(c)) > tol) stop = .true.
+            if ((st%ua(i) + da) - (st%ub(i) + db) > tol) stop = .true.
          end if
+         h%nda(c) = da
+         h%ndb(c) = db
+         h%nsec(c) = sec
          ! (a value not finite: the lattice's check after its step names the node)
-         if (.not. (abs(h%nda(c)) <= huge(1.0_wp) .and. abs(h%ndb(c)) <= huge(1.0_wp))) then
-            stop = .true.
-         end if
+         if (.not. (abs(da) <= huge(1.0_wp) .and. abs(db) <= huge(1.0_wp))) stop = .true.
       end do
    end subroutine try_junctions
 
@@ -660,8 +671,8 @@ contains
          do i = 1, m - 1
             r%c(i) = w * (st%section(b + i) - ra(n0 - 1 - i) - rb(n0 + i))
          end do
-         r%scale = max(maxval(abs(ra(n0 - m:n0 - 2))), maxval(abs(rb(n0 + 1:n0 + m - 1))), &
-                       maxval(abs(r%c)), 0.0_wp)
+         r%scale = max(largest_abs(ra(n0 - m:n0 - 2)), largest_abs(rb(n0 + 1:n0 + m - 1)), &
+                       largest_abs(r%c))
       end associate
       call blocks(r%ra, m - 1)
       call blocks(r%rb, m - 1)
@@ -758,13 +769,19 @@ contains
       integer, intent(in), optional :: b   !! the block (absent: all blocks of level l)
       integer :: bs, a, e, p, c, nb
       real(wp) :: bound, val
-      bs = leaf * fan**(l - 1)
+      bs = shiftl(leaf, fan_bits * (l - 1))
       if (.not. present(b)) then
          ! the whole range's bound first: most steps no value comes near thr
          bound = extremum(x, sx, l, n - p1 + cx, n - p0 + cx) + extremum(y, sy, l, n + p0 + cy, &
                                                                           n + p1 + cy)
          nb = (p1 - 1) / bs + 1
-         if (present(w)) bound = bound + minval(w%lev(l)%mn(0:nb - 1))
+         if (present(w)) then
+            val = w%lev(l)%mn(0)
+            do c = 1, nb - 1
+               val = min(val, w%lev(l)%mn(c))
+            end do
+            bound = bound + val
+         end if
          if (.not. bound < thr) return
          do c = 0, nb - 1
             call descend(x, sx, cx, y, sy, cy, n, l, p0, p1, thr, best, w, c)
@@ -798,18 +815,38 @@ contains
       integer, intent(in) :: l             !! the level
       integer, intent(in) :: ja            !! first index
       integer, intent(in) :: jb            !! last index
-      integer :: bs, ba, bb
-      bs = leaf * fan**(min(l, size(x%lev)) - 1)
+      integer :: bs, ba, bb, b
+      bs = shiftl(leaf, fan_bits * (min(l, size(x%lev)) - 1))
       ba = (ja - x%lo) / bs
       bb = (jb - x%lo) / bs
+      ! a plain loop, not minval (whose NaN handling costs more than the few blocks' values:
+      ! the sequences are finite, advance_rings stops before a value that is not)
       associate (lv => x%lev(min(l, size(x%lev))))
          if (s > 0.0_wp) then
-            m = minval(lv%mn(ba:bb))
+            m = lv%mn(ba)
+            do b = ba + 1, bb
+               m = min(m, lv%mn(b))
+            end do
          else
-            m = -maxval(lv%mx(ba:bb))
+            m = lv%mx(ba)
+            do b = ba + 1, bb
+               m = max(m, lv%mx(b))
+            end do
+            m = -m
          end if
       end associate
    end function extremum
+
+   !> The largest |v| and 0 (a plain loop, which vectorises: maxval's handling of NaN does
+   !> not, and a ring's values are finite where they are used).
+   pure real(wp) function largest_abs(v) result(m)
+      real(wp), intent(in) :: v(:)         !! the values
+      integer :: j
+      m = 0.0_wp
+      do j = 1, size(v)
+         m = max(m, abs(v(j)))
+      end do
+   end function largest_abs
 
    !> An empty sequence from index lo with room for cap values, blocks over span values.
    pure subroutine start_seq(x, lo, cap, span)
@@ -920,4 +957,5 @@ contains
       integer, intent(in) :: m             !! the exponent
       sign_of = 1.0_wp - 2.0_wp * real(iand(m, 1), wp)   ! (two's complement: odd m, low bit 1)
    end function sign_of
+   include 'spb_section_form_a.inc'
 end module spb_ring

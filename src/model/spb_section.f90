@@ -11,5 +11,6 @@ module spb_section
    private
    public :: section_stress_a, section_stress_b
 contains
-   include 'spb_section_forms.inc'
+   include 'spb_section_form_a.inc'
+   include 'spb_section_form_b.inc'
 end module spb_section

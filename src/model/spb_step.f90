@@ -455,5 +455,6 @@ contains
       st%section(n) = section(2)
    end subroutine book_end_nodes
 
-   include 'spb_section_forms.inc'
+   include 'spb_section_form_a.inc'
+   include 'spb_section_form_b.inc'
 end module spb_step

@@ -56,6 +56,11 @@ module spb_sim
    !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
    integer, parameter :: ring_min_steps = 40
    integer, parameter :: ring_min_cells = 16
+   !> The shortest stretch a ring holds [cells]: a ring's step costs about what the lattice's
+   !> update of 6 to 8 junction nodes does, so a shorter fragment stays on the lattice (the
+   !> Weibull spall sweep's scabs of 9 to 15 cells: 8 % fewer instructions as rings,
+   !> doc/benchmarks.md, seventh round).
+   integer, parameter :: ring_min_stretch = 8
    !> A try of the characteristic steps that stops within ring_min_steps steps before a step
    !> without events waits before the next (twice as long after each such try, at most this
    !> many steps): a bar whose tests come near their thresholds in nearly every step (zero
@@ -577,7 +582,7 @@ contains
       if (use_rings(sim, summary)) then
          k = ring_span(sim, run)
          if (k - 1 >= ring_min_steps) then
-            lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
+            lay = ring_layout(sim%mesh, sim%st, ring_min_stretch)
             if (lay%worth) then
                call ring_steps(sim, run, summary, lay, k - 1, short)
                run%span_ended = .true.
@@ -595,11 +600,23 @@ contains
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
-      ! a try of the characteristic steps that stopped early before a step without events
-      ! makes the next wait (twice as long after each such try, at most ring_wait_max steps)
-      if (short == 1 .and. run%events%n == 0) then
-         sim%st%ring_wait = min(max(2 * sim%st%ring_wait, ring_min_steps), ring_wait_max)
-         sim%st%ring_next = sim%st%step + sim%st%ring_wait
+      ! a try of the characteristic steps that stopped early makes the next wait, twice as
+      ! long after each such try, at most ring_wait_max steps: ring_min_steps at once when
+      ! the step had no event (a false alarm); when it had, half that from the second such
+      ! try in a row (the first is marked by a wait of a quarter that does not delay the next
+      ! try: events a few steps apart, a fragmenting bar, doc/method.md)
+      if (short == 1) then
+         if (run%events%n == 0) then
+            sim%st%ring_wait = max(2 * sim%st%ring_wait, ring_min_steps)
+         else if (sim%st%ring_wait == 0) then
+            sim%st%ring_wait = ring_min_steps / 4
+         else
+            sim%st%ring_wait = 2 * sim%st%ring_wait
+         end if
+         sim%st%ring_wait = min(sim%st%ring_wait, ring_wait_max)
+         sim%st%ring_next = sim%st%step
+         if (sim%st%ring_wait > ring_min_steps / 4) sim%st%ring_next = sim%st%step + &
+                                                                       sim%st%ring_wait
       else if (short >= 0) then
          sim%st%ring_wait = 0
       end if
@@ -640,7 +657,7 @@ contains
       type(run_summary_t) :: none
       span = 0
       if (.not. use_rings(sim, none)) return
-      lay = ring_layout(sim%mesh, sim%st, ring_min_cells)
+      lay = ring_layout(sim%mesh, sim%st, ring_min_stretch)
       if (.not. lay%worth) return
       span = min(max(sim%opt%history_every, 1), ring_span_max(sim%mesh%n))
       if (size(sim%gauges) > 0) span = min(span, max(sim%opt%gauge_every, 1))
