@@ -68,6 +68,7 @@ module spb_ring
    type :: seq_t
       integer :: lo = 0                         !! first index
       integer :: hi = -1                        !! last index written
+      integer :: nl = 0                         !! levels of blocks (size of lev)
       real(wp), allocatable :: v(:)             !! (lo:lo+capacity-1)
       type(level_t), allocatable :: lev(:)      !! the levels of blocks
    end type seq_t
@@ -815,13 +816,15 @@ contains
       integer, intent(in) :: l             !! the level
       integer, intent(in) :: ja            !! first index
       integer, intent(in) :: jb            !! last index
-      integer :: bs, ba, bb, b
-      bs = shiftl(leaf, fan_bits * (min(l, size(x%lev)) - 1))
-      ba = (ja - x%lo) / bs
-      bb = (jb - x%lo) / bs
+      integer :: sh, ba, bb, b, lx
+      ! (ja >= lo: a shift divides by the block size)
+      lx = min(l, x%nl)
+      sh = leaf_bits + fan_bits * (lx - 1)
+      ba = shiftr(ja - x%lo, sh)
+      bb = shiftr(jb - x%lo, sh)
       ! a plain loop, not minval (whose NaN handling costs more than the few blocks' values:
       ! the sequences are finite, advance_rings stops before a value that is not)
-      associate (lv => x%lev(min(l, size(x%lev))))
+      associate (lv => x%lev(lx))
          if (s > 0.0_wp) then
             m = lv%mn(ba)
             do b = ba + 1, bb
@@ -848,6 +851,19 @@ contains
       end do
    end function largest_abs
 
+   !> The levels of blocks (leaf, leaf fan, ...) up to the first whose block holds span
+   !> positions.
+   pure integer function levels(span) result(nl)
+      integer, intent(in) :: span          !! positions
+      integer :: bs
+      nl = 1
+      bs = leaf
+      do while (bs * fan < span)
+         nl = nl + 1
+         bs = bs * fan
+      end do
+   end function levels
+
    !> An empty sequence from index lo with room for cap values, blocks over span values.
    pure subroutine start_seq(x, lo, cap, span)
       type(seq_t), intent(out) :: x        !! the sequence
@@ -858,13 +874,9 @@ contains
       x%lo = lo
       x%hi = lo - 1
       allocate(x%v(lo:lo + cap - 1))
-      nl = 1
-      bs = leaf
-      do while (bs * fan < span)
-         nl = nl + 1
-         bs = bs * fan
-      end do
+      nl = levels(span)
       allocate(x%lev(nl))
+      x%nl = nl
       bs = leaf
       do l = 1, nl
          allocate(x%lev(l)%mn(0:cap / bs + 1), x%lev(l)%mx(0:cap / bs + 1))
@@ -882,7 +894,7 @@ contains
       x%v(x%hi) = val
       o = x%hi - x%lo
       sh = leaf_bits
-      do l = 1, size(x%lev)
+      do l = 1, x%nl
          b = shiftr(o, sh)
          if (iand(o, shiftl(1, sh) - 1) == 0) then
             x%lev(l)%mn(b) = val
