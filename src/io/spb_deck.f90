@@ -778,17 +778,21 @@ contains
          run%n_profiles = k
       end do
       do k = 1, max_profiles
+         ! (a time beyond the first one not given is only looked at: the loop runs over
+         ! every slot of every sweep case)
+         if (k > run%n_profiles) then
+            if (is_set(run%profile_times(k))) call make_error(err, '&run: profile_times(' // &
+               itoa(k) // ') is given but profile_times(' // itoa(run%n_profiles + 1) // &
+               ') is not')
+            if (allocated(err)) return
+            cycle
+         end if
          associate (name => 'profile_times(' // itoa(k) // ')')
-            if (k > run%n_profiles) then
-               if (is_set(run%profile_times(k))) call make_error(err, '&run: ' // name // &
-                  ' is given but profile_times(' // itoa(run%n_profiles + 1) // ') is not')
-            else
-               call need_positive(err, 'run', name, run%profile_times(k), zero_ok=.true.)
-               if (allocated(err)) return
-               if (run%profile_times(k) > run%t_end) call make_error(err, '&run: ' // name // &
-                  ' = ' // rtoa(run%profile_times(k)) // ' is after t_end = ' // rtoa(run%t_end))
-               if (k > 1 .and. .not. allocated(err)) call need_order(k)
-            end if
+            call need_positive(err, 'run', name, run%profile_times(k), zero_ok=.true.)
+            if (allocated(err)) return
+            if (run%profile_times(k) > run%t_end) call make_error(err, '&run: ' // name // &
+               ' = ' // rtoa(run%profile_times(k)) // ' is after t_end = ' // rtoa(run%t_end))
+            if (k > 1 .and. .not. allocated(err)) call need_order(k)
          end associate
          if (allocated(err)) return
       end do
@@ -838,7 +842,8 @@ contains
          return
       end if
       do j = 1, max_segments
-         sj = '(' // itoa(j) // ')'
+         ! (the suffix is formatted where it is read: beyond n, only in an error)
+         if (j <= seg%n) sj = '(' // itoa(j) // ')'
          if (j <= seg%n) then
             call need_positive(err, 'segments', 'length' // sj, seg%length(j))
             call need_positive(err, 'segments', 'young' // sj, seg%young(j))
@@ -898,7 +903,8 @@ contains
             call beyond_n('area', seg%area(j))
             if (j >= seg%n) call beyond_n('gap', seg%gap(j))
             if (len_trim(seg%interface(j)) > 0 .and. .not. allocated(err)) then
-               call make_error(err, '&segments: interface' // sj // ' is given but n = ' // itoa(seg%n))
+               call make_error(err, '&segments: interface(' // itoa(j) // ') is given but n = ' &
+                               // itoa(seg%n))
             end if
          end if
          if (allocated(err)) return
@@ -927,8 +933,9 @@ contains
          character(len=*), intent(in) :: name   !! variable name
          real(wp), intent(in) :: x   !! its value for the segment
          if (allocated(err)) return
-         if (is_set(x)) call make_error(err, '&segments: ' // name // sj // ' is given but n = ' &
-                                        // itoa(seg%n) // ' (set n to the number of segments)')
+         if (is_set(x)) call make_error(err, '&segments: ' // name // '(' // itoa(j) // &
+                                        ') is given but n = ' // itoa(seg%n) // &
+                                        ' (set n to the number of segments)')
       end subroutine beyond_n
    end subroutine validate_segments
 
@@ -1064,6 +1071,7 @@ contains
       character(len=:), allocatable :: what
       ln_hi = log(scale) + log(weibull_log_max) / modulus
       ln_lo = log(scale) + log(weibull_log_min) / modulus
+      if (.not. (ln_hi > log(huge_real) .or. ln_lo < log(tiny(1.0_wp)))) return
       what = '&strength_field: modulus = ' // rtoa(modulus) // ' with scale = ' // &
              rtoa(scale) // ' draws strengths '
       if (ln_hi > log(huge_real)) then
