@@ -489,7 +489,7 @@ def main():
         per_step, steps_of = scaling_runs(exe, naive, work, 3)
         rows.append(scaling_row(per_step, steps_of))
         # fragments flying apart: the lattice's steps (SPALLBAR_STEPPING=lattice) and the
-        # default's (rings for fragments of 16 cells or more)
+        # default's (rings for fragments of 8 cells or more where they cost less a step)
         pieces, per_frag, per_frag_rings = [1, 10, 100], [], []
         for k in pieces:
             r = timed_together({"run": lattice([exe, flying_deck(work, 100000, MIN_STEPS, k),

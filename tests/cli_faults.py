@@ -20,7 +20,8 @@ lost, nothing half made.
     ulimit -v) is refused before it is allocated (exit 2 naming the variable, nothing
     written); the x-t buffer shrinks first, with the same fields; a bar the characteristic
     steps serve from its start is refused where their arrays do not fit, and runs on the
-    lattice (SPALLBAR_STEPPING=lattice) where it fits;
+    lattice (SPALLBAR_STEPPING=lattice) where it fits; the lattice's steps between rows far
+    apart run in blocks up to the next check, under a small address space;
   * a Weibull field whose draws overflow (or underflow) is refused before it is drawn;
   * a sweep's output that is a folder: exit 2 before any case runs, nothing created;
   * issue 32: a reader holding PREFIX.h5 does not stop a rerun (temporaries, renamed at the
@@ -569,6 +570,23 @@ def memory_limits(exe, work, check):
           open(os.path.join(d, "nolim.his")).read().replace("nolim", ""),
           "small deck under 2 GB: history differs")
     print("ok   a small deck under a 2 GB limit runs as without it")
+
+    # a bar the characteristic steps do not serve (four layers of 10 cells: their rings
+    # would cost more a step than the lattice) and rows far apart: the lattice takes the
+    # steps between checks (every 64), not the whole 8e6 steps to the next row in one call
+    # with a record of each (1.1 GB in 0.6.1, which broke under this limit)
+    with open(os.path.join(d, "layers.nml"), "w") as f:
+        f.write("&run t_end = 4.0, history_every = 1000000000, warnings = .false. /\n"
+                "&mesh dt = 5.0e-7 /\n&segments n = 4, length = 4*0.025, "
+                "young = 2e11, 1e11, 2e11, 1e11, density = 8000, 4000, 8000, 4000 /\n"
+                "&load kind = 'power', p0 = 1e6, t_k = 1e-5 /\n")
+    r = run_env(exe, ["layers.nml", "--quiet", "--output", "layers"], d,
+                limit_as=384 * 2**20)
+    check(r.returncode == 0 and os.path.exists(os.path.join(d, "layers.his")),
+          f"8e6 lattice steps between rows under 384 MB: exit {r.returncode} "
+          f"{r.stderr[-300:]!r}")
+    if r.returncode == 0:
+        print("ok   8e6 lattice steps between two rows run under a 384 MB address space")
 
 
 def weibull_overflow(exe, work, check):

@@ -124,13 +124,15 @@ module spb_ring
                                              !! their steps cost less than the lattice's
    end type ring_layout_t
 
-   !> A ring's step (its four pushes, its bounded tests, its ends) costs about as much as the
-   !> lattice's step of this many nodes (callgrind, Release: about 1500 instructions against
-   !> 25-36 a node on breakable bars; doc/method.md, "When") [-]
-   integer, parameter :: ring_step_nodes = 60
-   !> A junction node's update in the hybrid state (the general path, node by node) against
-   !> a node of the lattice's vectorised step (about 135 instructions against 25-36) [-]
-   integer, parameter :: junction_step_nodes = 4
+   !> The costs of a step compared in ring_layout, in units of the lattice's update of one
+   !> node of a breakable bar (about 18 instructions): measured with callgrind (Release) on
+   !> free bars of 16-128 cells, 250 N steps, a lattice step costs about 3900 + 18 (N + 1)
+   !> instructions and a one-ring step about 2700 whatever N; a ring (its four pushes, its
+   !> bounded tests) about 1500, a junction node (the general path, node by node) about 135
+   !> (doc/method.md, "When") [-]
+   integer, parameter :: ring_step_nodes = 80       !! a ring's step
+   integer, parameter :: junction_step_nodes = 7    !! a junction node's update
+   integer, parameter :: lattice_step_nodes = 210   !! the lattice step's own cost
 
 contains
 
@@ -199,10 +201,11 @@ contains
       lay%nc(:) = cells(1:lay%nr)
       lay%ring_cells = sum(lay%nc)
       ! the rings' step against the lattice's (a bar of many short fragments, 70 rings of 28
-      ! cells in 2000, stays on the lattice: 3.6 times its cost as rings)
+      ! cells in 2000, stays on the lattice: 3.6 times its cost as rings; in real(wp), no
+      ! overflow for any bar)
       lay%worth = 4 * lay%ring_cells >= 3 * mesh%n .and. &
-                  ring_step_nodes * lay%nr + junction_step_nodes * (mesh%n + 1 - lay%ring_cells &
-                  + lay%nr) < mesh%n + 1
+                  real(ring_step_nodes, wp) * lay%nr + real(junction_step_nodes, wp) &
+                  * (mesh%n + 1 - lay%ring_cells + lay%nr) < real(lattice_step_nodes, wp) + mesh%n + 1
    end function ring_layout
 
    !> Cells k and l are equal: mass, impedance, stiffness to the bit.

@@ -115,7 +115,8 @@ module spb_state
                                               !! tried before this step: the last try stopped
                                               !! early (its state, that a restart repeats it)
       integer :: ring_wait = 0                !! steps waited after that try (doubles while
-                                              !! tries stop early, 0 after one that did not)
+                                              !! tries stop early, 0 after one that did not;
+                                              !! 10: one stopped early by events, no wait)
    end type state_t
 
    !> The state's history columns (PREFIX.his, /history): their ids (spb_columns).

@@ -56,15 +56,16 @@ module spb_sim
    !> lattice is faster (doc/method.md, "Characteristic stepping of intact stretches").
    integer, parameter :: ring_min_steps = 40
    integer, parameter :: ring_min_cells = 16
-   !> The shortest stretch a ring holds [cells]: a ring's step costs about what the lattice's
-   !> update of 6 to 8 junction nodes does, so a shorter fragment stays on the lattice (the
-   !> Weibull spall sweep's scabs of 9 to 15 cells: 8 % fewer instructions as rings,
-   !> doc/benchmarks.md, seventh round).
+   !> The shortest stretch a ring holds [cells]: a short ring's step (one block of 64 values
+   !> to bound) costs about what the update of 6 to 8 junction nodes does, so a shorter
+   !> fragment stays in the junctions (the Weibull spall sweep's scabs of 9 to 15 cells: 8 %
+   !> fewer instructions as rings, doc/benchmarks.md, seventh round); whether the rings serve
+   !> the bar at all is spb_ring ring_layout's cost test (a long ring near its strength).
    integer, parameter :: ring_min_stretch = 8
-   !> A try of the characteristic steps that stops within ring_min_steps steps before a step
-   !> without events waits before the next (twice as long after each such try, at most this
-   !> many steps): a bar whose tests come near their thresholds in nearly every step (zero
-   !> strength) keeps the lattice's cost.
+   !> A try of the characteristic steps that stops within ring_min_steps steps makes the next
+   !> wait (take_steps: twice as long after each such try, at most this many steps): a bar
+   !> whose tests come near their thresholds in nearly every step (zero strength), or whose
+   !> events come a few steps apart, keeps the lattice's cost.
    integer, parameter :: ring_wait_max = 4096
    !> In a batch log the first progress line comes after this at the latest, whatever
    !> --progress asks for the lines after it: with the set-up (4 s for 5e6 cells) and a look
@@ -574,19 +575,25 @@ contains
       type(run_t), intent(inout) :: run    !! the run's context (outputs, schedule, clock)
       type(run_summary_t), intent(inout) :: summary   !! the run's summary
       type(ring_layout_t) :: lay
-      integer :: k, j, n0, short
+      integer :: k, kr, j, n0, short
       real(wp) :: sec_max
       real(wp), allocatable :: face_du(:, :)
+      ! (k: to the next due action, the checks every 64 steps and the progress lines
+      ! included, for the lattice; kr: a span of characteristic steps passes over those)
       k = next_due(run%sched, sim%st%step, run%next_profile) - sim%st%step
       short = -1
       if (use_rings(sim, summary)) then
-         k = ring_span(sim, run)
-         if (k - 1 >= ring_min_steps) then
+         kr = ring_span(sim, run)
+         if (kr - 1 >= ring_min_steps) then
             lay = ring_layout(sim%mesh, sim%st, ring_min_stretch)
             if (lay%worth) then
-               call ring_steps(sim, run, summary, lay, k - 1, short)
+               call ring_steps(sim, run, summary, lay, kr - 1, short)
                run%span_ended = .true.
                k = 0
+            else
+               ! the lattice serves this bar: its layout is looked at again ring_min_steps
+               ! steps on (not at every step: it costs about a microsecond)
+               sim%st%ring_next = sim%st%step + ring_min_steps
             end if
          end if
       end if
