@@ -49,7 +49,8 @@ module spb_sim
    implicit none
    private
    public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
-      run_options_t, memory_text, run_base_bytes, run_cell_bytes, ring_span_at_start
+      run_options_t, memory_text, run_base_bytes, run_cell_bytes, ring_span_at_start, &
+      ring_retry
 
    !> The characteristic steps (spb_ring) stand in for the lattice's over a span of at least
    !> ring_min_steps steps of a bar of at least ring_min_cells cells: below either the
@@ -607,26 +608,7 @@ contains
       end if
       run%events%n = 0
       call sim_step(sim, run%events)
-      ! a try of the characteristic steps that stopped early makes the next wait, twice as
-      ! long after each such try, at most ring_wait_max steps: ring_min_steps at once when
-      ! the step had no event (a false alarm); when it had, half that from the second such
-      ! try in a row (the first is marked by a wait of a quarter that does not delay the next
-      ! try: events a few steps apart, a fragmenting bar, doc/method.md)
-      if (short == 1) then
-         if (run%events%n == 0) then
-            sim%st%ring_wait = max(2 * sim%st%ring_wait, ring_min_steps)
-         else if (sim%st%ring_wait == 0) then
-            sim%st%ring_wait = ring_min_steps / 4
-         else
-            sim%st%ring_wait = 2 * sim%st%ring_wait
-         end if
-         sim%st%ring_wait = min(sim%st%ring_wait, ring_wait_max)
-         sim%st%ring_next = sim%st%step
-         if (sim%st%ring_wait > ring_min_steps / 4) sim%st%ring_next = sim%st%step + &
-                                                                       sim%st%ring_wait
-      else if (short >= 0) then
-         sim%st%ring_wait = 0
-      end if
+      call ring_retry(short, run%events%n > 0, sim%st%step, sim%st%ring_wait, sim%st%ring_next)
       call summary_reaction(summary, sim%st%section(sim%mesh%n) / sim%mesh%area(sim%mesh%n))
       call diag_step(summary%diag, sim%mesh, sim%st, run%events)
       call take_impacts(run, summary%diag)
@@ -685,6 +667,35 @@ contains
       sched%every(act_progress) = 0
       k = next_due(sched, sim%st%step, run%next_profile) - sim%st%step
    end function ring_span
+
+   !> When the characteristic steps are tried next (doc/method.md, "When"), after a try that
+   !> stopped early (short = 1: within ring_min_steps steps), did not (0) or was not made
+   !> (-1; nothing changes): the wait doubles after each try that stopped early, at most
+   !> ring_wait_max steps; ring_min_steps at once when the step had no event (a false alarm);
+   !> when it had, a quarter of that marks the first such try without delaying the next
+   !> (events a few steps apart: a fragmenting bar), and the waits after it double from
+   !> there; a try that did not stop early ends the wait.
+   pure subroutine ring_retry(short, events, step, wait, next)
+      integer, intent(in) :: short         !! 1 stopped early, 0 did not, -1 no try
+      logical, intent(in) :: events        !! the step that ended the try had events
+      integer, intent(in) :: step          !! the step the state is at
+      integer, intent(inout) :: wait       !! steps waited after the last try (0: none)
+      integer, intent(inout) :: next       !! no try before this step
+      if (short == 1) then
+         if (.not. events) then
+            wait = max(2 * wait, ring_min_steps)
+         else if (wait == 0) then
+            wait = ring_min_steps / 4
+         else
+            wait = 2 * wait
+         end if
+         wait = min(wait, ring_wait_max)
+         next = step
+         if (wait > ring_min_steps / 4) next = step + wait
+      else if (short == 0) then
+         wait = 0
+      end if
+   end subroutine ring_retry
 
    !> Up to nsteps characteristic steps (spb_ring: each conversion for at most ring_span_max
    !> steps), with what the run books of each: the bottom reaction, the ends' samples, the
