@@ -520,6 +520,19 @@ def main():
                      f"{r['default'][0]:.3f} s vs {r['lattice'][0]:.3f} s",
                      f"default / lattice = **{r['default'][0] / r['lattice'][0]:.2f}** (target: "
                      f"not slower, <= 1 within the timer's noise)"))
+        # many short fragments (the expanding-bar sweep: 2000 cells in about 70 fragments, a
+        # case keeps no rows): the rings' cost test leaves them to the lattice (0.6.1: 2.8x)
+        deck = os.path.join(ROOT, "input", "sweeps", "expanding_bar.nml")
+        r = timed_together({"default": [exe, "--sweep", deck, "--output",
+                                        os.path.join(work, "exsw_d")],
+                            "lattice": lattice([exe, "--sweep", deck, "--output",
+                                                os.path.join(work, "exsw_l")])}, work, rep)
+        rows.append(("many short fragments: the expanding-bar sweep (input/sweeps/"
+                     "expanding_bar.nml, 64 cases of 2000 cells), default against "
+                     "SPALLBAR_STEPPING=lattice",
+                     f"{r['default'][0]:.3f} s vs {r['lattice'][0]:.3f} s",
+                     f"default / lattice = **{r['default'][0] / r['lattice'][0]:.2f}** (target: "
+                     f"not slower; 0.6.1: 2.8x in instructions)"))
         fits = {}
         for cells in (95, 190):
             evs, walls = [], []
