@@ -842,9 +842,9 @@ contains
          return
       end if
       do j = 1, max_segments
-         ! (the suffix is formatted where it is read: beyond n, only in an error)
-         if (j <= seg%n) sj = '(' // itoa(j) // ')'
          if (j <= seg%n) then
+            ! (the suffix is formatted where it is read: beyond n, only in an error)
+            sj = '(' // itoa(j) // ')'
             call need_positive(err, 'segments', 'length' // sj, seg%length(j))
             call need_positive(err, 'segments', 'young' // sj, seg%young(j))
             call need_positive(err, 'segments', 'density' // sj, seg%density(j))

@@ -68,7 +68,8 @@ module spb_ring
    type :: seq_t
       integer :: lo = 0                         !! first index
       integer :: hi = -1                        !! last index written
-      integer :: nl = 0                         !! levels of blocks (size of lev)
+      integer :: nl = 0                         !! levels of blocks (size of lev, kept:
+                                                !! size() costs in the bounds' hot path)
       real(wp), allocatable :: v(:)             !! (lo:lo+capacity-1)
       type(level_t), allocatable :: lev(:)      !! the levels of blocks
    end type seq_t
@@ -780,6 +781,7 @@ contains
                                                                           n + p1 + cy)
          nb = (p1 - 1) / bs + 1
          if (present(w)) then
+            ! (a plain loop, as in extremum: a helper procedure here cost 1.7 % of a sweep)
             val = w%lev(l)%mn(0)
             do c = 1, nb - 1
                val = min(val, w%lev(l)%mn(c))
