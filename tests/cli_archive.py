@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """The results archive (issue 20, archive/, scripts/archive.py): every archived deck run again
 gives its archived history within the deck's tolerance; a deliberately changed deck is
-reported with the columns that moved (exit 1); re-baselining without a reason is refused.
+reported with the columns that moved (exit 1); the round-off measures are compared at their
+scale's tolerance (a change of their last bits passes, one of 1e-6 of the scale does not);
+re-baselining without a reason is refused.
 
 usage: cli_archive.py SPALLBAR SPALLBAR_COMPARE WORKDIR
 """
@@ -48,6 +50,48 @@ def main():
     check(r.returncode == 1 and len(moved) == 1 and "reaction_bottom (" in moved[0]
           and "e_kin (" in moved[0] and "1 moved: example2" in r.stdout,
           f"changed example2: exit {r.returncode}\n{r.stdout}{r.stderr}")
+    # the round-off measures are compared at their scale's tolerance (doc/archive.md,
+    # "Tolerances"): the sweep table's max_excess 10x and ledger_drift + 1e-12 of the energy
+    # scale pass, each at 1e-6 of its scale is reported, and so is a 1e-6 change of a
+    # column that is not a round-off measure
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    import archive as arc
+    ref = os.path.join(ROOT, "archive", "sweeps__weibull_spall.sweep")
+    names = arc.columns_of(ref)
+    scale = arc.energy_scale(ref, names)
+    check(scale > 0 and "max_excess" in names and "ledger_drift" in names,
+          f"weibull sweep table: scale {scale}, columns {names}")
+
+    def changed_table(tag, change):
+        path = os.path.join(work, f"sweep_{tag}.sweep")
+        with open(ref) as f, open(path, "w") as out:
+            for line in f:
+                words = line.split()
+                if line.startswith("#") or len(words) != len(names) or \
+                        not words[0].isdigit():
+                    out.write(line)
+                    continue
+                change(words)
+                out.write(" ".join(words) + "\n")
+        return arc.compare(tool, ref, path, "sweeps__weibull_spall")
+
+    def scaled(column, factor=1.0, add=0.0):
+        def change(words):
+            k = names.index(column)
+            v = float(words[k])
+            if v == v:
+                words[k] = repr(v * factor + add)
+        return change
+    for tag, change, moves in (
+            ("excess10", scaled("max_excess", factor=10.0), None),
+            ("drift_1e-12", scaled("ledger_drift", add=1e-12 * scale), None),
+            ("excess_1e-6", scaled("max_excess", add=1e-6), "max_excess ("),
+            ("drift_1e-6", scaled("ledger_drift", add=1e-6 * scale), "ledger_drift ("),
+            ("ekin_1e-6", scaled("e_kin_end", factor=1.0 + 1e-6), "e_kin_end (")):
+        status, moved, _ = changed_table(tag, change)
+        ok = (status == 0 and not moved) if moves is None else \
+            (status == 1 and len(moved) == 1 and moved[0].startswith(moves))
+        check(ok, f"sweep table {tag}: status {status}, moved {moved}")
     # re-baselining needs a reason, and writes nothing without one
     before = open(os.path.join(ROOT, "archive", "CHANGES.md")).read()
     r = archive(["rebaseline", "--exe", exe, "--work", os.path.join(work, "rb")])
