@@ -18,10 +18,11 @@ lost, nothing half made.
     exit 2 naming the variable;
   * memory: a mesh, an x-t buffer or a sweep table beyond the limit (SPALLBAR_MEMORY_LIMIT,
     ulimit -v) is refused before it is allocated (exit 2 naming the variable, nothing
-    written); the x-t buffer shrinks first, with the same fields; a bar the characteristic
-    steps serve from its start is refused where their arrays do not fit, and runs on the
-    lattice (SPALLBAR_STEPPING=lattice) where it fits; the lattice's steps between rows far
-    apart run in blocks up to the next check, under a small address space;
+    written); the x-t buffer shrinks first, with the same fields; a bar (a run, a sweep's
+    cases) the characteristic steps would serve takes every step on the lattice where their
+    arrays do not fit, the outputs bit for bit SPALLBAR_STEPPING=lattice's, with a note;
+    the lattice's steps between rows far apart run in blocks up to the next check, under a
+    small address space;
   * a Weibull field whose draws overflow (or underflow) is refused before it is drawn;
   * a sweep's output that is a folder: exit 2 before any case runs, nothing created;
   * issue 32: a reader holding PREFIX.h5 does not stop a rerun (temporaries, renamed at the
@@ -490,14 +491,57 @@ def memory_limits(exe, work, check):
 
     mesh_refused("big", "", 50, "memory")
 
-    # a bar the characteristic steps serve from its start (rows every 1e6 steps) needs their
-    # arrays too (about 80 bytes a cell: 1e6 cells need ~304 MB, ~224 MB on the lattice)
-    mesh_refused("ringbig", ", history_every = 1000000", 280, "characteristic steps")
-    r = run_env(exe, ["ringbig.nml", "--quiet"], d,
-                {"SPALLBAR_MEMORY_LIMIT": str(280 * 10**6), "SPALLBAR_STEPPING": "lattice"})
-    check(r.returncode == 0, f"the same on the lattice fits in 280 MB: exit {r.returncode} "
-          f"{r.stderr!r}")
+    # a bar the characteristic steps would serve (rows every 1e6 steps) needs their arrays
+    # too (about 80 bytes a cell: 1e6 cells ~304 MB, ~224 MB on the lattice): under 280 MB
+    # they do not fit, and every step is the lattice's, with a note (0.6.3 refused the run;
+    # a sweep's cases went over the limit unchecked): the outputs are the lattice's, bit
+    # for bit, where without the limit the rings serve the deck (some bit differs)
+    def outputs(prefix, exts):
+        return {e: open(os.path.join(d, prefix + e)).read().replace(prefix, "PREFIX")
+                for e in exts}
+    with open(os.path.join(d, "ringbig.nml"), "w") as f:
+        f.write(MEM_DECK.format(t_end="1e-8", cells=1000000, extra=", history_every = 1000000"))
+    limited = {"SPALLBAR_MEMORY_LIMIT": str(280 * 10**6)}
+    r = run_env(exe, ["ringbig.nml", "--quiet", "--output", "lim"], d, limited)
+    notes = [l for l in r.stderr.splitlines() if l.strip()]
+    check(r.returncode == 0 and len(notes) == 1 and notes[0].startswith("spallbar: note: ")
+          and "characteristic steps" in notes[0] and "280.0 MB" in notes[0]
+          and "lattice" in notes[0],
+          f"ringbig, 1e6 cells under 280 MB: exit {r.returncode} {r.stderr!r}")
+    r_lat = run_env(exe, ["ringbig.nml", "--quiet", "--output", "lat"], d,
+                    {"SPALLBAR_STEPPING": "lattice"})
+    r_free = run_env(exe, ["ringbig.nml", "--quiet", "--output", "free"], d)
+    exts = (".his", ".evt", ".prf", ".frg", ".imp", ".spl")
+    if r.returncode == 0 and r_lat.returncode == 0 and r_free.returncode == 0:
+        check(outputs("lim", exts) == outputs("lat", exts),
+              "ringbig under 280 MB: outputs differ from SPALLBAR_STEPPING=lattice")
+        check(outputs("free", exts) != outputs("lat", exts),
+              "ringbig without a limit: the rings did not serve it (every bit as the lattice)")
+        check(r_free.stderr.strip() == "", f"ringbig without a limit said {r_free.stderr!r}")
+        print(f"ok   ringbig, 1e6 cells, limit 280 MB: the lattice's outputs; {notes[0]}")
+    else:
+        check(False, f"ringbig: exit {r.returncode}, lattice {r_lat.returncode}, "
+              f"free {r_free.returncode}: {r_lat.stderr!r} {r_free.stderr!r}")
+    # a sweep's cases the same: its table the lattice's, row for row
+    with open(os.path.join(d, "ringsweep.nml"), "w") as f:
+        f.write(MEM_DECK.format(t_end="1e-8", cells=1000000, extra="") +
+                "&strength_field kind = 'weibull', modulus = 6.0, scale = 1e9 /\n"
+                "&sweep realizations = 2, seed = 1 /\n")
+
+    def table(prefix):
+        return [l for l in open(os.path.join(d, prefix + ".sweep")) if not l.startswith("#")]
+    rs = run_env(exe, ["--sweep", "ringsweep.nml", "--quiet", "--output", "slim"], d, limited)
+    rs_lat = run_env(exe, ["--sweep", "ringsweep.nml", "--quiet", "--output", "slat"], d,
+                     {"SPALLBAR_STEPPING": "lattice"})
+    check(rs.returncode == 0 and rs_lat.returncode == 0 and len(table("slim")) == 3 and
+          table("slim") == table("slat"),
+          f"a sweep of 1e6-cell cases under 280 MB: exit {rs.returncode} {rs.stderr!r}, "
+          f"lattice {rs_lat.returncode}")
+    if rs.returncode == 0:
+        print("ok   a sweep of 1e6-cell cases under 280 MB: the lattice's table")
     for f in only_deck(d, "ringbig"):      # (the folder holds only decks for the checks below)
+        os.remove(os.path.join(d, f))
+    for f in ("ringbig.nml", "ringsweep.nml"):
         os.remove(os.path.join(d, f))
 
     # the largest mesh the deck reader takes, under ulimit -v 3 GB: refused, not

@@ -307,7 +307,7 @@ contains
          end if
          return
       end if
-      if (abs(fraction(x)) == 0.5_wp) then
+      if (ibits(transfer(x, 0_int64), 0, 52) == 0_int64) then   ! a power of two (or zero)
          do d = 1, 17
             call try(d, buf, same)
             if (same) exit

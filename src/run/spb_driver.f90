@@ -10,7 +10,7 @@ module spb_driver
    use spb_strings, only: itoa
    use spb_cli, only: cli_t
    use spb_deck, only: deck_t, read_deck, deck_warnings
-   use spb_sim, only: sim_t, checkpoint_t, ring_span_at_start
+   use spb_sim, only: sim_t, checkpoint_t, ring_span_at_start, ring_memory_note
    use spb_summary, only: run_summary_t, write_summary
    use spb_diag, only: frag_info_t, fragment_list
    use spb_output, only: write_mesh_summary
@@ -61,7 +61,8 @@ contains
          write(unit, '(a)') '  ' // estimate_line(est)
       end if
       flush(unit)   ! a log of stdout and stderr together: the header first
-      notes = noted(note, warnings(deck, sim%mesh%nsteps, est))
+      ! last, when the characteristic steps' arrays did not fit: every step on the lattice
+      notes = noted(note, warnings(deck, sim%mesh%nsteps, est), ring_memory_note(sim))
    end subroutine announce_run
 
    !> After a run: the run summary's text (spb_summary) with the fragments at the end and
@@ -158,18 +159,21 @@ contains
       end do
    end subroutine warn
 
-   !> The lines a run says on stderr once it starts: note (when not empty), then lines. (An
-   !> array constructor with a type-spec over trim(note) and a function result corrupts the
-   !> heap under gfortran 12: built element by element here.)
-   function noted(note, lines) result(all)
+   !> The lines a run says on stderr once it starts: note, then lines, then last (note and
+   !> last when not empty). (An array constructor with a type-spec over trim(note) and a
+   !> function result corrupts the heap under gfortran 12: built element by element here.)
+   function noted(note, lines, last) result(all)
       character(len=*), intent(in) :: note       !! a line first ('': none)
       character(len=*), intent(in) :: lines(:)   !! the other lines
-      character(len=max(len(note), len(lines))), allocatable :: all(:)
-      integer :: k0
+      character(len=*), intent(in) :: last       !! a line last ('': none)
+      character(len=max(len(note), len(lines), len(last))), allocatable :: all(:)
+      integer :: k0, k1
       k0 = merge(1, 0, len_trim(note) > 0)
-      allocate(all(size(lines) + k0))
+      k1 = merge(1, 0, len_trim(last) > 0)
+      allocate(all(size(lines) + k0 + k1))
       if (k0 == 1) all(1) = note
-      all(k0 + 1:) = lines
+      all(k0 + 1:k0 + size(lines)) = lines
+      if (k1 == 1) all(size(all)) = last
    end function noted
 
    !> The deck's plausibility warnings as stderr lines ('spallbar: warning: ...'); steps: the

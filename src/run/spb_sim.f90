@@ -50,7 +50,7 @@ module spb_sim
    private
    public :: sim_t, sim_setup, sim_run, sim_step, checkpoint_t, setup_model, &
       run_options_t, memory_text, run_base_bytes, run_cell_bytes, ring_span_at_start, &
-      ring_retry
+      ring_retry, ring_memory_note
 
    !> The characteristic steps (spb_ring) stand in for the lattice's over a span of at least
    !> ring_min_steps steps of a bar of at least ring_min_cells cells: below either the
@@ -143,6 +143,8 @@ module spb_sim
       logical :: rings = .true.                      !! characteristic steps where a bar
                                                      !! qualifies (spb_ring); .false.: the
                                                      !! lattice always (SPALLBAR_STEPPING)
+      logical :: rings_dropped = .false.             !! asked for, but their arrays did not
+                                                     !! fit (sim_setup): the lattice always
    end type run_options_t
 
    type :: sim_t
@@ -219,17 +221,42 @@ contains
          w0 = wave_energy(sim%mesh, sim%st, sim%prob%gravity, 0.0_wp, 0.0_wp)
          sim%st%ledger%w_wave = -w0%w_support
       end if
-      ! a bar the characteristic steps serve from its start needs their arrays too: the
-      ! memory checked again with them (doc/method.md), before anything is written (a
-      ! run; a sweep checks its cases before any runs, without them)
-      if (with_files .and. ring_span_at_start(sim) > 0) then
+      ! a bar the characteristic steps may serve, from its start or later, in a run or a
+      ! sweep's case, needs their arrays too (ring_cell_bytes a cell while they last): where
+      ! they do not fit beside the run in the memory this process may use, every step is
+      ! the lattice's, the same results to round-off (doc/method.md, "Memory"; the run says
+      ! so, ring_memory_note); where they fit, the x-t buffer is sized with them counted
+      if (sim%opt%rings .and. sim%mesh%n >= ring_min_cells) then
          restarted = .false.
          if (present(restart)) restarted = restart
-         call plan_memory(deck, sim%mesh%n, .true., restarted, &
-                          real(sim%mesh%n, wp) * ring_cell_bytes, sim%opt%xt_rows, err, &
-                          rings=.true.)
+         block
+            type(spb_error_t), allocatable :: no_fit
+            integer :: rows
+            call plan_memory(deck, sim%mesh%n, with_files, restarted, &
+                             real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit)
+            if (allocated(no_fit)) then
+               sim%opt%rings = .false.
+               sim%opt%rings_dropped = .true.
+            else
+               sim%opt%xt_rows = rows
+            end if
+         end block
       end if
    end subroutine sim_setup
+
+   !> What a run says when the characteristic steps' arrays did not fit (sim_setup): a
+   !> line for stderr, '' when they fit or were not asked for.
+   function ring_memory_note(sim) result(note)
+      type(sim_t), intent(in) :: sim       !! the simulation, set up
+      character(len=:), allocatable :: note
+      note = ''
+      if (.not. sim%opt%rings_dropped) return
+      note = 'spallbar: note: the arrays of the characteristic steps (doc/method.md, ' // &
+         '"Memory"; about ' // memory_text(real(sim%mesh%n, wp) * ring_cell_bytes) // &
+         ' for ' // itoa(sim%mesh%n) // ' cells) do not fit beside the run in the ' // &
+         'memory this process may use (' // memory_text(real(sys_memory_limit(), wp)) // &
+         '): every step is the lattice''s, slower, with the same results to round-off'
+   end function ring_memory_note
 
    !> The problem of a validated deck, its mesh and its load (the load table read here, after
    !> the mesh: a deck with faults in both reports the mesh's first). Before the mesh is
@@ -287,7 +314,7 @@ contains
    !> before anything of its size is allocated: the mesh and state (refused naming &mesh
    !> cells or dt), then with hdf5 and field_every the x-t buffer, which holds 64 times or
    !> as many as fit, at least one (refused naming field_every).
-   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err, rings)
+   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: n             !! cells of the mesh
       logical, intent(in) :: files         !! the run writes its outputs
@@ -295,15 +322,8 @@ contains
       real(wp), intent(in) :: extra        !! memory needed besides [bytes]
       integer, intent(out) :: xt_rows      !! x-t times it may buffer
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      logical, intent(in), optional :: rings   !! extra holds the characteristic steps' arrays
-                                               !! (the message says so)
       real(wp) :: limit, need, per_time, one
-      character(len=:), allocatable :: what, why
-      why = ''
-      if (present(rings)) then
-         if (rings) why = ' with the arrays of its characteristic steps (doc/method.md; ' // &
-                          'SPALLBAR_STEPPING=lattice needs less)'
-      end if
+      character(len=:), allocatable :: what
       limit = real(sys_memory_limit(), wp)
       need = extra + run_base_bytes + real(n, wp) * run_cell_bytes
       if (restart) need = need + real(n, wp) * restart_cell_bytes
@@ -315,7 +335,7 @@ contains
       end if
       if (need > limit) then
          call make_error(err, what // ' needs about ' // memory_text(need) // &
-                         ' of memory' // why // '; the limit here is ' // memory_text(limit))
+                         ' of memory; the limit here is ' // memory_text(limit))
          return
       end if
       if (.not. (files .and. deck%run%hdf5 .and. deck%run%field_every > 0)) return
