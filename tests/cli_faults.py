@@ -22,7 +22,8 @@ lost, nothing half made.
     cases) the characteristic steps would serve takes every step on the lattice where their
     arrays do not fit, the outputs bit for bit SPALLBAR_STEPPING=lattice's, with a note;
     the lattice's steps between rows far apart run in blocks up to the next check, under a
-    small address space;
+    small address space; a cgroup's memory limit (Slurm's --mem) is a limit too (a child
+    cgroup of 100 MB; skipped with a message where none can be made);
   * a Weibull field whose draws overflow (or underflow) is refused before it is drawn;
   * a sweep's output that is a folder: exit 2 before any case runs, nothing created;
   * issue 32: a reader holding PREFIX.h5 does not stop a rerun (temporaries, renamed at the
@@ -633,6 +634,80 @@ def memory_limits(exe, work, check):
         print("ok   8e6 lattice steps between two rows run under a 384 MB address space")
 
 
+def make_cgroup(limit):
+    """A child cgroup of this process's own with a memory limit (bytes): (the file a
+    process joins it through, the folder), or (None, why) where cgroups cannot be made
+    here (not root, no writable hierarchy, no memory controller)."""
+    try:
+        lines = open("/proc/self/cgroup").read().splitlines()
+    except OSError as e:
+        return None, f"no /proc/self/cgroup ({e})"
+    name = f"spallbar-test-{os.getpid()}"
+    for line in lines:
+        hid, ctrl, path = line.split(":", 2)
+        if hid != "0" and "memory" not in ctrl.split(","):
+            continue
+        base = "/sys/fs/cgroup/memory" if hid != "0" else "/sys/fs/cgroup"
+        limit_file = "memory.limit_in_bytes" if hid != "0" else "memory.max"
+        for parent in (os.path.join(base, path.lstrip("/")), base):
+            folder = os.path.join(parent, name)
+            try:
+                if hid == "0":
+                    with open(os.path.join(parent, "cgroup.subtree_control"), "w") as f:
+                        f.write("+memory")
+                os.mkdir(folder)
+            except OSError:
+                continue
+            try:
+                with open(os.path.join(folder, limit_file), "w") as f:
+                    f.write(str(limit))
+                return os.path.join(folder, "cgroup.procs"), folder
+            except OSError:
+                os.rmdir(folder)
+    return None, "no writable cgroup memory hierarchy"
+
+
+def cgroup_limit(exe, work, check):
+    """A cgroup's memory limit (Slurm's --mem, a container's) is a limit like ulimit -v: a
+    deck beyond it is refused, exit 2 naming &mesh cells and the limit, nothing written
+    (0.6.3 ran it and the kernel killed it without a word, exit 137); a deck within it
+    runs. Skipped with a message where no cgroup can be made."""
+    d = os.path.join(work, "cgroup")
+    os.makedirs(d)
+    procs, folder = make_cgroup(100 * 10**6)
+    if procs is None:
+        print(f"skip cgroup memory limit: {folder}")
+        return
+
+    def join():
+        with open(procs, "w") as f:
+            f.write(str(os.getpid()))
+    try:
+        with open(os.path.join(d, "big.nml"), "w") as f:
+            f.write(MEM_DECK.format(t_end="2e-9", cells=1000000, extra=""))
+        with open(os.path.join(d, "small.nml"), "w") as f:
+            f.write(SMALL)
+        r = subprocess.run([exe, "big.nml", "--quiet"], cwd=d, capture_output=True, text=True,
+                           timeout=600, stdin=subprocess.DEVNULL, preexec_fn=join)
+        lines = one_line(r)
+        check(r.returncode == 2 and len(lines) == 1 and "&mesh: cells = 1000000" in lines[0]
+              and "the limit here is 100.0 MB" in lines[0],
+              f"1e6 cells in a 100 MB cgroup: exit {r.returncode} {r.stderr!r}")
+        check(only_deck(d, "big") == [], f"1e6 cells in a 100 MB cgroup wrote {only_deck(d, 'big')}")
+        r2 = subprocess.run([exe, "small.nml", "--quiet"], cwd=d, capture_output=True,
+                            text=True, timeout=600, stdin=subprocess.DEVNULL, preexec_fn=join)
+        check(r2.returncode == 0, f"a small deck in a 100 MB cgroup: exit {r2.returncode} "
+              f"{r2.stderr!r}")
+        if r.returncode == 2 and r2.returncode == 0:
+            print(f"ok   cgroup limit 100 MB ({folder}): {lines[0] if lines else ''}; a small "
+                  "deck runs")
+    finally:
+        try:
+            os.rmdir(folder)
+        except OSError as e:
+            print(f"note: cannot remove {folder}: {e}")
+
+
 def weibull_overflow(exe, work, check):
     """A Weibull field whose largest draw overflows the deck's reals is refused before any
     strength is drawn (it was SIGFPE in the Debug build, Inf strengths in Release)."""
@@ -815,6 +890,7 @@ def main():
     tampered_checkpoints(exe, work, check)
     special_files(exe, work, check)
     memory_limits(exe, work, check)
+    cgroup_limit(exe, work, check)
     weibull_overflow(exe, work, check)
     sweep_outputs_first(exe, work, check)
     reader_holds_h5(exe, work, check)

@@ -335,7 +335,8 @@ contains
 
    !> The memory this process may use [bytes]: the physical memory (sysconf(3)
    !> _SC_PHYS_PAGES x _SC_PAGESIZE), or the address-space limit (getrlimit(2) RLIMIT_AS,
-   !> the soft limit `ulimit -v` sets) when that is smaller; the environment variable
+   !> the soft limit `ulimit -v` sets), or the memory limit of its cgroup (Slurm's --mem, a
+   !> container's: cgroup_memory_limit) when that is smaller; the environment variable
    !> SPALLBAR_MEMORY_LIMIT (bytes, digits only; tests) lowers it further. Linux numbers:
    !> _SC_PAGESIZE 30, _SC_PHYS_PAGES 85, RLIMIT_AS 9, RLIM_INFINITY all bits set (-1 here).
    !> huge(1_int64) when nothing is known.
@@ -371,10 +372,154 @@ contains
       if (c_getrlimit(9_c_int, rlim) == 0_c_int) then
          if (rlim(1) > 0) bytes = min(bytes, int(rlim(1), int64))
       end if
+      bytes = min(bytes, cgroup_memory_limit())
       call get_environment_variable('SPALLBAR_MEMORY_LIMIT', text, length, status)
       if (status /= 0 .or. length < 1 .or. length > 18) return
       if (verify(text(:length), '0123456789') /= 0) return
       read(text(:length), *, iostat=ios) env_bytes
       if (ios == 0 .and. env_bytes > 0) bytes = min(bytes, env_bytes)
    end function sys_memory_limit
+
+   !> The memory limit of the cgroup this process is in [bytes], huge(1_int64) when there is
+   !> none or nothing can be read: the smallest of its cgroup's and every cgroup's above it
+   !> up to the mount's root, memory.max (cgroup v2; 'max': none) or memory.limit_in_bytes
+   !> (v1), as Slurm (--mem, ConstrainRAMSpace) and container runtimes set them, and beyond
+   !> which the kernel kills the process without a word. The cgroup's path
+   !> (/proc/self/cgroup: '0::PATH' for v2, 'N:...,memory,...:PATH' for v1) is taken relative
+   !> to the root of the mount that holds the hierarchy (/proc/self/mountinfo: fstype
+   !> cgroup2, or cgroup with the memory option), as inside a container whose view starts at
+   !> its own cgroup. Both versions are read (a hybrid system mounts both; the one without
+   !> the memory controller has no such files).
+   function cgroup_memory_limit() result(bytes)
+      integer(int64) :: bytes
+      character(len=4096) :: mount(2), root(2), path(2)   ! v1 memory (1), v2 (2)
+      character(len=4096) :: line
+      character(len=:), allocatable :: rel
+      integer :: u, ios, v, k
+      character(len=*), parameter :: files(2) = [character(len=21) :: 'memory.limit_in_bytes', &
+                                                 'memory.max']
+      bytes = huge(1_int64)
+      mount = ''
+      root = ''
+      path = ''
+      ! the mounts of the v1 memory hierarchy (1) and of the v2 unified one (2)
+      open(newunit=u, file='/proc/self/mountinfo', action='read', status='old', iostat=ios)
+      if (ios /= 0) return
+      do
+         read(u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         call mount_line(line)
+      end do
+      close(u)
+      ! the process's cgroup in each
+      open(newunit=u, file='/proc/self/cgroup', action='read', status='old', iostat=ios)
+      if (ios /= 0) return
+      do
+         read(u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         call cgroup_line(line)
+      end do
+      close(u)
+      do v = 1, 2
+         if (len_trim(mount(v)) == 0 .or. len_trim(path(v)) == 0) cycle
+         rel = trim(path(v))
+         if (trim(root(v)) /= '/') then
+            ! a path outside the mount's root: only the mount's own files can be read
+            if (index(rel // '/', trim(root(v)) // '/') == 1) then
+               rel = rel(len_trim(root(v)) + 1:)
+            else
+               rel = ''
+            end if
+         end if
+         ! the cgroup and each one above it, up to the mount's root
+         do
+            if (len(rel) > 0) then
+               if (rel(len(rel):len(rel)) == '/') rel = rel(:len(rel) - 1)
+            end if
+            bytes = min(bytes, limit_file(trim(mount(v)) // rel // '/' // trim(files(v))))
+            if (len(rel) == 0) exit
+            k = index(rel, '/', back=.true.)
+            rel = rel(:max(k - 1, 0))
+         end do
+      end do
+   contains
+      !> One line of /proc/self/mountinfo: 'ID PARENT MAJ:MIN ROOT MOUNTPOINT OPTIONS... -
+      !> FSTYPE SOURCE SUPEROPTIONS'.
+      subroutine mount_line(text)
+         character(len=*), intent(in) :: text   !! the line
+         character(len=:), allocatable :: fstype, super
+         integer :: dash
+         dash = index(text, ' - ')
+         if (dash == 0) return
+         fstype = word(text(dash + 3:), 1)
+         super = word(text(dash + 3:), 3)
+         if (fstype == 'cgroup2') then
+            mount(2) = word(text(:dash), 5)
+            root(2) = word(text(:dash), 4)
+         else if (fstype == 'cgroup' .and. index(',' // super // ',', ',memory,') > 0) then
+            mount(1) = word(text(:dash), 5)
+            root(1) = word(text(:dash), 4)
+         end if
+      end subroutine mount_line
+      !> One line of /proc/self/cgroup: 'ID:CONTROLLERS:PATH'.
+      subroutine cgroup_line(text)
+         character(len=*), intent(in) :: text   !! the line
+         integer :: c1, c2
+         c1 = index(text, ':')
+         if (c1 == 0) return
+         c2 = c1 + index(text(c1 + 1:), ':')
+         if (c2 == c1) return
+         if (text(:c1 - 1) == '0' .and. c2 == c1 + 1) then
+            path(2) = text(c2 + 1:)
+         else if (index(',' // text(c1 + 1:c2 - 1) // ',', ',memory,') > 0) then
+            path(1) = text(c2 + 1:)
+         end if
+      end subroutine cgroup_line
+   end function cgroup_memory_limit
+
+   !> The n-th word of a line of words separated by blanks ('' when it has fewer).
+   pure function word(text, n) result(w)
+      character(len=*), intent(in) :: text   !! the line
+      integer, intent(in) :: n               !! which word, from 1
+      character(len=:), allocatable :: w
+      integer :: k, first, found
+      w = ''
+      found = 0
+      k = 1
+      do while (k <= len(text))
+         if (text(k:k) == ' ') then
+            k = k + 1
+            cycle
+         end if
+         first = k
+         do while (k <= len(text))
+            if (text(k:k) == ' ') exit
+            k = k + 1
+         end do
+         found = found + 1
+         if (found == n) then
+            w = text(first:k - 1)
+            return
+         end if
+      end do
+   end function word
+
+   !> The limit a cgroup file holds [bytes]: a number of bytes, or huge(1_int64) for 'max',
+   !> nothing, or a file that cannot be read.
+   function limit_file(name) result(bytes)
+      character(len=*), intent(in) :: name   !! the file
+      integer(int64) :: bytes
+      character(len=64) :: text
+      integer(int64) :: value
+      integer :: u, ios
+      bytes = huge(1_int64)
+      open(newunit=u, file=name, action='read', status='old', iostat=ios)
+      if (ios /= 0) return
+      read(u, '(a)', iostat=ios) text
+      close(u)
+      if (ios /= 0) return
+      if (len_trim(text) == 0 .or. verify(trim(text), '0123456789') /= 0) return
+      read(text, *, iostat=ios) value
+      if (ios == 0 .and. value > 0) bytes = value
+   end function limit_file
 end module spb_sys

@@ -178,7 +178,7 @@ contains
 
    !> Build mesh, load and initial state from a validated deck, once the memory they need
    !> (and the outputs', a restart's) is known to fit.
-   subroutine sim_setup(deck, sim, err, restart, files, rings)
+   subroutine sim_setup(deck, sim, err, restart, files, rings, limit)
       type(deck_t), intent(in) :: deck     !! the deck
       type(sim_t), intent(out) :: sim      !! the simulation
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
@@ -186,6 +186,9 @@ contains
       logical, intent(in), optional :: files     !! it writes its outputs (default .true.)
       logical, intent(in), optional :: rings     !! characteristic steps where they serve
                                                  !! (default; .false.: the lattice always)
+      real(wp), intent(in), optional :: limit    !! the memory this process may use, when the
+                                                 !! caller knows it (default sys_memory_limit)
+                                                 !! [bytes]
       type(wave_t) :: w0
       logical :: with_files, restarted
       with_files = .true.
@@ -201,7 +204,7 @@ contains
       sim%opt%energy_guard = deck%run%energy_guard
       sim%opt%gauge_every = sim%record%gauge_every
       call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err, files=files, &
-                       restart=restart, xt_rows=sim%opt%xt_rows)
+                       restart=restart, xt_rows=sim%opt%xt_rows, limit=limit)
       if (allocated(err)) return
       allocate(sim%gauges(size(sim%record%gauge_x)))
       call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges, sim%record%gauge_below)
@@ -233,7 +236,7 @@ contains
             type(spb_error_t), allocatable :: no_fit
             integer :: rows
             call plan_memory(deck, sim%mesh%n, with_files, restarted, &
-                             real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit)
+                             real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit, limit)
             if (allocated(no_fit)) then
                sim%opt%rings = .false.
                sim%opt%rings_dropped = .true.
@@ -261,7 +264,8 @@ contains
    !> The problem of a validated deck, its mesh and its load (the load table read here, after
    !> the mesh: a deck with faults in both reports the mesh's first). Before the mesh is
    !> built, the memory of the run is checked against the limit (plan_memory).
-   subroutine setup_model(deck, prob, mesh, load, report, err, files, restart, extra, xt_rows)
+   subroutine setup_model(deck, prob, mesh, load, report, err, files, restart, extra, xt_rows, &
+                          limit)
       type(deck_t), intent(in) :: deck     !! the deck
       type(problem_t), intent(out) :: prob   !! the problem
       type(mesh_t), intent(out) :: mesh    !! the mesh
@@ -273,6 +277,9 @@ contains
       real(wp), intent(in), optional :: extra    !! memory needed besides (a sweep's tables)
                                                  !! [bytes]
       integer, intent(out), optional :: xt_rows  !! x-t times the run may buffer
+      real(wp), intent(in), optional :: limit    !! the memory this process may use, when the
+                                                 !! caller knows it (default sys_memory_limit)
+                                                 !! [bytes]
       type(mesh_fault_t) :: fault
       integer :: n, rows
       logical :: with_files, restarted
@@ -286,7 +293,7 @@ contains
       prob = problem_from_deck(deck)
       call mesh_size(prob, n, fault)
       if (fault%kind == fault_none) then
-         call plan_memory(deck, n, with_files, restarted, beside, rows, err)
+         call plan_memory(deck, n, with_files, restarted, beside, rows, err, limit)
          if (allocated(err)) return
          if (present(xt_rows)) xt_rows = rows
       end if
@@ -314,7 +321,7 @@ contains
    !> before anything of its size is allocated: the mesh and state (refused naming &mesh
    !> cells or dt), then with hdf5 and field_every the x-t buffer, which holds 64 times or
    !> as many as fit, at least one (refused naming field_every).
-   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err)
+   subroutine plan_memory(deck, n, files, restart, extra, xt_rows, err, limit_in)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: n             !! cells of the mesh
       logical, intent(in) :: files         !! the run writes its outputs
@@ -322,18 +329,29 @@ contains
       real(wp), intent(in) :: extra        !! memory needed besides [bytes]
       integer, intent(out) :: xt_rows      !! x-t times it may buffer
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
+      real(wp), intent(in), optional :: limit_in   !! the memory this process may use, when
+                                                   !! the caller knows it (default
+                                                   !! sys_memory_limit, which reads the
+                                                   !! cgroup's files: a sweep asks once)
+                                                   !! [bytes]
       real(wp) :: limit, need, per_time, one
       character(len=:), allocatable :: what
-      limit = real(sys_memory_limit(), wp)
+      if (present(limit_in)) then
+         limit = limit_in
+      else
+         limit = real(sys_memory_limit(), wp)
+      end if
       need = extra + run_base_bytes + real(n, wp) * run_cell_bytes
       if (restart) need = need + real(n, wp) * restart_cell_bytes
       xt_rows = xt_rows_max
-      if (deck%mesh%cells > 0) then
-         what = '&mesh: cells = ' // itoa(deck%mesh%cells)
-      else
-         what = '&mesh: dt = ' // rtoa(deck%mesh%dt) // ' s gives ' // itoa(n) // ' cells, which'
-      end if
       if (need > limit) then
+         ! (the message made only here: a sweep checks every case, twice)
+         if (deck%mesh%cells > 0) then
+            what = '&mesh: cells = ' // itoa(deck%mesh%cells)
+         else
+            what = '&mesh: dt = ' // rtoa(deck%mesh%dt) // ' s gives ' // itoa(n) // &
+                   ' cells, which'
+         end if
          call make_error(err, what // ' needs about ' // memory_text(need) // &
                          ' of memory; the limit here is ' // memory_text(limit))
          return

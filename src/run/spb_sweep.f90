@@ -174,7 +174,7 @@ contains
    !> Run case c without files: its table row and fragment-length histogram over
    !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin),
    !> and the ensemble's history columns at its rows (series: (column, row) in column order).
-   subroutine run_case(deck, c, nbins, l_hist, ids, rings, row, hist, series)
+   subroutine run_case(deck, c, nbins, l_hist, ids, rings, row, hist, series, limit)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: c               !! case number
       integer, intent(in) :: nbins           !! histogram bins
@@ -186,6 +186,8 @@ contains
       real(wp), intent(out) :: row(n_columns)   !! the case's table row (sweep_table columns)
       integer, intent(out) :: hist(nbins)    !! fragments per length bin
       real(wp), intent(out) :: series(:)     !! the ensemble's columns at the history rows
+      real(wp), intent(in), optional :: limit   !! the memory this process may use (default:
+                                                !! sys_memory_limit, asked again) [bytes]
       real(wp), allocatable :: samples(:, :)
       type(deck_t) :: cdeck
       type(sim_t) :: sim
@@ -204,7 +206,7 @@ contains
       row(col_realization) = real(realization, wp)
       row(col_seed) = real(cdeck%field%seed, wp)
       if (allocated(err)) return              ! checked before any case runs
-      call sim_setup(cdeck, sim, err, files=.false., rings=rings)
+      call sim_setup(cdeck, sim, err, files=.false., rings=rings, limit=limit)
       if (allocated(err)) return
       if (size(ids) > 0) then
          call sim_run(sim, '', .false., summary, err, files=.false., sample_ids=ids, &
@@ -284,6 +286,7 @@ contains
       integer :: nc, nbins, rank, nranks, c
       type(meter_t) :: meter
       logical :: on
+      real(wp) :: limit
 
       t0 = par_wtime()
       on = .true.
@@ -296,8 +299,12 @@ contains
       nbins = deck%sweep%bins
       rank = par_rank()
       nranks = par_size()
-      call check_tables(deck, tables, err)
-      if (.not. allocated(err)) call check_cases(deck, tables, l_hist, est_values, ens, err)
+      ! the memory this process may use, asked once (sys_memory_limit reads the cgroup's
+      ! files: 0.25 ms, a third of a case's run)
+      limit = real(sys_memory_limit(), wp)
+      call check_tables(deck, limit, tables, err)
+      if (.not. allocated(err)) call check_cases(deck, limit, tables, l_hist, est_values, ens, &
+                                                 err)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
       if (rank == 0) call tell_estimate(deck, sweep_estimate(est_values, &
@@ -320,11 +327,13 @@ contains
       summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
-         call run_static(deck, 1, 0, l_hist, ens%ids, on, meter, rows, hists, series)
+         call run_static(deck, 1, 0, l_hist, ens%ids, on, limit, meter, rows, hists, series)
       else if (deck%sweep%distribution == 'dynamic') then
-         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, on, meter, rows, hists, series)
+         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, on, limit, meter, rows, hists, &
+                          series)
       else
-         call run_static(deck, nranks, rank, l_hist, ens%ids, on, meter, rows, hists, series)
+         call run_static(deck, nranks, rank, l_hist, ens%ids, on, limit, meter, rows, hists, &
+                         series)
       end if
       summary%wall = par_wtime() - t0
       ! every rank learns whether one was stopped (and waits here until all are done)
@@ -362,13 +371,14 @@ contains
 
    !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
    !> case order (rank 0 receives in the same order: no deadlock).
-   subroutine run_static(deck, k, me, l_hist, ids, rings, meter, rows, hists, series)
+   subroutine run_static(deck, k, me, l_hist, ids, rings, limit, meter, rows, hists, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: k                 !! ranks
       integer, intent(in) :: me                !! this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
       logical, intent(in) :: rings             !! characteristic steps where they serve
+      real(wp), intent(in) :: limit            !! the memory this process may use [bytes]
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
@@ -381,7 +391,7 @@ contains
       do c = me + 1, nc, k
          if (stop_signal() /= 0) exit
          call run_case(deck, c, nbins, l_hist, ids, rings, rows(:, c), hists(:, c), &
-                          series(:, c))
+                          series(:, c), limit)
          done = done + 1
          if (me == 0) call show(meter, done * k, nc)
       end do
@@ -425,13 +435,15 @@ contains
 
    !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
    !> the other ranks compute. Case 0 means stop.
-   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, rings, meter, rows, hists, series)
+   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, rings, limit, meter, rows, hists, &
+                          series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: rank              !! this rank
       integer, intent(in) :: nranks            !! ranks
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
       logical, intent(in) :: rings             !! characteristic steps where they serve
+      real(wp), intent(in) :: limit            !! the memory this process may use [bytes]
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
@@ -472,7 +484,7 @@ contains
             call par_recv(c, 0, tag_work)
             if (c == 0) exit
             call run_case(deck, c, nbins, l_hist, ids, rings, rows(:, c), hists(:, c), &
-                          series(:, c))
+                          series(:, c), limit)
          end do
       end if
    end subroutine run_dynamic
@@ -503,8 +515,9 @@ contains
    !> with perturb every realization's; the histogram range is the longest bar of the cases.
    !> With ensemble_columns: the ensemble (its rows: every realization's history times,
    !> which must be the same), and its memory beside the tables'.
-   subroutine check_cases(deck, tables, l_hist, est_values, ens, err)
+   subroutine check_cases(deck, limit, tables, l_hist, est_values, ens, err)
       type(deck_t), intent(in) :: deck     !! the deck
+      real(wp), intent(in) :: limit        !! the memory this process may use [bytes]
       real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
       real(wp), intent(out) :: l_hist      !! histogram range: the longest bar of the cases [m]
       type(estimate_t), allocatable, intent(out) :: est_values(:)   !! the work of a case of
@@ -531,7 +544,7 @@ contains
          if (len_trim(deck%sweep%perturb) > 0) c = iv
          call case_deck(deck, c, cdeck, value, realization, err)
          if (.not. allocated(err)) call setup_model(cdeck, prob, mesh, load, report, err, &
-                                                    files=.false., extra=extra)
+                                                    files=.false., extra=extra, limit=limit)
          if (allocated(err)) then
             if (deck%sweep%n_values > 0) err%message = '&sweep: values(' // itoa(iv) // ') = ' &
                // rtoa(value) // ' for ' // trim(deck%sweep%vary) // ': ' // err%message
@@ -545,7 +558,7 @@ contains
                                                                   mesh%dt, 0, .false.)
          if (deck%sweep%n_ensemble == 0) cycle
          if (iv == 1) then
-            call start_ensemble(deck, mesh, tables, ens, extra, err)
+            call start_ensemble(deck, mesh, limit, tables, ens, extra, err)
          else if (mesh%nsteps /= ens%nsteps .or. abs(mesh%dt - ens%dt) > 0.0_wp) then
             call make_error(err, '&sweep: perturb = ''' // trim(deck%sweep%perturb) // &
                ''': realization ' // itoa(iv) // ' has other history times (dt = ' // &
@@ -561,16 +574,16 @@ contains
    !> The ensemble of a sweep with ensemble_columns, its realizations on mesh (the first
    !> realization's): refused when its memory, beside the tables' (and the runs' checked
    !> with them), is more than this process may use. extra: the memory both need [bytes].
-   subroutine start_ensemble(deck, mesh, tables, ens, extra, err)
+   subroutine start_ensemble(deck, mesh, limit, tables, ens, extra, err)
       type(deck_t), intent(in) :: deck     !! the deck
       type(mesh_t), intent(in) :: mesh     !! the first realization's mesh
+      real(wp), intent(in) :: limit        !! the memory this process may use [bytes]
       real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
       type(ensemble_t), intent(out) :: ens !! the ensemble
       real(wp), intent(out) :: extra       !! memory of the tables and the ensemble [bytes]
       type(spb_error_t), allocatable, intent(inout) :: err   !! the error (allocated: it failed)
       type(column_set_t) :: his
       character(len=16) :: units(deck%sweep%n_ensemble)
-      real(wp) :: limit
       integer :: j, k
       his = history_set()
       do j = 1, size(units)
@@ -583,7 +596,6 @@ contains
                           deck%run%history_every, mesh%nsteps, mesh%dt, deck%sweep%horizon_tol, &
                           deck%sweep%realizations)
       extra = tables + ensemble_bytes(ens%n_cols, ens%n_rows, sweep_case_count(deck))
-      limit = real(sys_memory_limit(), wp)
       if (run_base_bytes + extra > limit) call make_error(err, '&sweep: realizations = ' // &
          itoa(deck%sweep%realizations) // ' and ensemble_columns (' // itoa(ens%n_cols) // &
          ' at ' // itoa(ens%n_rows) // ' history rows: &run history_every = ' // &
@@ -621,14 +633,14 @@ contains
    !> The memory of the sweep's tables (a row and a histogram per case) against the limit
    !> of this process, before they are allocated; the cases' runs are checked beside them
    !> (check_cases).
-   subroutine check_tables(deck, tables, err)
+   subroutine check_tables(deck, limit, tables, err)
       type(deck_t), intent(in) :: deck     !! the deck
+      real(wp), intent(in) :: limit        !! the memory this process may use [bytes]
       real(wp), intent(out) :: tables      !! memory of the tables [bytes]
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
-      real(wp) :: cases, limit
+      real(wp) :: cases
       cases = real(max(1, deck%sweep%n_values), wp) * real(max(1, deck%sweep%realizations), wp)
       tables = cases * (case_bytes + bin_bytes * real(deck%sweep%bins, wp))
-      limit = real(sys_memory_limit(), wp)
       if (run_base_bytes + tables > limit) call make_error(err, '&sweep: realizations = ' // &
          itoa(deck%sweep%realizations) // ' and bins = ' // itoa(deck%sweep%bins) // &
          ' need about ' // memory_text(run_base_bytes + tables) // ' of memory (a row and ' // &
