@@ -4,7 +4,8 @@ same PREFIX.sweep to the byte and the same PREFIX_sweep.h5 datasets; the realiza
 differ; one realization re-run alone as an ordinary deck (its seed from the table) gives
 its row; a case keeps no history rows (its max_excess and ledger_drift from the checks every
 64 steps stay round-off) and the energy guard still stops a case (status 3, at the check
-that sees it); bad &sweep input exits 2 with one line naming &sweep and writes nothing.
+that sees it); bad &sweep input exits 2 with one line naming &sweep and writes nothing; a
+signal while the cases are checked ends the sweep at once, exit 143, nothing written.
 
 usage: cli_sweep.py SPALLBAR INPUT_DIR WORK_DIR MPIEXEC|-
 """
@@ -257,6 +258,34 @@ check(p.returncode == 2 and len(lines) == 1 and "cannot write" in lines[0] and
       "blocked.sweep.part" in lines[0] and "folder" in lines[0],
       f"the table's temporary is a folder: exit {p.returncode} {p.stderr.strip()}")
 check(set(os.listdir(work)) - before == set(), "the table's temporary is a folder: files made")
+# -- a signal while the cases are checked (a perturbed sweep builds every realization's mesh
+# before any runs: 2000 meshes of 2e5 cells, seconds): exit 143 at once, one line, nothing
+# written (0.6.3 went on checking, then wrote a table of 2000 cases not run)
+sig_dir = os.path.join(work, "signal_checks")
+os.makedirs(sig_dir)
+open(os.path.join(sig_dir, "p.nml"), "w").write(
+    "&run t_end = 1e-6, title = 'perturbed', warnings = .false. /\n&mesh cells = 200000 /\n"
+    "&segments n = 1, length = 1.0, young = 2e11, density = 8000, strength = 1e9 /\n"
+    "&load kind = 'power', p0 = 1e6, t_k = 1e-4 /\n"
+    "&sweep perturb = 'p0', spread = 1.0e-3, realizations = 2000 /\n")
+proc = subprocess.Popen([exe, "--sweep", "p.nml", "-q", "-o", "pp"], cwd=sig_dir,
+                        stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                        text=True)
+time.sleep(1.5)
+t0 = time.time()
+proc.send_signal(signal.SIGTERM)
+_, err = proc.communicate(timeout=600)
+waited = time.time() - t0
+lines = err.strip().splitlines()
+check(proc.returncode == 143 and len(lines) == 1 and "stopped by signal 15 while its cases "
+      "were checked" in lines[0] and "nothing written" in lines[0],
+      f"a signal while the cases are checked: exit {proc.returncode} {err.strip()[:400]!r}")
+check(sorted(os.listdir(sig_dir)) == ["p.nml"],
+      f"a signal while the cases are checked: files {sorted(os.listdir(sig_dir))}")
+check(waited < 1.0, f"a signal while the cases are checked: exit {waited:.2f} s after it")
+print(f"a signal while the cases are checked: exit {proc.returncode} {waited:.2f} s after it; "
+      f"{lines[0] if lines else ''}")
+
 if mpiexec != "-":
     stopped_sweep("stop_mpirun", False)
     stopped_sweep("stop_ranks", True)

@@ -283,7 +283,7 @@ contains
       real(wp), allocatable :: rows(:, :), series(:, :)
       integer, allocatable :: hists(:, :)
       real(wp) :: l_hist, t0, tables
-      integer :: nc, nbins, rank, nranks, c
+      integer :: nc, nbins, rank, nranks, c, sig
       type(meter_t) :: meter
       logical :: on
       real(wp) :: limit
@@ -307,6 +307,15 @@ contains
                                                  err)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
+      ! a signal while the cases were checked (a perturbed sweep builds every realization's
+      ! mesh first): nothing ran, nothing is written (every rank asks: a collective)
+      sig = par_max(int(stop_signal()))
+      if (sig /= 0) then
+         summary%signal = sig
+         call make_error(err, 'sweep: stopped by signal ' // itoa(sig) // ' while its ' // &
+            'cases were checked, before any ran; nothing written', code=128 + sig)
+         return
+      end if
       if (rank == 0) call tell_estimate(deck, sweep_estimate(est_values, &
                                         deck%sweep%realizations, nranks), echo)
       ! the outputs once every rank can run the cases (PREFIX.lock is made last)
@@ -540,6 +549,7 @@ contains
       n_cases = max(1, deck%sweep%n_values)
       if (len_trim(deck%sweep%perturb) > 0) n_cases = nrep
       do iv = 1, n_cases
+         if (stop_signal() /= 0) exit          ! the sweep ends before any case (run_sweep)
          c = (iv - 1) * nrep + 1
          if (len_trim(deck%sweep%perturb) > 0) c = iv
          call case_deck(deck, c, cdeck, value, realization, err)
