@@ -637,33 +637,55 @@ def memory_limits(exe, work, check):
 def make_cgroup(limit):
     """A child cgroup of this process's own with a memory limit (bytes): (the file a
     process joins it through, the folder), or (None, why) where cgroups cannot be made
-    here (not root, no writable hierarchy, no memory controller)."""
+    here (not root, no writable hierarchy, no memory controller). The hierarchies are
+    found in /proc/self/mountinfo (cgroup with the memory option: v1; cgroup2: v2), and a
+    folder made there counts only when the kernel gave it its limit file (a real cgroup, not
+    a folder of a tmpfs); the root cgroup's controls are never written."""
     try:
-        lines = open("/proc/self/cgroup").read().splitlines()
-    except OSError as e:
-        return None, f"no /proc/self/cgroup ({e})"
-    name = f"spallbar-test-{os.getpid()}"
-    for line in lines:
-        hid, ctrl, path = line.split(":", 2)
-        if hid != "0" and "memory" not in ctrl.split(","):
-            continue
-        base = "/sys/fs/cgroup/memory" if hid != "0" else "/sys/fs/cgroup"
-        limit_file = "memory.limit_in_bytes" if hid != "0" else "memory.max"
-        for parent in (os.path.join(base, path.lstrip("/")), base):
-            folder = os.path.join(parent, name)
-            try:
-                if hid == "0":
-                    with open(os.path.join(parent, "cgroup.subtree_control"), "w") as f:
-                        f.write("+memory")
-                os.mkdir(folder)
-            except OSError:
+        paths = {}
+        for line in open("/proc/self/cgroup").read().splitlines():
+            hid, ctrl, path = line.split(":", 2)
+            if hid == "0" and ctrl == "":
+                paths["v2"] = path
+            elif "memory" in ctrl.split(","):
+                paths["v1"] = path
+        mounts = []
+        for line in open("/proc/self/mountinfo").read().splitlines():
+            head, _, tail = line.partition(" - ")
+            f, t = head.split(), tail.split()
+            if len(f) < 5 or len(t) < 3:
                 continue
-            try:
-                with open(os.path.join(folder, limit_file), "w") as f:
-                    f.write(str(limit))
-                return os.path.join(folder, "cgroup.procs"), folder
-            except OSError:
-                os.rmdir(folder)
+            if t[0] == "cgroup" and "memory" in t[2].split(","):
+                mounts.append(("v1", f[3], f[4]))
+            elif t[0] == "cgroup2":
+                mounts.append(("v2", f[3], f[4]))
+    except (OSError, ValueError) as e:
+        return None, f"cannot read /proc/self ({e})"
+    name = f"spallbar-test-{os.getpid()}"
+    for version, root, mount in mounts:
+        path = paths.get(version)
+        if path is None or not (root == "/" or (path + "/").startswith(root + "/")):
+            continue
+        own = os.path.join(mount, path[len(root):].lstrip("/") if root != "/" else
+                           path.lstrip("/"))
+        limit_file = "memory.limit_in_bytes" if version == "v1" else "memory.max"
+        folder = os.path.join(own, name)
+        try:
+            if version == "v2" and os.path.realpath(own) != os.path.realpath(mount):
+                with open(os.path.join(own, "cgroup.subtree_control"), "w") as f:
+                    f.write("+memory")
+            os.mkdir(folder)
+        except OSError:
+            continue
+        if not os.path.exists(os.path.join(folder, limit_file)):
+            os.rmdir(folder)
+            continue
+        try:
+            with open(os.path.join(folder, limit_file), "w") as f:
+                f.write(str(limit))
+            return os.path.join(folder, "cgroup.procs"), folder
+        except OSError:
+            os.rmdir(folder)
     return None, "no writable cgroup memory hierarchy"
 
 

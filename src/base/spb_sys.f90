@@ -402,16 +402,7 @@ contains
       mount = ''
       root = ''
       path = ''
-      ! the mounts of the v1 memory hierarchy (1) and of the v2 unified one (2)
-      open(newunit=u, file='/proc/self/mountinfo', action='read', status='old', iostat=ios)
-      if (ios /= 0) return
-      do
-         read(u, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         call mount_line(line)
-      end do
-      close(u)
-      ! the process's cgroup in each
+      ! the process's cgroup in each hierarchy
       open(newunit=u, file='/proc/self/cgroup', action='read', status='old', iostat=ios)
       if (ios /= 0) return
       do
@@ -420,17 +411,21 @@ contains
          call cgroup_line(line)
       end do
       close(u)
+      ! the mount of each that holds it: of several, the one whose root is the longest
+      ! prefix of the process's path (a mount of another part of the hierarchy holds
+      ! other cgroups' files)
+      open(newunit=u, file='/proc/self/mountinfo', action='read', status='old', iostat=ios)
+      if (ios /= 0) return
+      do
+         read(u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         call mount_line(line)
+      end do
+      close(u)
       do v = 1, 2
          if (len_trim(mount(v)) == 0 .or. len_trim(path(v)) == 0) cycle
          rel = trim(path(v))
-         if (trim(root(v)) /= '/') then
-            ! a path outside the mount's root: only the mount's own files can be read
-            if (index(rel // '/', trim(root(v)) // '/') == 1) then
-               rel = rel(len_trim(root(v)) + 1:)
-            else
-               rel = ''
-            end if
-         end if
+         if (trim(root(v)) /= '/') rel = rel(len_trim(root(v)) + 1:)
          ! the cgroup and each one above it, up to the mount's root
          do
             if (len(rel) > 0) then
@@ -444,22 +439,29 @@ contains
       end do
    contains
       !> One line of /proc/self/mountinfo: 'ID PARENT MAJ:MIN ROOT MOUNTPOINT OPTIONS... -
-      !> FSTYPE SOURCE SUPEROPTIONS'.
+      !> FSTYPE SOURCE SUPEROPTIONS': a mount of hierarchy v whose root holds the process's
+      !> path, kept when its root is longer than the one kept before.
       subroutine mount_line(text)
          character(len=*), intent(in) :: text   !! the line
-         character(len=:), allocatable :: fstype, super
-         integer :: dash
+         character(len=:), allocatable :: fstype, super, r
+         integer :: dash, v
          dash = index(text, ' - ')
          if (dash == 0) return
          fstype = word(text(dash + 3:), 1)
          super = word(text(dash + 3:), 3)
          if (fstype == 'cgroup2') then
-            mount(2) = word(text(:dash), 5)
-            root(2) = word(text(:dash), 4)
+            v = 2
          else if (fstype == 'cgroup' .and. index(',' // super // ',', ',memory,') > 0) then
-            mount(1) = word(text(:dash), 5)
-            root(1) = word(text(:dash), 4)
+            v = 1
+         else
+            return
          end if
+         if (len_trim(path(v)) == 0) return
+         r = word(text(:dash), 4)
+         if (r /= '/' .and. index(trim(path(v)) // '/', r // '/') /= 1) return
+         if (len_trim(mount(v)) > 0 .and. len(r) <= len_trim(root(v))) return
+         mount(v) = word(text(:dash), 5)
+         root(v) = r
       end subroutine mount_line
       !> One line of /proc/self/cgroup: 'ID:CONTROLLERS:PATH'.
       subroutine cgroup_line(text)

@@ -62,7 +62,8 @@ contains
       end if
       flush(unit)   ! a log of stdout and stderr together: the header first
       ! last, when the characteristic steps' arrays did not fit: every step on the lattice
-      notes = noted(note, warnings(deck, sim%mesh%nsteps, est), ring_memory_note(sim))
+      notes = noted(note, warnings(deck, sim%mesh%nsteps, est), &
+                    ring_memory_note(sim, present(ck)))
    end subroutine announce_run
 
    !> After a run: the run summary's text (spb_summary) with the fragments at the end and

@@ -178,7 +178,7 @@ contains
 
    !> Build mesh, load and initial state from a validated deck, once the memory they need
    !> (and the outputs', a restart's) is known to fit.
-   subroutine sim_setup(deck, sim, err, restart, files, rings, limit)
+   subroutine sim_setup(deck, sim, err, restart, files, rings, limit, extra)
       type(deck_t), intent(in) :: deck     !! the deck
       type(sim_t), intent(out) :: sim      !! the simulation
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
@@ -189,8 +189,11 @@ contains
       real(wp), intent(in), optional :: limit    !! the memory this process may use, when the
                                                  !! caller knows it (default sys_memory_limit)
                                                  !! [bytes]
+      real(wp), intent(in), optional :: extra    !! memory needed besides (a sweep's tables)
+                                                 !! [bytes]
       type(wave_t) :: w0
-      logical :: with_files, restarted
+      real(wp) :: beside
+      logical :: with_files, restarted, may_serve
       with_files = .true.
       if (present(files)) with_files = files
       if (present(rings)) sim%opt%rings = rings
@@ -203,8 +206,10 @@ contains
       sim%opt%checkpoint_every = deck%run%checkpoint_every
       sim%opt%energy_guard = deck%run%energy_guard
       sim%opt%gauge_every = sim%record%gauge_every
+      beside = 0.0_wp
+      if (present(extra)) beside = extra
       call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err, files=files, &
-                       restart=restart, xt_rows=sim%opt%xt_rows, limit=limit)
+                       restart=restart, extra=beside, xt_rows=sim%opt%xt_rows, limit=limit)
       if (allocated(err)) return
       allocate(sim%gauges(size(sim%record%gauge_x)))
       call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges, sim%record%gauge_below)
@@ -224,19 +229,22 @@ contains
          w0 = wave_energy(sim%mesh, sim%st, sim%prob%gravity, 0.0_wp, 0.0_wp)
          sim%st%ledger%w_wave = -w0%w_support
       end if
-      ! a bar the characteristic steps may serve, from its start or later, in a run or a
-      ! sweep's case, needs their arrays too (ring_cell_bytes a cell while they last): where
+      ! a bar the characteristic steps may serve, from its start or later, in a run (whose
+      ! outputs' periods let a span last ring_min_steps steps) or a sweep's case (no
+      ! outputs), needs their arrays too (ring_cell_bytes a cell while they last): where
       ! they do not fit beside the run in the memory this process may use, every step is
       ! the lattice's, the same results to round-off (doc/method.md, "Memory"; the run says
       ! so, ring_memory_note); where they fit, the x-t buffer is sized with them counted
-      if (sim%opt%rings .and. sim%mesh%n >= ring_min_cells) then
+      may_serve = sim%opt%rings .and. sim%mesh%n >= ring_min_cells
+      if (may_serve .and. with_files) may_serve = ring_period(sim) > 0
+      if (may_serve) then
          restarted = .false.
          if (present(restart)) restarted = restart
          block
             type(spb_error_t), allocatable :: no_fit
             integer :: rows
             call plan_memory(deck, sim%mesh%n, with_files, restarted, &
-                             real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit, limit)
+                             beside + real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit, limit)
             if (allocated(no_fit)) then
                sim%opt%rings = .false.
                sim%opt%rings_dropped = .true.
@@ -249,8 +257,9 @@ contains
 
    !> What a run says when the characteristic steps' arrays did not fit (sim_setup): a
    !> line for stderr, '' when they fit or were not asked for.
-   function ring_memory_note(sim) result(note)
+   function ring_memory_note(sim, restarted) result(note)
       type(sim_t), intent(in) :: sim       !! the simulation, set up
+      logical, intent(in) :: restarted     !! it goes on from a checkpoint
       character(len=:), allocatable :: note
       note = ''
       if (.not. sim%opt%rings_dropped) return
@@ -259,6 +268,8 @@ contains
          ' for ' // itoa(sim%mesh%n) // ' cells) do not fit beside the run in the ' // &
          'memory this process may use (' // memory_text(real(sys_memory_limit(), wp)) // &
          '): every step is the lattice''s, slower, with the same results to round-off'
+      if (restarted) note = note // '; a restart is then bit-identical only to a run that ' // &
+         'took its steps on the lattice too'
    end function ring_memory_note
 
    !> The problem of a validated deck, its mesh and its load (the load table read here, after
@@ -686,12 +697,20 @@ contains
       if (.not. use_rings(sim, none)) return
       lay = ring_layout(sim%mesh, sim%st, ring_min_stretch)
       if (.not. lay%worth) return
+      span = ring_period(sim)
+   end function ring_span_at_start
+
+   !> The steps between the conversions that the periods of a run's outputs allow (history
+   !> rows, gauge rows, x-t rows, checkpoints; at most ring_span_max), 0 when a span could
+   !> not last ring_min_steps steps: then the characteristic steps never serve the run.
+   pure integer function ring_period(sim) result(span)
+      type(sim_t), intent(in) :: sim       !! the simulation, set up
       span = min(max(sim%opt%history_every, 1), ring_span_max(sim%mesh%n))
       if (size(sim%gauges) > 0) span = min(span, max(sim%opt%gauge_every, 1))
       if (sim%opt%field_every > 0) span = min(span, sim%opt%field_every)
       if (sim%opt%checkpoint_every > 0) span = min(span, sim%opt%checkpoint_every)
       if (span - 1 < ring_min_steps) span = 0
-   end function ring_span_at_start
+   end function ring_period
 
    !> Steps to the next due action but the check between rows and the progress line: the
    !> characteristic steps keep no lattice arrays to check, so that check (finiteness, the

@@ -174,7 +174,7 @@ contains
    !> Run case c without files: its table row and fragment-length histogram over
    !> (0, l_hist] in nbins bins (a fragment at least l_hist long counts in the last bin),
    !> and the ensemble's history columns at its rows (series: (column, row) in column order).
-   subroutine run_case(deck, c, nbins, l_hist, ids, rings, row, hist, series, limit)
+   subroutine run_case(deck, c, nbins, l_hist, ids, rings, row, hist, series, limit, beside)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: c               !! case number
       integer, intent(in) :: nbins           !! histogram bins
@@ -188,6 +188,8 @@ contains
       real(wp), intent(out) :: series(:)     !! the ensemble's columns at the history rows
       real(wp), intent(in), optional :: limit   !! the memory this process may use (default:
                                                 !! sys_memory_limit, asked again) [bytes]
+      real(wp), intent(in), optional :: beside  !! memory the sweep holds besides the case
+                                                !! (its tables, the ensemble) [bytes]
       real(wp), allocatable :: samples(:, :)
       type(deck_t) :: cdeck
       type(sim_t) :: sim
@@ -206,7 +208,7 @@ contains
       row(col_realization) = real(realization, wp)
       row(col_seed) = real(cdeck%field%seed, wp)
       if (allocated(err)) return              ! checked before any case runs
-      call sim_setup(cdeck, sim, err, files=.false., rings=rings, limit=limit)
+      call sim_setup(cdeck, sim, err, files=.false., rings=rings, limit=limit, extra=beside)
       if (allocated(err)) return
       if (size(ids) > 0) then
          call sim_run(sim, '', .false., summary, err, files=.false., sample_ids=ids, &
@@ -282,7 +284,7 @@ contains
       type(ensemble_t) :: ens
       real(wp), allocatable :: rows(:, :), series(:, :)
       integer, allocatable :: hists(:, :)
-      real(wp) :: l_hist, t0, tables
+      real(wp) :: l_hist, t0, tables, beside
       integer :: nc, nbins, rank, nranks, c, sig
       type(meter_t) :: meter
       logical :: on
@@ -304,7 +306,7 @@ contains
       limit = real(sys_memory_limit(), wp)
       call check_tables(deck, limit, tables, err)
       if (.not. allocated(err)) call check_cases(deck, limit, tables, l_hist, est_values, ens, &
-                                                 err)
+                                                 beside, err)
       if (nranks > 1) call agree(rank, nranks, err)
       if (allocated(err)) return
       ! a signal while the cases were checked (a perturbed sweep builds every realization's
@@ -336,13 +338,14 @@ contains
       summary%distribution = trim(deck%sweep%distribution(1:16))
       if (nranks == 1) then
          summary%distribution = 'serial'
-         call run_static(deck, 1, 0, l_hist, ens%ids, on, limit, meter, rows, hists, series)
-      else if (deck%sweep%distribution == 'dynamic') then
-         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, on, limit, meter, rows, hists, &
-                          series)
-      else
-         call run_static(deck, nranks, rank, l_hist, ens%ids, on, limit, meter, rows, hists, &
+         call run_static(deck, 1, 0, l_hist, ens%ids, on, [limit, beside], meter, rows, hists, &
                          series)
+      else if (deck%sweep%distribution == 'dynamic') then
+         call run_dynamic(deck, rank, nranks, l_hist, ens%ids, on, [limit, beside], meter, rows, &
+                          hists, series)
+      else
+         call run_static(deck, nranks, rank, l_hist, ens%ids, on, [limit, beside], meter, rows, &
+                         hists, series)
       end if
       summary%wall = par_wtime() - t0
       ! every rank learns whether one was stopped (and waits here until all are done)
@@ -380,14 +383,15 @@ contains
 
    !> Case c on rank mod(c - 1, k); the others send their rows to rank 0 at the end, in
    !> case order (rank 0 receives in the same order: no deadlock).
-   subroutine run_static(deck, k, me, l_hist, ids, rings, limit, meter, rows, hists, series)
+   subroutine run_static(deck, k, me, l_hist, ids, rings, memory, meter, rows, hists, series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: k                 !! ranks
       integer, intent(in) :: me                !! this rank
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
       logical, intent(in) :: rings             !! characteristic steps where they serve
-      real(wp), intent(in) :: limit            !! the memory this process may use [bytes]
+      real(wp), intent(in) :: memory(2)        !! the memory this process may use, and what
+                                               !! the sweep holds besides a case [bytes]
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
@@ -400,7 +404,7 @@ contains
       do c = me + 1, nc, k
          if (stop_signal() /= 0) exit
          call run_case(deck, c, nbins, l_hist, ids, rings, rows(:, c), hists(:, c), &
-                          series(:, c), limit)
+                          series(:, c), memory(1), memory(2))
          done = done + 1
          if (me == 0) call show(meter, done * k, nc)
       end do
@@ -444,7 +448,7 @@ contains
 
    !> Rank 0 hands out one case at a time to whichever rank asks and collects the rows;
    !> the other ranks compute. Case 0 means stop.
-   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, rings, limit, meter, rows, hists, &
+   subroutine run_dynamic(deck, rank, nranks, l_hist, ids, rings, memory, meter, rows, hists, &
                           series)
       type(deck_t), intent(in) :: deck     !! the deck
       integer, intent(in) :: rank              !! this rank
@@ -452,7 +456,8 @@ contains
       real(wp), intent(in) :: l_hist           !! histogram range [m]
       integer, intent(in) :: ids(:)            !! the ensemble's columns (none: no ensemble)
       logical, intent(in) :: rings             !! characteristic steps where they serve
-      real(wp), intent(in) :: limit            !! the memory this process may use [bytes]
+      real(wp), intent(in) :: memory(2)        !! the memory this process may use, and what
+                                               !! the sweep holds besides a case [bytes]
       type(meter_t), intent(inout) :: meter    !! the progress lines (rank 0)
       real(wp), intent(inout) :: rows(:, :)    !! (column, case)
       integer, intent(inout) :: hists(:, :)    !! (bin, case)
@@ -493,7 +498,7 @@ contains
             call par_recv(c, 0, tag_work)
             if (c == 0) exit
             call run_case(deck, c, nbins, l_hist, ids, rings, rows(:, c), hists(:, c), &
-                          series(:, c), limit)
+                          series(:, c), memory(1), memory(2))
          end do
       end if
    end subroutine run_dynamic
@@ -524,7 +529,7 @@ contains
    !> with perturb every realization's; the histogram range is the longest bar of the cases.
    !> With ensemble_columns: the ensemble (its rows: every realization's history times,
    !> which must be the same), and its memory beside the tables'.
-   subroutine check_cases(deck, limit, tables, l_hist, est_values, ens, err)
+   subroutine check_cases(deck, limit, tables, l_hist, est_values, ens, extra, err)
       type(deck_t), intent(in) :: deck     !! the deck
       real(wp), intent(in) :: limit        !! the memory this process may use [bytes]
       real(wp), intent(in) :: tables       !! memory of the sweep's tables [bytes]
@@ -532,13 +537,15 @@ contains
       type(estimate_t), allocatable, intent(out) :: est_values(:)   !! the work of a case of
                                                                     !! each value
       type(ensemble_t), intent(out) :: ens !! the ensemble (none: n_cols = 0, no ids)
+      real(wp), intent(out) :: extra       !! memory the sweep holds besides a case: its
+                                           !! tables and the ensemble [bytes]
       type(spb_error_t), allocatable, intent(out) :: err   !! the error (allocated: it failed)
       type(deck_t) :: cdeck
       type(mesh_t) :: mesh
       type(load_t) :: load
       type(problem_t) :: prob
       character(len=200), allocatable :: report(:)
-      real(wp) :: value, extra
+      real(wp) :: value
       integer :: c, iv, realization, nrep, n_cases
       nrep = max(1, deck%sweep%realizations)
       l_hist = 0.0_wp
