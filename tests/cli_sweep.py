@@ -2,7 +2,7 @@
 """Sweeps (issue 8): spallbar --sweep on 1 and 2 MPI ranks, static and dynamic, gives the
 same PREFIX.sweep to the byte and the same PREFIX_sweep.h5 datasets; the realizations
 differ; one realization re-run alone as an ordinary deck (its seed from the table) gives
-its row; a case keeps no history rows (its max_excess and ledger_drift from the checks every
+its row; a run without mpirun does not start MPI (the same table); a case keeps no history rows (its max_excess and ledger_drift from the checks every
 64 steps stay round-off) and the energy guard still stops a case (status 3, at the check
 that sees it); bad &sweep input exits 2 with one line naming &sweep and writes nothing; a
 signal while the cases are checked ends the sweep at once, exit 143, nothing written.
@@ -54,7 +54,11 @@ def sweep(tag, ranks, extra_deck_text=None):
                        stdin=subprocess.DEVNULL)
     check(p.returncode == 0, f"{tag}: exit {p.returncode}: {p.stderr.strip()[:400]}")
     print(f"{tag}: {p.stdout.strip()}")
+    said[tag] = p.stdout
     return prefix
+
+
+said = {}
 
 
 # -- the same table for any number of ranks and either distribution
@@ -76,6 +80,11 @@ if mpiexec != "-":
     others = [sweep("np1", 1), sweep("np2_static", 2),
               sweep("np2_dynamic", 2, "distribution = 'dynamic'"),
               sweep("np3_dynamic", 3, "distribution = 'dynamic'")]
+    # a process no launcher started runs alone without starting MPI (its singleton start
+    # took 0.3 s of wall clock); under mpirun, even with one rank, MPI runs it
+    check("(serial, MPI not started: no launcher)" in said["serial"],
+          f"serial: the done line {said['serial']!r}")
+    check("(serial, MPI)" in said["np1"], f"np1: the done line {said['np1']!r}")
 else:
     print("no mpiexec: MPI runs skipped (serial build)")
 ref_text = [l for l in open(ref + ".sweep") if l.startswith(" ")]

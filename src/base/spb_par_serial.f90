@@ -6,7 +6,7 @@ module spb_par
    implicit none
    private
    public :: par_init, par_finalize, par_rank, par_size, par_send, par_recv, &
-      par_wtime, par_max, par_barrier, par_any, par_kind
+      par_wtime, par_max, par_barrier, par_any, par_kind, par_started
 
    integer, parameter :: par_any = -1
    character(len=*), parameter :: par_kind = 'serial (built without MPI)'
@@ -23,6 +23,11 @@ contains
    !> Start the parallel run (MPI_Init).
    subroutine par_init()
    end subroutine par_init
+
+   !> Whether MPI runs this process's sweep: never in this build.
+   logical function par_started()
+      par_started = .false.
+   end function par_started
 
    !> End the parallel run.
    subroutine par_finalize()

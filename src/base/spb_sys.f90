@@ -393,35 +393,26 @@ contains
    function cgroup_memory_limit() result(bytes)
       integer(int64) :: bytes
       character(len=4096) :: mount(2), root(2), path(2)   ! v1 memory (1), v2 (2)
-      character(len=4096) :: line
+      character(len=4096), allocatable :: lines(:)
       character(len=:), allocatable :: rel
-      integer :: u, ios, v, k
+      integer :: v, k
       character(len=*), parameter :: files(2) = [character(len=21) :: 'memory.limit_in_bytes', &
                                                  'memory.max']
       bytes = huge(1_int64)
       mount = ''
       root = ''
       path = ''
-      ! the process's cgroup in each hierarchy
-      open(newunit=u, file='/proc/self/cgroup', action='read', status='old', iostat=ios)
-      if (ios /= 0) return
-      do
-         read(u, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         call cgroup_line(line)
+      ! the process's cgroup in each hierarchy; the mount of each that holds it: of several,
+      ! the one whose root is the longest prefix of the process's path (a mount of another
+      ! part of the hierarchy holds other cgroups' files)
+      if (.not. text_lines('/proc/self/cgroup', lines)) return
+      do k = 1, size(lines)
+         call cgroup_line(lines(k))
       end do
-      close(u)
-      ! the mount of each that holds it: of several, the one whose root is the longest
-      ! prefix of the process's path (a mount of another part of the hierarchy holds
-      ! other cgroups' files)
-      open(newunit=u, file='/proc/self/mountinfo', action='read', status='old', iostat=ios)
-      if (ios /= 0) return
-      do
-         read(u, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         call mount_line(line)
+      if (.not. text_lines('/proc/self/mountinfo', lines)) return
+      do k = 1, size(lines)
+         call mount_line(lines(k))
       end do
-      close(u)
       do v = 1, 2
          if (len_trim(mount(v)) == 0 .or. len_trim(path(v)) == 0) cycle
          rel = trim(path(v))
@@ -478,6 +469,34 @@ contains
          end if
       end subroutine cgroup_line
    end function cgroup_memory_limit
+
+   !> Whether the text file name could be read, and its lines (up to 4096 characters each;
+   !> at most 4096 lines: /proc/self's files hold a few dozen).
+   logical function text_lines(name, lines) result(ok)
+      character(len=*), intent(in) :: name   !! the file
+      character(len=4096), allocatable, intent(out) :: lines(:)   !! its lines
+      character(len=4096) :: line
+      integer :: u, ios, n, k
+      allocate(lines(0))
+      open(newunit=u, file=name, action='read', status='old', iostat=ios)
+      ok = ios == 0
+      if (.not. ok) return
+      ! counted first, then read again into their array
+      n = 0
+      do while (n < 4096)
+         read(u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         n = n + 1
+      end do
+      deallocate(lines)
+      allocate(lines(n))
+      rewind(u)
+      do k = 1, n
+         read(u, '(a)', iostat=ios) lines(k)
+         if (ios /= 0) lines(k) = ''
+      end do
+      close(u)
+   end function text_lines
 
    !> The n-th word of a line of words separated by blanks ('' when it has fewer).
    pure function word(text, n) result(w)

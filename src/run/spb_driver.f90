@@ -17,7 +17,7 @@ module spb_driver
    use spb_sys, only: catch_stop_signals
    use spb_sweep, only: run_sweep, sweep_summary_t
    use spb_estimate, only: estimate_t, estimate_run, estimate_line, estimate_warnings
-   use spb_par, only: par_init, par_finalize, par_barrier, par_rank, par_kind
+   use spb_par, only: par_init, par_finalize, par_barrier, par_rank, par_kind, par_started
    implicit none
    private
    public :: announce_run, write_report, sweep_main
@@ -115,7 +115,7 @@ contains
       end if
       if (rank == 0 .and. .not. cli%quiet .and. ssum%cases > 0) then
          write(output_unit, '(a,i0,a,i0,a,a,a,a,a,f0.3,a)') '  done: ', ssum%cases, ' cases on ', &
-            ssum%ranks, ' rank(s) (', trim(ssum%distribution), ', ', par_kind, ') in ', &
+            ssum%ranks, ' rank(s) (', trim(ssum%distribution), ', ', how_run(), ') in ', &
             ssum%wall, ' s wall'
          write(output_unit, '(a,i0,a,i0,a,i0,a)') '  cases done: ', ssum%done, ', went wrong: ', &
             ssum%failed, ', not run: ', ssum%not_run, '; wrote ' // cli%prefix // '.sweep, ' // &
@@ -150,6 +150,14 @@ contains
          end if
       end if
    end subroutine sweep_main
+
+   !> What ran the sweep's cases: par_kind ('MPI'), or 'MPI not started: no launcher' for
+   !> a process no MPI launcher started (spb_par par_init).
+   function how_run() result(text)
+      character(len=:), allocatable :: text
+      text = par_kind
+      if (par_kind == 'MPI' .and. .not. par_started()) text = 'MPI not started: no launcher'
+   end function how_run
 
    !> Plausibility warnings on stderr (--quiet keeps them; &run warnings = .false. has none).
    subroutine warn(lines)
