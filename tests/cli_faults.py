@@ -523,6 +523,28 @@ def memory_limits(exe, work, check):
     else:
         check(False, f"ringbig: exit {r.returncode}, lattice {r_lat.returncode}, "
               f"free {r_free.returncode}: {r_lat.stderr!r} {r_free.stderr!r}")
+    # a restart holds the checkpoint's state beside the run's (200 bytes a cell): under a
+    # limit the uninterrupted run's rings fitted (1e5 cells, 60 MB) the restart's do not,
+    # and its note says that it is then bit-identical only to a run on the lattice
+    for t, name in (("5e-7", "short"), ("1e-6", "long")):
+        with open(os.path.join(d, f"rs_{name}.nml"), "w") as f:
+            f.write(MEM_DECK.format(t_end=t, cells=100000, extra=", history_every = 50, "
+                                    f"checkpoint = 'rs_{name}.ck.h5'"))
+    small_limit = {"SPALLBAR_MEMORY_LIMIT": str(60 * 10**6)}
+    r = run_env(exe, ["rs_short.nml", "--quiet", "--output", "rs"], d, small_limit)
+    check(r.returncode == 0 and r.stderr.strip() == "",
+          f"1e5 cells under 60 MB (the rings fit): exit {r.returncode} {r.stderr!r}")
+    r = run_env(exe, ["rs_long.nml", "--quiet", "--output", "rs", "--restart", "rs_short.ck.h5"],
+                d, small_limit)
+    notes = [l for l in r.stderr.splitlines() if l.strip()]
+    check(r.returncode == 0 and len(notes) == 1 and "do not fit" in notes[0] and
+          "a restart is then bit-identical only to a run that took its steps on the lattice"
+          in notes[0], f"its restart under 60 MB: exit {r.returncode} {r.stderr!r}")
+    if r.returncode == 0:
+        print("ok   a restart whose rings do not fit beside the checkpoint says so")
+    for f in os.listdir(d):
+        if f.startswith("rs"):
+            os.remove(os.path.join(d, f))
     # a sweep's cases the same: its table the lattice's, row for row
     with open(os.path.join(d, "ringsweep.nml"), "w") as f:
         f.write(MEM_DECK.format(t_end="1e-8", cells=1000000, extra="") +
