@@ -360,9 +360,8 @@ contains
          end function c_getrlimit
       end interface
       integer(c_long) :: pages, page_size, rlim(2)
-      integer(int64) :: env_bytes
       character(len=32) :: text
-      integer :: length, status, ios
+      integer :: length, status
       bytes = huge(1_int64)
       pages = c_sysconf(85_c_int)
       page_size = c_sysconf(30_c_int)
@@ -374,11 +373,23 @@ contains
       end if
       bytes = min(bytes, cgroup_memory_limit())
       call get_environment_variable('SPALLBAR_MEMORY_LIMIT', text, length, status)
-      if (status /= 0 .or. length < 1 .or. length > 18) return
-      if (verify(text(:length), '0123456789') /= 0) return
-      read(text(:length), *, iostat=ios) env_bytes
-      if (ios == 0 .and. env_bytes > 0) bytes = min(bytes, env_bytes)
+      if (status == 0) bytes = min(bytes, bytes_of(text))
    end function sys_memory_limit
+
+   !> The bytes a text of digits says (at most 18 of them, blanks around), huge(1_int64) for
+   !> any other text: blank, 'max', a sign, 19 digits or more (cgroup v1's "no limit" is
+   !> 9223372036854771712), 0.
+   pure function bytes_of(text) result(bytes)
+      character(len=*), intent(in) :: text   !! the text
+      integer(int64) :: bytes
+      integer(int64) :: value
+      integer :: ios
+      bytes = huge(1_int64)
+      if (len_trim(adjustl(text)) < 1 .or. len_trim(adjustl(text)) > 18) return
+      if (verify(trim(adjustl(text)), '0123456789') /= 0) return
+      read(text, *, iostat=ios) value
+      if (ios == 0 .and. value > 0) bytes = value
+   end function bytes_of
 
    !> The memory limit of the cgroup this process is in [bytes], huge(1_int64) when there is
    !> none or nothing can be read: the smallest of its cgroup's and every cgroup's above it
@@ -531,16 +542,12 @@ contains
       character(len=*), intent(in) :: name   !! the file
       integer(int64) :: bytes
       character(len=64) :: text
-      integer(int64) :: value
       integer :: u, ios
       bytes = huge(1_int64)
       open(newunit=u, file=name, action='read', status='old', iostat=ios)
       if (ios /= 0) return
       read(u, '(a)', iostat=ios) text
       close(u)
-      if (ios /= 0) return
-      if (len_trim(text) == 0 .or. verify(trim(text), '0123456789') /= 0) return
-      read(text, *, iostat=ios) value
-      if (ios == 0 .and. value > 0) bytes = value
+      if (ios == 0) bytes = bytes_of(text)
    end function limit_file
 end module spb_sys

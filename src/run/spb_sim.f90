@@ -192,7 +192,7 @@ contains
       real(wp), intent(in), optional :: extra    !! memory needed besides (a sweep's tables)
                                                  !! [bytes]
       type(wave_t) :: w0
-      real(wp) :: beside
+      real(wp) :: beside, lim
       logical :: with_files, restarted, may_serve
       with_files = .true.
       if (present(files)) with_files = files
@@ -208,8 +208,14 @@ contains
       sim%opt%gauge_every = sim%record%gauge_every
       beside = 0.0_wp
       if (present(extra)) beside = extra
+      ! the limit asked once for both checks (it reads the cgroup's files)
+      if (present(limit)) then
+         lim = limit
+      else
+         lim = real(sys_memory_limit(), wp)
+      end if
       call setup_model(deck, sim%prob, sim%mesh, sim%load, sim%report, err, files=files, &
-                       restart=restart, extra=beside, xt_rows=sim%opt%xt_rows, limit=limit)
+                       restart=restart, extra=beside, xt_rows=sim%opt%xt_rows, limit=lim)
       if (allocated(err)) return
       allocate(sim%gauges(size(sim%record%gauge_x)))
       call locate_gauges(sim%mesh, sim%record%gauge_x, sim%gauges, sim%record%gauge_below)
@@ -244,7 +250,7 @@ contains
             type(spb_error_t), allocatable :: no_fit
             integer :: rows
             call plan_memory(deck, sim%mesh%n, with_files, restarted, &
-                             beside + real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit, limit)
+                             beside + real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit, lim)
             if (allocated(no_fit)) then
                sim%opt%rings = .false.
                sim%opt%rings_dropped = .true.

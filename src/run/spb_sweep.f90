@@ -302,7 +302,7 @@ contains
       rank = par_rank()
       nranks = par_size()
       ! the memory this process may use, asked once (sys_memory_limit reads the cgroup's
-      ! files: 0.25 ms, a third of a case's run)
+      ! files: 0.25 ms, about half of a case's run here)
       limit = real(sys_memory_limit(), wp)
       call check_tables(deck, limit, tables, err)
       if (.not. allocated(err)) call check_cases(deck, limit, tables, l_hist, est_values, ens, &
