@@ -307,16 +307,17 @@ def sweep_wall(out):
     return float(m.group(1)) if m else float("nan")
 
 
-def ring_deck(work, cells, t_end):
+def ring_deck(work, cells, t_end, gauges=False, name="rings1m"):
     """input/spall_test.nml (the concrete spall bar) with cells, t_end, history rows every 1e6
-    steps and no gauge (a gauge row every step would end every span)."""
+    steps and no gauge (gauges: its gauge on the rear face, read every step)."""
     with open(os.path.join(ROOT, "input", "spall_test.nml")) as f:
         text = f.read()
-    text = text[:text.index("&gauges")]
+    if not gauges:
+        text = text[:text.index("&gauges")]
     text = re.sub(r"cells *= *\d+", f"cells = {cells}", text)
     text = re.sub(r"t_end *= *[0-9.eE+-]+", f"t_end = {t_end!r}", text)
     text = re.sub(r"history_every *= *\d+", "history_every = 1000000", text)
-    path = os.path.join(work, "rings1m.nml")
+    path = os.path.join(work, name + ".nml")
     with open(path, "w") as f:
         f.write(text)
     return path
@@ -345,7 +346,21 @@ def ring_rows(exe, work, rep, fc):
     naive_rate = (cells + 1) * 200 / lp
     what = (f"step {first[0][1]}, node {first[0][3]}, {float(first[0][5]) / 1e6:.4f} MPa"
             if first else "none")
-    return [("issue 36 target 1: breakable homogeneous bar, N = 1e6, to its first fracture "
+    # the same bar at 1e4 cells for 1.5 transits, with the deck's gauge on the rear face read
+    # every step: its rows read from the rings inside the spans (0.6.5) or, before, every
+    # gauge row ending a span (the lattice's steps)
+    g_cells = 10000
+    g_deck = ring_deck(work, g_cells, 1.5 / math.sqrt(35.0e9 / 2350.0), gauges=True,
+                       name="gauge1e4")
+    g_cmd = [exe, g_deck, "-q", "--output", os.path.join(work, "gauge1e4")]
+    g = timed_together({"default": g_cmd, "lattice": lattice(g_cmd)}, work, max(1, rep // 2))
+    g_row = ("a gauge read every step: the spall bar at N = 1e4 for 1.5 transits (15 000 "
+             "steps), its rear-face gauge every step, history rows at the start and end, "
+             "default against SPALLBAR_STEPPING=lattice",
+             f"{g['default'][0]:.2f} s vs {g['lattice'][0]:.2f} s",
+             f"default / lattice = **{g['default'][0] / g['lattice'][0]:.3f}** (0.6.4: every "
+             "gauge row ended a span, so the lattice took every step)")
+    return [g_row, ("issue 36 target 1: breakable homogeneous bar, N = 1e6, to its first fracture "
              f"({steps} steps, 3 history rows; characteristic steps, spb_ring)",
              f"{c:.2f} s CPU ({min(cpu):.2f}-{max(cpu):.2f})",
              f"**{rate:.3g}** effective node-steps/s (target 1e11); naive loop "
@@ -413,6 +428,11 @@ def target_rows(exe, work, rep, mpiexec, case2_190, fc):
     prefix = os.path.join(work, "af760")
     c760 = timed([exe, deck, "-q", "--output", prefix], work, max(1, rep // 2))
     ev = count_events(prefix)
+    # what writing the outputs alone costs on this machine: the same bytes by dd
+    b760 = output_bytes(prefix)
+    f760 = write_floor(work, b760, max(1, rep // 2))
+    b190 = output_bytes(os.path.join(work, "accelerate_fragment"))
+    f190 = write_floor(work, b190, rep)
     for ext in (".evt", ".imp", ".his", ".prf", ".frg"):
         if os.path.exists(prefix + ext):
             os.remove(prefix + ext)
@@ -422,8 +442,31 @@ def target_rows(exe, work, rep, mpiexec, case2_190, fc):
                  f"h/760: {ev} events; " +
                  ("met" if c760[0] <= 1.5 else f"**not met** ({c760[0] / 1.5:.1f}x over)") +
                  "; h/190: " + ("met" if case2_190[0] <= 0.1 else
-                                f"**not met** ({case2_190[0] / 0.1:.1f}x over)")))
+                                f"**not met** ({case2_190[0] / 0.1:.1f}x over)") +
+                 f"; writing the outputs alone (the same bytes by dd in the same directory, "
+                 f"CPU time): h/760 {b760 / 1e6:.0f} MB {f760:.2f} s, h/190 {b190 / 1e6:.0f} MB "
+                 f"{f190:.3f} s"))
     return rows
+
+
+def output_bytes(prefix):
+    """The bytes of a run's text outputs (PREFIX.his, .prf, .evt, .imp, .frg, .spl)."""
+    return sum(os.path.getsize(prefix + ext) for ext in (".his", ".prf", ".evt", ".imp",
+                                                          ".frg", ".spl")
+               if os.path.exists(prefix + ext))
+
+
+def write_floor(work, nbytes, repeats):
+    """Median CPU time [s] of writing nbytes (rounded up to MiB) to a file in work with dd:
+    what the outputs cost on this machine before a number is computed or formatted."""
+    path = os.path.join(work, "write_floor.bin")
+    cmd = ["dd", "if=/dev/zero", f"of={path}", "bs=1M", f"count={-(-nbytes // 2**20)}",
+           "status=none"]
+    cpus = []
+    for _ in range(repeats):
+        cpus.append(run_cpu(cmd, work)[0])
+        os.remove(path)
+    return statistics.median(cpus)
 
 
 def machine():

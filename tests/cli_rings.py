@@ -20,15 +20,16 @@ or one value moved by 1e-10 of its scale, are refused. The decks: a concrete spa
 (triangular pulse on the free top, free bottom) at 1000 and 10000 cells with profiles and
 a gauge, a Weibull strength field with the load on the bottom face, a fixed bottom under a
 tensile pulse, a bar of two segments of one material, one whose history is written
-every step (no span: the lattice's steps, bit for bit), one that breaks many times (rings
+every step (no span: the lattice's steps, bit for bit), one whose gauges are read every step
+(their rows inside the spans read from the rings), one that breaks many times (rings
 between the split nodes, fragments flying), one hanging under gravity, and a bar of three
 materials (concrete, steel, concrete: rings meeting at the interfaces), breakable
 (fractures, collisions, separations: the contact episodes' forces sampled from the rings;
 also under the paper's rules and the delay timing) and unbreakable with a fixed bottom
-(gauges reading sections). Each of the last seven must differ from the lattice's in some
-bit (the characteristic steps ran). Restart: a run checkpointed every
-K steps (span ends) and restarted from its middle checkpoint gives its outputs byte for
-byte.
+(gauges reading sections). Each of those with gauges read every step and the last six must
+differ from the lattice's in some bit (the characteristic steps ran). Restart: a run with
+gauges read every step, checkpointed every K steps (span ends) and restarted from its middle
+checkpoint, gives its outputs byte for byte.
 
 usage: cli_rings.py SPALLBAR WORKDIR       (plain Python)
 """
@@ -113,6 +114,15 @@ LAYERED = """&run
 /
 """
 
+# five gauges read every step: on nodes inside the rings (0.2, 0.55 m), in a cell (0.33341 m),
+# in the scab (0.9 m) and on the rear face
+GAUGES_EVERY_STEP = "&gauges\n  x = 0.2, 0.55, 0.33341, 0.9, 1.0\n  every = 1\n/\n"
+# a hundred (nodes and cells about 0.01 m apart, the ends included): their readings fill a
+# block of 3495 steps (spb_sim ring_gauge_values), so that a longer span takes several
+MANY_GAUGES = ("&gauges\n  x = " + ", ".join([repr(round(0.01 * k + 0.00037 * (k % 3), 5))
+                                            for k in range(99)] + ["1.0"]) +
+               "\n  every = 1\n/\n")
+
 # column families whose values may be round-off only: their scale is the family's
 FAMILIES = {
     "energy": ("e_", "w_", "ledger"),
@@ -163,13 +173,20 @@ def events(path):
     return list(zip([int(x) for x in t["step"]], [int(x) for x in t["node"]], t["kind"]))
 
 
-def family_scale(table, name):
-    """The largest magnitude over the columns of name's family (0: none)."""
-    for prefixes in FAMILIES.values():
+def family_scales(table):
+    """The largest magnitude over the columns of each family (FAMILIES: name -> scale)."""
+    return {fam: max([abs(v) for col, vals in table.items()
+                      if any(col.startswith(p) for p in prefixes)
+                      for v in vals if isinstance(v, float) and math.isfinite(v)] + [0.0])
+            for fam, prefixes in FAMILIES.items()}
+
+
+def family_scale(table, name, scales=None):
+    """The largest magnitude over the columns of name's family (0: none); scales: the
+    table's family_scales, when made already."""
+    for fam, prefixes in FAMILIES.items():
         if any(name.startswith(p) for p in prefixes):
-            return max([abs(v) for col, vals in table.items()
-                        if any(col.startswith(p) for p in prefixes)
-                        for v in vals if isinstance(v, float) and math.isfinite(v)] + [0.0])
+            return (scales or family_scales(table))[fam]
     return 0.0
 
 
@@ -179,6 +196,7 @@ def compare(a, b, length=1.0, tol=TOL):
     bad = []
     if set(a) != set(b):
         return [f"columns differ: {sorted(set(a) ^ set(b))}"]
+    scales = family_scales(a)
     for name in a:
         x, y = a[name], b[name]
         if len(x) != len(y):
@@ -190,7 +208,7 @@ def compare(a, b, length=1.0, tol=TOL):
                 bad.append(f"{name}: words differ")
             continue
         finite = [abs(v) for p, q in nums for v in (p, q) if math.isfinite(v)]
-        scale = max(finite + [family_scale(a, name)])
+        scale = max(finite + [family_scale(a, name, scales)])
         if name.startswith("x") or name in ("l_defect", "overlap", "u", "opening", "shift"):
             scale = max(scale, length)
         if name == "jordan":
@@ -318,6 +336,13 @@ def main():
                                 top="fixed", face="bottom", p0=-6.0e6)),
         ("two_segments", deck_text("two segments of one material", 1600, 1.3, 80, nseg=2)),
         ("every_step", deck_text("history every step", 600, 1.2, 1)),
+        # gauges every step (a lab's signals), history rows seldom: the rows inside each span
+        # read from the rings (on the rear face, on nodes and inside cells of the rings)
+        ("gauges_every_step", deck_text("gauges every step", 3000, 1.15, 4000,
+                                        extra=GAUGES_EVERY_STEP)),
+        # (one transit: before the first fracture)
+        ("many_gauges", deck_text("a hundred gauges every step", 3600, 1.0, 5000,
+                                  extra=MANY_GAUGES)),
         # after the first fracture: rings between the split nodes, fragments flying and
         # colliding (the contact episodes' forces sampled), many events
         ("many_breaks", deck_text("many fractures", 4000, 8.0, 100, strength="3.0e6",
@@ -358,7 +383,7 @@ def main():
             sens = sensitivity_of(exe, work, name, text)
             print(f"{name}: the lattice's own difference under a one-ulp load: {sens:.2e}")
         ev, differs = equal_runs(check, work, name + "_rings", name + "_lattice", sens)
-        if name != "layered_intact":
+        if name not in ("layered_intact", "many_gauges"):
             check(len(ev) > 0, f"{name}: the bar breaks")
         kinds = [k for _, _, k in ev]
         if name == "many_breaks":
@@ -371,7 +396,7 @@ def main():
         if name == "every_step":
             check(not differs, "history every step: no span, the lattice's bits")
         elif name in ("many_breaks", "hanging", "layered", "layered_paper", "layered_delay",
-                      "layered_intact"):
+                      "layered_intact", "gauges_every_step", "many_gauges"):
             check(differs, f"{name}: the characteristic steps ran (some bit differs)")
         any_differs = any_differs or differs
         if name == "spall1k":
@@ -385,8 +410,10 @@ def restart(check, exe, work):
     """Checkpoints every 400 steps (where a span ends) and a restart from the middle one give
     the uninterrupted run's outputs byte for byte."""
     name = "rck"
+    # (gauges every step: their rows inside the spans read from the rings)
     text = deck_text("restart", 1000, 1.3, 100,
-                     run_extra=f"  checkpoint = '{name}.ck.h5'\n  checkpoint_every = 400\n")
+                     run_extra=f"  checkpoint = '{name}.ck.h5'\n  checkpoint_every = 400\n",
+                     extra=GAUGES_EVERY_STEP)
     with open(os.path.join(work, name + ".nml"), "w") as f:
         f.write(text)
     p = run(exe, work, name, name + "_u", False)
@@ -400,7 +427,7 @@ def restart(check, exe, work):
     check(p.returncode == 0, f"restart: run to step 800 ({p.stderr.strip()[:300]})")
     p = run(exe, work, name, name + "_r", False, ["--restart", name + ".ck.h5"])
     check(p.returncode == 0, f"restart: from step 800 ({p.stderr.strip()[:300]})")
-    for ext in (".his", ".evt", ".frg", ".spl"):
+    for ext in (".his", ".evt", ".frg", ".spl", ".gau"):
         a, b = os.path.join(work, name + "_u" + ext), os.path.join(work, name + "_r" + ext)
         check(os.path.exists(a) and os.path.exists(b) and sha(a) == sha(b),
               f"restart: {ext} equals the uninterrupted run's")

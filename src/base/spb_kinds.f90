@@ -7,7 +7,7 @@ module spb_kinds
       max_realizations, max_gauges, max_ensemble_columns
 
    integer, parameter :: wp = real64                  !! working precision
-   character(len=*), parameter :: version = '0.6.4'   !! program version: raised with every change of an output
+   character(len=*), parameter :: version = '0.6.5'   !! program version: raised with every change of an output
    integer, parameter :: max_segments = 100           !! segments a deck may hold
    integer, parameter :: max_profiles = 100           !! profile_times a deck may hold
    integer, parameter :: max_gauges = 100             !! &gauges positions a deck may hold

@@ -28,9 +28,11 @@ module spb_ring
    use spb_ends, only: face_step_t, face_top, face_bottom, has_base, is_striker
    use spb_problem, only: end_free, end_fixed, events_admissible
    use spb_step, only: end_stresses, step_load_integral, hold_end, book_end_nodes
+   use spb_gauge, only: gauge_t, read_gauges
    implicit none
    private
-   public :: ring_qualifies, ring_layout, start_rings, advance_rings, end_rings, ring_span_max
+   public :: ring_qualifies, ring_layout, start_rings, advance_rings, end_rings, ring_span_max, &
+      read_ring_gauges
 
    integer, parameter :: leaf_bits = 6   !! log2 of leaf
    integer, parameter :: fan_bits = 3    !! log2 of fan
@@ -71,6 +73,11 @@ module spb_ring
       integer :: nl = 0                         !! levels of blocks (size of lev, kept:
                                                 !! size() costs in the bounds' hot path)
       real(wp), allocatable :: v(:)             !! (lo:lo+capacity-1)
+      real(wp), allocatable :: p(:)             !! F and G only: the running sums p(j) =
+                                                !! v(lo) + ... + v(j), summed in increasing j
+                                                !! as they are needed (u of the nodes inside:
+                                                !! from_ring, node_now; sums_to)
+      integer :: p_hi = 0                       !! p holds lo..p_hi
       type(level_t), allocatable :: lev(:)      !! the levels of blocks
    end type seq_t
 
@@ -237,7 +244,7 @@ contains
    !> samples: the section stresses S^{n+1/2} of every step taken at the nodes start_rings
    !> was given (an open contact episode's force).
    pure subroutine advance_rings(mesh, load, g, eps_rel, st, h, nsteps, taken, &
-                                 max_sec_bottom, face_du, samples)
+                                 max_sec_bottom, face_du, samples, gauges, gauge_every, readings)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
@@ -250,6 +257,13 @@ contains
       real(wp), intent(out) :: face_du(2, nsteps)   !! increments of the face halves (B_0,
                                                     !! A_n) of each step [m]
       real(wp), intent(out) :: samples(size(h%samples), nsteps)   !! their S^{n+1/2} [Pa]
+      type(gauge_t), intent(in), optional :: gauges(:)   !! the gauges (spb_gauge; these
+                                                         !! three given together)
+      integer, intent(in), optional :: gauge_every   !! a gauge row after each step that is a
+                                                     !! multiple of this (0: none)
+      real(wp), intent(inout), optional :: readings(:, :, :)   !! (3, gauges, nsteps) what
+                                       !! the gauges read after those steps (stress, velocity,
+                                       !! u: read_ring_gauges; the other steps' kept)
       type(face_step_t) :: fs(2)
       real(wp) :: guard, s_ends(2)
       integer :: t, c
@@ -281,6 +295,12 @@ contains
          do c = 1, size(h%samples)
             samples(c, t) = section_of(st, h, h%samples(c))
          end do
+         if (present(readings)) then
+            if (gauge_every > 0) then
+               if (mod(st%step, gauge_every) == 0) call read_ring_gauges(mesh, load, g, st, h, &
+                  gauges, readings(1, :, t), readings(2, :, t), readings(3, :, t))
+            end if
+         end if
          taken = t
       end do
    end subroutine advance_rings
@@ -293,6 +313,8 @@ contains
       type(ring_hybrid_t), intent(inout) :: h   !! the rings
       integer :: q
       do q = 1, size(h%r)
+         call sums_to(h%r(q)%f, st%step)
+         call sums_to(h%r(q)%g, st%step + h%r(q)%n)
          call from_ring(h%r(q), st, h%keep, g * mesh%dt**2)
       end do
       deallocate(h%r)
@@ -536,6 +558,123 @@ contains
       q = 0
    end function ring_of
 
+   !> What the gauges read (spb_gauge read_gauges) after a characteristic step: the entries
+   !> of the lattice arrays they read that a ring holds (u, du and the section of a node
+   !> inside it, the stress of a cell of it) made as end_rings would make them at this step,
+   !> read, and put back: until end_rings, st%ua and ub of a ring's inside hold u at its
+   !> conversion, to which from_ring adds (O(1) a gauge).
+   pure subroutine read_ring_gauges(mesh, load, g, st, h, gauges, stress, velocity, u)
+      type(mesh_t), intent(in) :: mesh     !! the mesh
+      type(load_t), intent(in) :: load     !! the end load
+      real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
+      type(state_t), intent(inout) :: st   !! the state at t^n (st%step), as it was on return
+      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state (its running sums made on)
+      type(gauge_t), intent(in) :: gauges(:)    !! the gauges
+      real(wp), intent(out) :: stress(:)   !! stress of each gauge [Pa]
+      real(wp), intent(out) :: velocity(:) !! velocity of each gauge [m/s]
+      real(wp), intent(out) :: u(:)        !! displacement of each gauge [m]
+      real(wp) :: saved(5, 3 * size(gauges))   ! ua, ub, dua, dub, section; or s
+      integer :: at(2, 3 * size(gauges))       ! node (1) or cell (2), its index
+      integer :: k, ns
+      real(wp) :: gdt2
+      ns = 0
+      gdt2 = g * mesh%dt**2
+      do k = 1, size(gauges)
+         if (gauges(k)%node >= 0) then
+            call patch_node(h, st, gauges(k)%node, gdt2, ns, at, saved)
+         else
+            call patch_cell(h, st, gauges(k)%cell, ns, at, saved)
+            call patch_node(h, st, gauges(k)%cell - 1, gdt2, ns, at, saved)
+            call patch_node(h, st, gauges(k)%cell, gdt2, ns, at, saved)
+         end if
+      end do
+      call read_gauges(mesh, load, st, gauges, stress, velocity, u)
+      ! (each entry patched once: the order does not matter)
+      do k = ns, 1, -1
+         associate (i => at(2, k))
+            if (at(1, k) == 1) then
+               st%ua(i) = saved(1, k)
+               st%ub(i) = saved(2, k)
+               st%dua(i) = saved(3, k)
+               st%dub(i) = saved(4, k)
+               st%section(i) = saved(5, k)
+            else
+               st%s(i) = saved(1, k)
+            end if
+         end associate
+      end do
+   end subroutine read_ring_gauges
+
+   !> read_ring_gauges: node i's entries from its ring (a node inside one and not yet
+   !> patched), what they held saved as entry ns + 1 (at: 1, i).
+   pure subroutine patch_node(h, st, i, gdt2, ns, at, saved)
+      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state (its running sums made on)
+      type(state_t), intent(inout) :: st   !! the state
+      integer, intent(in) :: i             !! the node
+      real(wp), intent(in) :: gdt2         !! g dt^2 [m]
+      integer, intent(inout) :: ns         !! entries saved
+      integer, intent(inout) :: at(:, :)   !! (kind, index) of each
+      real(wp), intent(inout) :: saved(:, :)   !! what they held
+      integer :: q
+      q = ring_of(h, i)
+      if (q == 0) return
+      ! (once: from_ring adds to u^n0, which a second patch would take for it)
+      if (any(at(1, 1:ns) == 1 .and. at(2, 1:ns) == i)) return
+      ns = ns + 1
+      at(:, ns) = [1, i]
+      saved(:, ns) = [st%ua(i), st%ub(i), st%dua(i), st%dub(i), st%section(i)]
+      call sums_to(h%r(q)%f, st%step)
+      call sums_to(h%r(q)%g, st%step + h%r(q)%n)
+      call node_now(h%r(q), st, i - (h%r(q)%c0 - 1), gdt2)
+   end subroutine patch_node
+
+   !> read_ring_gauges: cell c's stress from its ring (a cell of one and not yet patched),
+   !> what it held saved as entry ns + 1 (at: 2, c).
+   pure subroutine patch_cell(h, st, c, ns, at, saved)
+      type(ring_hybrid_t), intent(in) :: h      !! the hybrid state
+      type(state_t), intent(inout) :: st   !! the state
+      integer, intent(in) :: c             !! the cell
+      integer, intent(inout) :: ns         !! entries saved
+      integer, intent(inout) :: at(:, :)   !! (kind, index) of each
+      real(wp), intent(inout) :: saved(:, :)   !! what they held
+      integer :: q, j, n
+      do q = 1, size(h%r)
+         if (c >= h%r(q)%c0 .and. c <= h%r(q)%c0 + h%r(q)%n - 1) exit
+      end do
+      if (q > size(h%r)) return
+      if (any(at(1, 1:ns) == 2 .and. at(2, 1:ns) == c)) return
+      ns = ns + 1
+      at(:, ns) = [2, c]
+      saved(1, ns) = st%s(c)
+      n = st%step
+      j = c - (h%r(q)%c0 - 1)
+      ! (from_ring's expression)
+      st%s(c) = h%r(q)%k * (h%r(q)%f%v(n - j + 1) - h%r(q)%g%v(n + j))
+   end subroutine patch_cell
+
+   !> The lattice arrays of the node j inside ring r (local: the bar's node c0 - 1 + j) at
+   !> t^n (st%step > r%n0), as from_ring makes them: u, du and, where r keeps sections, the
+   !> section S^{n-1/2} (the running sums made to n and n + m).
+   pure subroutine node_now(r, st, j, gdt2)
+      type(ring_t), intent(in) :: r        !! the ring
+      type(state_t), intent(inout) :: st   !! the state (st%ua, ub of the node: u^n0)
+      integer, intent(in) :: j             !! the node, 1..m-1 of the ring
+      real(wp), intent(in) :: gdt2         !! g dt^2 [m]
+      real(wp) :: d, fall, fallen
+      integer :: n, n0, i
+      n = st%step
+      n0 = r%n0
+      i = r%c0 - 1 + j
+      fall = real(n - n0, wp) * gdt2
+      fallen = 0.5_wp * real(n - n0, wp) * real(n - n0 + 1, wp) * gdt2
+      d = (r%f%p(n - j) - r%f%p(n0 - j)) + (r%g%p(n + j) - r%g%p(n0 + j)) + fallen
+      st%ua(i) = st%ua(i) + d
+      st%ub(i) = st%ub(i) + d
+      st%dua(i) = r%f%v(n - j) + r%g%v(n + j) + fall
+      st%dub(i) = st%dua(i)
+      if (r%sections) st%section(i) = r%ra%v(n - 1 - j) + r%rb%v(n + j) + sign_of(n - 1) * r%c(j)
+   end subroutine node_now
+
    !> The sequences Ra, Rb of a ring one value on, with what S^{n+1/2} needs: Ra(n - 1),
    !> Rb(n + m).
    pure subroutine push_sections(r, n)
@@ -623,6 +762,8 @@ contains
       end associate
       call blocks(r%f, m + 1)
       call blocks(r%g, m + 1)
+      call start_sums(r%f)
+      call start_sums(r%g)
       ! (a value not finite makes its sum not finite; a sum that overflows only stops the
       ! characteristic steps: the lattice takes over)
       r%finite = abs(sum(r%f%v(n0 - m:n0))) <= huge(1.0_wp) .and. &
@@ -704,9 +845,8 @@ contains
       logical, intent(in) :: keep(0:)      !! the nodes whose sections are kept
       real(wp), intent(in) :: gdt2         !! g dt^2, each step's increment of every du by
                                            !! gravity [m]
-      real(wp), allocatable :: cf(:), cg(:)
       real(wp) :: d, fall, fallen
-      integer :: n, n0, m, i, j, b
+      integer :: n, n0, m, i, b
       m = r%n
       n0 = r%n0
       n = st%step
@@ -716,26 +856,20 @@ contains
          st%s(b + m) = r%s_ends(2)
          return
       end if
-      ! running sums of F and G: u_j^n - u_j^n0 = sum over k = n0+1..n of F(k - j) + G(k + j)
-      allocate(cf(n0 - m:n), cg(n0:n + m))
-      cf(n0 - m) = r%f%v(n0 - m)
-      do j = n0 - m + 1, n
-         cf(j) = cf(j - 1) + r%f%v(j)
-      end do
-      cg(n0) = r%g%v(n0)
-      do j = n0 + 1, n + m
-         cg(j) = cg(j - 1) + r%g%v(j)
-      end do
-      ! gravity's part: (k - n0) g dt^2 in du^k, its sum over k = n0+1..n in u^n
+      ! the running sums of F and G (made to n and n + m: end_rings): u_j^n - u_j^n0 = sum
+      ! over k = n0+1..n of F(k - j) + G(k + j); gravity's part (k - n0) g dt^2 in du^k, its
+      ! sum over k = n0+1..n in u^n (node_now: the same expressions for one node)
       fall = real(n - n0, wp) * gdt2
       fallen = 0.5_wp * real(n - n0, wp) * real(n - n0 + 1, wp) * gdt2
-      do i = 1, m - 1
-         d = (cf(n - i) - cf(n0 - i)) + (cg(n + i) - cg(n0 + i)) + fallen
-         st%ua(b + i) = st%ua(b + i) + d
-         st%ub(b + i) = st%ub(b + i) + d
-         st%dua(b + i) = r%f%v(n - i) + r%g%v(n + i) + fall
-         st%dub(b + i) = st%dua(b + i)
-      end do
+      associate (cf => r%f%p, cg => r%g%p)
+         do i = 1, m - 1
+            d = (cf(n - i) - cf(n0 - i)) + (cg(n + i) - cg(n0 + i)) + fallen
+            st%ua(b + i) = st%ua(b + i) + d
+            st%ub(b + i) = st%ub(b + i) + d
+            st%dua(b + i) = r%f%v(n - i) + r%g%v(n + i) + fall
+            st%dub(b + i) = st%dua(b + i)
+         end do
+      end associate
       do i = 1, m
          st%s(b + i) = r%k * (r%f%v(n - i + 1) - r%g%v(n + i))
       end do
@@ -915,6 +1049,36 @@ contains
          sh = sh + fan_bits
       end do
    end subroutine push
+
+   !> Room for the running sums of a sequence (F and G: seq_t p), the first one made.
+   pure subroutine start_sums(x)
+      type(seq_t), intent(inout) :: x      !! the sequence (its first values taken in)
+      allocate(x%p(lbound(x%v, 1):ubound(x%v, 1)))
+      x%p(x%lo) = x%v(x%lo)
+      x%p_hi = x%lo
+   end subroutine start_sums
+
+   !> The running sums of a sequence up to index j (<= hi), those not yet made: the same
+   !> additions in the same order whenever they are made.
+   pure subroutine sums_to(x, j)
+      type(seq_t), intent(inout) :: x      !! the sequence (start_sums)
+      integer, intent(in) :: j             !! the last index wanted
+      if (j <= x%p_hi) return
+      call running_sums(j - x%p_hi, x%v(x%p_hi + 1:j), x%p(x%p_hi:j))
+      x%p_hi = j
+   end subroutine sums_to
+
+   !> p(k) = p(k - 1) + v(k), k = 1..m, from p(0) (explicit shapes: the compiler keeps the
+   !> arrays' addresses in registers, which it does not through the sequence's components).
+   pure subroutine running_sums(m, v, p)
+      integer, intent(in) :: m             !! values to add
+      real(wp), intent(in) :: v(m)         !! the values
+      real(wp), intent(inout) :: p(0:m)    !! p(0) given, p(1..m) made
+      integer :: k
+      do k = 1, m
+         p(k) = p(k - 1) + v(k)
+      end do
+   end subroutine running_sums
 
    !> The first nv values of an empty sequence, written in x%v, taken in (as many pushes:
    !> the blocks' extrema made level by level from the one below, O(nv)).

@@ -82,8 +82,12 @@ module spb_sim
    real(wp), parameter :: run_base_bytes = 16.0e6_wp      !! program, libraries [bytes]
    real(wp), parameter :: run_cell_bytes = 208.0_wp       !! per cell [bytes]
    !> The characteristic steps' arrays per cell while they last (spb_ring: the sequences,
-   !> their blocks, the conversion back; measured 75 at 1e6 cells) [bytes]
+   !> their blocks, the running sums of F and G; measured 75 at 1e6 cells, 0.6.4 and 0.6.5)
+   !> [bytes]
    real(wp), parameter :: ring_cell_bytes = 80.0_wp
+   !> The gauges' readings kept for one call of advance_rings (ring_steps), at most [values]
+   !> (8 MiB: 3495 steps of 100 gauges)
+   integer, parameter :: ring_gauge_values = 2**20
    !> --restart reads the checkpoint's state beside the run's: measured 372 bytes per cell
    !> (4e5 and 8e5 cells), 176 more than a run.
    real(wp), parameter :: restart_cell_bytes = 200.0_wp   !! per cell [bytes]
@@ -693,8 +697,8 @@ contains
 
    !> For the estimate before a run: the steps between the conversions where the
    !> characteristic steps serve the bar at its state now (use_rings, the rings holding three
-   !> quarters of it), from the periods of the outputs that end a span (history rows, gauge
-   !> rows, x-t fields, checkpoints); 0 where they do not serve it or the spans are too short.
+   !> quarters of it), from the periods of the outputs that end a span (history rows, x-t
+   !> fields, checkpoints); 0 where they do not serve it or the spans are too short.
    pure integer function ring_span_at_start(sim) result(span)
       type(sim_t), intent(in) :: sim       !! the simulation, set up
       type(ring_layout_t) :: lay
@@ -707,20 +711,21 @@ contains
    end function ring_span_at_start
 
    !> The steps between the conversions that the periods of a run's outputs allow (history
-   !> rows, gauge rows, x-t rows, checkpoints; at most ring_span_max), 0 when a span could
-   !> not last ring_min_steps steps: then the characteristic steps never serve the run.
+   !> rows, x-t rows, checkpoints; at most ring_span_max; gauge rows are read from the rings,
+   !> ring_steps), 0 when a span could not last ring_min_steps steps: then the characteristic
+   !> steps never serve the run.
    pure integer function ring_period(sim) result(span)
       type(sim_t), intent(in) :: sim       !! the simulation, set up
       span = min(max(sim%opt%history_every, 1), ring_span_max(sim%mesh%n))
-      if (size(sim%gauges) > 0) span = min(span, max(sim%opt%gauge_every, 1))
       if (sim%opt%field_every > 0) span = min(span, sim%opt%field_every)
       if (sim%opt%checkpoint_every > 0) span = min(span, sim%opt%checkpoint_every)
       if (span - 1 < ring_min_steps) span = 0
    end function ring_period
 
-   !> Steps to the next due action but the check between rows and the progress line: the
-   !> characteristic steps keep no lattice arrays to check, so that check (finiteness, the
-   !> energy guard) is made at the rows and at the end of each span (doc/method.md).
+   !> Steps to the next due action but the check between rows, the progress line and the
+   !> gauge rows: the characteristic steps keep no lattice arrays to check, so that check
+   !> (finiteness, the energy guard) is made at the rows and at the end of each span
+   !> (doc/method.md); the gauge rows inside a span are read from the rings (ring_steps).
    pure integer function ring_span(sim, run) result(k)
       type(sim_t), intent(in) :: sim       !! the simulation
       type(run_t), intent(in) :: run       !! the run's context (its schedule)
@@ -728,6 +733,7 @@ contains
       sched = run%sched
       sched%every(act_check) = 0
       sched%every(act_progress) = 0
+      sched%every(act_gauge) = 0
       k = next_due(sched, sim%st%step, run%next_profile) - sim%st%step
    end function ring_span
 
@@ -762,7 +768,8 @@ contains
 
    !> Up to nsteps characteristic steps (spb_ring: each conversion for at most ring_span_max
    !> steps), with what the run books of each: the bottom reaction, the ends' samples, the
-   !> contact episodes' forces; the progress line where it is due. They stop early before a
+   !> contact episodes' forces, the gauge rows due (read from the rings); the progress line
+   !> where it is due. They stop early before a
    !> step in which a node could break or two faces could touch (short = 1: within
    !> ring_min_steps steps, else 0).
    subroutine ring_steps(sim, run, summary, lay, nsteps, short)
@@ -773,11 +780,14 @@ contains
       integer, intent(in) :: nsteps        !! steps to take at most
       integer, intent(out) :: short        !! 1: they stopped within ring_min_steps steps
       type(ring_hybrid_t) :: h
-      real(wp), allocatable :: face_du(:, :), samples(:, :)
+      real(wp), allocatable :: face_du(:, :), samples(:, :), readings(:, :, :)
       integer, allocatable :: nodes(:)
       real(wp) :: sec_max
-      integer :: left, m, k, taken, n0, total, period
+      integer :: left, m, k, taken, n0, total, period, g_every, t
       logical :: stopped
+      ! the gauge rows due inside the span, read from the rings (read_ring_gauges)
+      g_every = 0
+      if (run%to_files) g_every = run%sched%every(act_gauge)
       left = nsteps
       total = 0
       stopped = .false.
@@ -790,15 +800,26 @@ contains
          do while (m > 0)
             k = m
             if (period > 0) k = min(m, period - modulo(sim%st%step, period))
-            if (allocated(face_du)) deallocate(face_du, samples)
-            allocate(face_du(2, k), samples(size(nodes), k))
+            ! (the gauges' readings of a block at most ring_gauge_values values)
+            if (g_every > 0) k = min(k, max(1, ring_gauge_values / (3 * size(sim%gauges))))
+            if (allocated(face_du)) deallocate(face_du, samples, readings)
+            allocate(face_du(2, k), samples(size(nodes), k), &
+                     readings(3, size(sim%gauges), merge(k, 0, g_every > 0)))
             n0 = sim%st%step
             call advance_rings(sim%mesh, sim%load, sim%prob%gravity, sim%prob%eps_rel, sim%st, &
-                               h, k, taken, sec_max, face_du, samples)
+                               h, k, taken, sec_max, face_du, samples, sim%gauges, g_every, &
+                               readings)
             if (taken > 0) then
                call summary_reaction(summary, sec_max / sim%mesh%area(sim%mesh%n))
                call diag_end_samples(summary%diag, sim%mesh, n0, face_du(:, 1:taken))
                call diag_contact_samples(summary%diag, samples(:, 1:taken), sim%mesh%dt)
+            end if
+            if (g_every > 0) then
+               do t = 1, taken
+                  if (mod(n0 + t, g_every) == 0) call write_gauge_row(run%out, &
+                     real(n0 + t, wp) * sim%mesh%dt, readings(1, :, t), readings(2, :, t), &
+                     readings(3, :, t))
+               end do
             end if
             m = m - taken
             left = left - taken
