@@ -76,7 +76,8 @@ module spb_ring
       real(wp), allocatable :: p(:)             !! F and G only: the running sums p(j) =
                                                 !! v(lo) + ... + v(j), summed in increasing j
                                                 !! as they are needed (u of the nodes inside:
-                                                !! from_ring, node_now; sums_to)
+                                                !! from_ring, node_now; sums_to), allocated
+                                                !! at the first need
       integer :: p_hi = 0                       !! p holds lo..p_hi
       type(level_t), allocatable :: lev(:)      !! the levels of blocks
    end type seq_t
@@ -118,6 +119,11 @@ module spb_ring
       real(wp), allocatable :: nda(:), ndb(:) !! the junctions' trial increments [m]
       real(wp), allocatable :: nsec(:)        !! their trial sections [Pa]
       integer, allocatable :: samples(:)      !! the nodes whose sections are sampled
+      !> the entries the gauges read that the rings hold, once each (read_ring_gauges, at
+      !> its first call): (node or cell, its ring) of the nodes inside a ring, of the cells
+      logical :: g_ready = .false.
+      integer, allocatable :: g_node(:, :)
+      integer, allocatable :: g_cell(:, :)
    end type ring_hybrid_t
 
    !> Where the rings lie: the stretches of at least min_cells equal cells joined inside.
@@ -295,7 +301,7 @@ contains
          do c = 1, size(h%samples)
             samples(c, t) = section_of(st, h, h%samples(c))
          end do
-         if (present(readings)) then
+         if (present(readings) .and. present(gauges) .and. present(gauge_every)) then
             if (gauge_every > 0) then
                if (mod(st%step, gauge_every) == 0) call read_ring_gauges(mesh, load, g, st, h, &
                   gauges, readings(1, :, t), readings(2, :, t), readings(3, :, t))
@@ -316,6 +322,8 @@ contains
          call sums_to(h%r(q)%f, st%step)
          call sums_to(h%r(q)%g, st%step + h%r(q)%n)
          call from_ring(h%r(q), st, h%keep, g * mesh%dt**2)
+         ! (one ring's sums at a time where no gauge reads the rings)
+         deallocate(h%r(q)%f%p, h%r(q)%g%p)
       end do
       deallocate(h%r)
       st%n_skip = 0
@@ -562,95 +570,97 @@ contains
    !> of the lattice arrays they read that a ring holds (u, du and the section of a node
    !> inside it, the stress of a cell of it) made as end_rings would make them at this step,
    !> read, and put back: until end_rings, st%ua and ub of a ring's inside hold u at its
-   !> conversion, to which from_ring adds (O(1) a gauge).
+   !> conversion, to which from_ring adds (O(1) a gauge; which entries, found at the first
+   !> call of a span, gauge_entries).
    pure subroutine read_ring_gauges(mesh, load, g, st, h, gauges, stress, velocity, u)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
       real(wp), intent(in) :: g            !! gravity along +x [m/s^2]
       type(state_t), intent(inout) :: st   !! the state at t^n (st%step), as it was on return
       type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state (its running sums made on)
-      type(gauge_t), intent(in) :: gauges(:)    !! the gauges
+      type(gauge_t), intent(in) :: gauges(:)    !! the gauges (the same at every call of a span)
       real(wp), intent(out) :: stress(:)   !! stress of each gauge [Pa]
       real(wp), intent(out) :: velocity(:) !! velocity of each gauge [m/s]
       real(wp), intent(out) :: u(:)        !! displacement of each gauge [m]
-      real(wp) :: saved(5, 3 * size(gauges))   ! ua, ub, dua, dub, section; or s
-      integer :: at(2, 3 * size(gauges))       ! node (1) or cell (2), its index
-      integer :: k, ns
-      real(wp) :: gdt2
-      ns = 0
-      gdt2 = g * mesh%dt**2
-      do k = 1, size(gauges)
-         if (gauges(k)%node >= 0) then
-            call patch_node(h, st, gauges(k)%node, gdt2, ns, at, saved)
-         else
-            call patch_cell(h, st, gauges(k)%cell, ns, at, saved)
-            call patch_node(h, st, gauges(k)%cell - 1, gdt2, ns, at, saved)
-            call patch_node(h, st, gauges(k)%cell, gdt2, ns, at, saved)
-         end if
+      real(wp), allocatable :: saved(:, :), saved_s(:)
+      integer :: k, q, j, n
+      if (.not. h%g_ready) call gauge_entries(h, gauges)
+      n = st%step
+      allocate(saved(5, size(h%g_node, 2)), saved_s(size(h%g_cell, 2)))
+      do k = 1, size(h%g_node, 2)
+         associate (i => h%g_node(1, k), r => h%r(h%g_node(2, k)))
+            saved(:, k) = [st%ua(i), st%ub(i), st%dua(i), st%dub(i), st%section(i)]
+            call sums_to(r%f, n)
+            call sums_to(r%g, n + r%n)
+            call node_now(r, st, i - (r%c0 - 1), g * mesh%dt**2)
+         end associate
+      end do
+      do k = 1, size(h%g_cell, 2)
+         q = h%g_cell(2, k)
+         associate (c => h%g_cell(1, k))
+            saved_s(k) = st%s(c)
+            j = c - (h%r(q)%c0 - 1)
+            ! (from_ring's expression)
+            st%s(c) = h%r(q)%k * (h%r(q)%f%v(n - j + 1) - h%r(q)%g%v(n + j))
+         end associate
       end do
       call read_gauges(mesh, load, st, gauges, stress, velocity, u)
-      ! (each entry patched once: the order does not matter)
-      do k = ns, 1, -1
-         associate (i => at(2, k))
-            if (at(1, k) == 1) then
-               st%ua(i) = saved(1, k)
-               st%ub(i) = saved(2, k)
-               st%dua(i) = saved(3, k)
-               st%dub(i) = saved(4, k)
-               st%section(i) = saved(5, k)
-            else
-               st%s(i) = saved(1, k)
-            end if
+      do k = 1, size(h%g_node, 2)
+         associate (i => h%g_node(1, k))
+            st%ua(i) = saved(1, k)
+            st%ub(i) = saved(2, k)
+            st%dua(i) = saved(3, k)
+            st%dub(i) = saved(4, k)
+            st%section(i) = saved(5, k)
          end associate
+      end do
+      do k = 1, size(h%g_cell, 2)
+         st%s(h%g_cell(1, k)) = saved_s(k)
       end do
    end subroutine read_ring_gauges
 
-   !> read_ring_gauges: node i's entries from its ring (a node inside one and not yet
-   !> patched), what they held saved as entry ns + 1 (at: 1, i).
-   pure subroutine patch_node(h, st, i, gdt2, ns, at, saved)
-      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state (its running sums made on)
-      type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: i             !! the node
-      real(wp), intent(in) :: gdt2         !! g dt^2 [m]
-      integer, intent(inout) :: ns         !! entries saved
-      integer, intent(inout) :: at(:, :)   !! (kind, index) of each
-      real(wp), intent(inout) :: saved(:, :)   !! what they held
-      integer :: q
-      q = ring_of(h, i)
-      if (q == 0) return
-      ! (once: from_ring adds to u^n0, which a second patch would take for it)
-      if (any(at(1, 1:ns) == 1 .and. at(2, 1:ns) == i)) return
-      ns = ns + 1
-      at(:, ns) = [1, i]
-      saved(:, ns) = [st%ua(i), st%ub(i), st%dua(i), st%dub(i), st%section(i)]
-      call sums_to(h%r(q)%f, st%step)
-      call sums_to(h%r(q)%g, st%step + h%r(q)%n)
-      call node_now(h%r(q), st, i - (h%r(q)%c0 - 1), gdt2)
-   end subroutine patch_node
-
-   !> read_ring_gauges: cell c's stress from its ring (a cell of one and not yet patched),
-   !> what it held saved as entry ns + 1 (at: 2, c).
-   pure subroutine patch_cell(h, st, c, ns, at, saved)
-      type(ring_hybrid_t), intent(in) :: h      !! the hybrid state
-      type(state_t), intent(inout) :: st   !! the state
-      integer, intent(in) :: c             !! the cell
-      integer, intent(inout) :: ns         !! entries saved
-      integer, intent(inout) :: at(:, :)   !! (kind, index) of each
-      real(wp), intent(inout) :: saved(:, :)   !! what they held
-      integer :: q, j, n
-      do q = 1, size(h%r)
-         if (c >= h%r(q)%c0 .and. c <= h%r(q)%c0 + h%r(q)%n - 1) exit
+   !> The entries of the lattice arrays the gauges read that the rings hold, each once
+   !> (read_ring_gauges: from_ring adds to u^n0, which a second patch would take for it): the
+   !> nodes inside a ring (a node gauge's, a cell gauge's two) and the cells of a ring (a
+   !> cell gauge's), each with its ring.
+   pure subroutine gauge_entries(h, gauges)
+      type(ring_hybrid_t), intent(inout) :: h   !! the hybrid state (g_node, g_cell set)
+      type(gauge_t), intent(in) :: gauges(:)    !! the gauges
+      integer :: want(2 * size(gauges)), nodes(2, 2 * size(gauges)), cells(2, size(gauges))
+      integer :: k, nw, nn, nc, c, q
+      ! the nodes they read (a node gauge's, a cell gauge's two) and the cells of the rings
+      nw = 0
+      nc = 0
+      do k = 1, size(gauges)
+         c = gauges(k)%cell
+         if (gauges(k)%node >= 0) then
+            nw = nw + 1
+            want(nw) = gauges(k)%node
+            cycle
+         end if
+         want(nw + 1:nw + 2) = [c - 1, c]
+         nw = nw + 2
+         do q = 1, size(h%r)
+            if (c >= h%r(q)%c0 .and. c <= h%r(q)%c0 + h%r(q)%n - 1) exit
+         end do
+         if (q > size(h%r)) cycle
+         if (any(cells(1, 1:nc) == c)) cycle
+         nc = nc + 1
+         cells(:, nc) = [c, q]
       end do
-      if (q > size(h%r)) return
-      if (any(at(1, 1:ns) == 2 .and. at(2, 1:ns) == c)) return
-      ns = ns + 1
-      at(:, ns) = [2, c]
-      saved(1, ns) = st%s(c)
-      n = st%step
-      j = c - (h%r(q)%c0 - 1)
-      ! (from_ring's expression)
-      st%s(c) = h%r(q)%k * (h%r(q)%f%v(n - j + 1) - h%r(q)%g%v(n + j))
-   end subroutine patch_cell
+      ! of those nodes, the ones inside a ring, once each
+      nn = 0
+      do k = 1, nw
+         q = ring_of(h, want(k))
+         if (q == 0) cycle
+         if (any(nodes(1, 1:nn) == want(k))) cycle
+         nn = nn + 1
+         nodes(:, nn) = [want(k), q]
+      end do
+      h%g_node = nodes(:, 1:nn)
+      h%g_cell = cells(:, 1:nc)
+      h%g_ready = .true.
+   end subroutine gauge_entries
 
    !> The lattice arrays of the node j inside ring r (local: the bar's node c0 - 1 + j) at
    !> t^n (st%step > r%n0), as from_ring makes them: u, du and, where r keeps sections, the
@@ -762,8 +772,6 @@ contains
       end associate
       call blocks(r%f, m + 1)
       call blocks(r%g, m + 1)
-      call start_sums(r%f)
-      call start_sums(r%g)
       ! (a value not finite makes its sum not finite; a sum that overflows only stops the
       ! characteristic steps: the lattice takes over)
       r%finite = abs(sum(r%f%v(n0 - m:n0))) <= huge(1.0_wp) .and. &
@@ -1050,19 +1058,17 @@ contains
       end do
    end subroutine push
 
-   !> Room for the running sums of a sequence (F and G: seq_t p), the first one made.
-   pure subroutine start_sums(x)
-      type(seq_t), intent(inout) :: x      !! the sequence (its first values taken in)
-      allocate(x%p(lbound(x%v, 1):ubound(x%v, 1)))
-      x%p(x%lo) = x%v(x%lo)
-      x%p_hi = x%lo
-   end subroutine start_sums
-
-   !> The running sums of a sequence up to index j (<= hi), those not yet made: the same
-   !> additions in the same order whenever they are made.
+   !> The running sums of a sequence (F and G: seq_t p) up to index j (<= hi), those not yet
+   !> made (their room made at the first call): the same additions in the same order
+   !> whenever they are made.
    pure subroutine sums_to(x, j)
-      type(seq_t), intent(inout) :: x      !! the sequence (start_sums)
+      type(seq_t), intent(inout) :: x      !! the sequence
       integer, intent(in) :: j             !! the last index wanted
+      if (.not. allocated(x%p)) then
+         allocate(x%p(lbound(x%v, 1):ubound(x%v, 1)))
+         x%p(x%lo) = x%v(x%lo)
+         x%p_hi = x%lo
+      end if
       if (j <= x%p_hi) return
       call running_sums(j - x%p_hi, x%v(x%p_hi + 1:j), x%p(x%p_hi:j))
       x%p_hi = j

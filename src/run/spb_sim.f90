@@ -82,9 +82,14 @@ module spb_sim
    real(wp), parameter :: run_base_bytes = 16.0e6_wp      !! program, libraries [bytes]
    real(wp), parameter :: run_cell_bytes = 208.0_wp       !! per cell [bytes]
    !> The characteristic steps' arrays per cell while they last (spb_ring: the sequences,
-   !> their blocks, the running sums of F and G; measured 75 at 1e6 cells, 0.6.4 and 0.6.5)
-   !> [bytes]
-   real(wp), parameter :: ring_cell_bytes = 80.0_wp
+   !> their blocks, one ring's running sums of F and G at the conversion back) [bytes]:
+   !> measured 75 at 1e6 cells in one ring, 99 in four rings that can break (their sections'
+   !> sequences; the same in 0.6.4, which counted 80)
+   real(wp), parameter :: ring_cell_bytes = 104.0_wp
+   !> With gauges, the running sums of every ring a gauge reads, kept through a span (their
+   !> readings inside it, spb_ring read_ring_gauges) [bytes per cell]: measured 34 (1e6 cells,
+   !> four rings, a gauge in each)
+   real(wp), parameter :: ring_gauge_bytes = 40.0_wp
    !> The gauges' readings kept for one call of advance_rings (ring_steps), at most [values]
    !> (8 MiB: 3495 steps of 100 gauges)
    integer, parameter :: ring_gauge_values = 2**20
@@ -241,7 +246,7 @@ contains
       end if
       ! a bar the characteristic steps may serve, from its start or later, in a run (whose
       ! outputs' periods let a span last ring_min_steps steps) or a sweep's case (no
-      ! outputs), needs their arrays too (ring_cell_bytes a cell while they last): where
+      ! outputs), needs their arrays too (ring_bytes while they last): where
       ! they do not fit beside the run in the memory this process may use, every step is
       ! the lattice's, the same results to round-off (doc/method.md, "Memory"; the run says
       ! so, ring_memory_note); where they fit, the x-t buffer is sized with them counted
@@ -254,7 +259,7 @@ contains
             type(spb_error_t), allocatable :: no_fit
             integer :: rows
             call plan_memory(deck, sim%mesh%n, with_files, restarted, &
-                             beside + real(sim%mesh%n, wp) * ring_cell_bytes, rows, no_fit, lim)
+                             beside + ring_bytes(sim), rows, no_fit, lim)
             if (allocated(no_fit)) then
                sim%opt%rings = .false.
                sim%opt%rings_dropped = .true.
@@ -265,6 +270,15 @@ contains
       end if
    end subroutine sim_setup
 
+   !> The memory the characteristic steps may take besides the run's (sim_setup) [bytes]:
+   !> their arrays, and with gauges every ring's running sums and a block's readings.
+   pure real(wp) function ring_bytes(sim) result(bytes)
+      type(sim_t), intent(in) :: sim       !! the simulation, set up
+      bytes = real(sim%mesh%n, wp) * ring_cell_bytes
+      if (size(sim%gauges) > 0) bytes = bytes + real(sim%mesh%n, wp) * ring_gauge_bytes + &
+                                        8.0_wp * real(ring_gauge_values, wp)
+   end function ring_bytes
+
    !> What a run says when the characteristic steps' arrays did not fit (sim_setup): a
    !> line for stderr, '' when they fit or were not asked for.
    function ring_memory_note(sim, restarted) result(note)
@@ -274,7 +288,7 @@ contains
       note = ''
       if (.not. sim%opt%rings_dropped) return
       note = 'spallbar: note: the arrays of the characteristic steps (doc/method.md, ' // &
-         '"Memory"; about ' // memory_text(real(sim%mesh%n, wp) * ring_cell_bytes) // &
+         '"Memory"; about ' // memory_text(ring_bytes(sim)) // &
          ' for ' // itoa(sim%mesh%n) // ' cells) do not fit beside the run in the ' // &
          'memory this process may use (' // memory_text(real(sys_memory_limit(), wp)) // &
          '): every step is the lattice''s, slower, with the same results to round-off'
@@ -796,7 +810,8 @@ contains
       do while (left > 0 .and. .not. stopped)
          m = min(left, ring_span_max(sim%mesh%n))
          call start_rings(sim%mesh, sim%st, lay, m, sim%prob%eps_rel, sim%prob%events, nodes, h)
-         ! the conversion's steps in blocks that end where the progress line is due
+         ! the conversion's steps in blocks that end where the progress line is due (and, with
+         ! gauge rows, after at most ring_gauge_values of their values)
          do while (m > 0)
             k = m
             if (period > 0) k = min(m, period - modulo(sim%st%step, period))
@@ -828,7 +843,9 @@ contains
                stopped = .true.
                exit
             end if
-            if (period > 0 .and. m > 0) call progress_lines(sim, run, sim%st%step)
+            if (period > 0 .and. m > 0) then
+               if (modulo(sim%st%step, period) == 0) call progress_lines(sim, run, sim%st%step)
+            end if
          end do
          call end_rings(sim%mesh, sim%prob%gravity, sim%st, h)
       end do
