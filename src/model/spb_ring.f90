@@ -31,8 +31,7 @@ module spb_ring
    use spb_gauge, only: gauge_t, read_gauges
    implicit none
    private
-   public :: ring_qualifies, ring_layout, start_rings, advance_rings, end_rings, ring_span_max, &
-      read_ring_gauges
+   public :: ring_qualifies, ring_layout, start_rings, advance_rings, end_rings, ring_span_max
 
    integer, parameter :: leaf_bits = 6   !! log2 of leaf
    integer, parameter :: fan_bits = 3    !! log2 of fan
@@ -279,6 +278,8 @@ contains
       max_sec_bottom = -huge(1.0_wp)
       face_du = 0.0_wp
       samples = 0.0_wp
+      ! (which entries the gauges read that the rings hold: once a span)
+      if (present(gauges) .and. .not. h%g_ready) call gauge_entries(h, gauges)
       do t = 1, nsteps
          if (.not. h%finite) exit
          ! the rings' sections S^{n+1/2} and their bounded test (3.3); could some node's
@@ -419,8 +420,8 @@ contains
       dt2 = dt * dt
       do q = 1, size(h%r)
          m = h%r(q)%n
-         st%s(h%r(q)%c0) = h%r(q)%k * (h%r(q)%f%v(n) - h%r(q)%g%v(n + 1))
-         st%s(h%r(q)%c0 + m - 1) = h%r(q)%k * (h%r(q)%f%v(n - m + 1) - h%r(q)%g%v(n + m))
+         st%s(h%r(q)%c0) = cell_stress(h%r(q), n, 1)
+         st%s(h%r(q)%c0 + m - 1) = cell_stress(h%r(q), n, m)
       end do
       call end_stresses(mesh, load, st, fs(face_top)%s, fs(face_bottom)%s, step=n)
       st%s(0) = fs(face_top)%s
@@ -556,12 +557,19 @@ contains
       end do
    end subroutine junctions
 
-   !> The ring holding node i inside (0: a junction node).
-   pure integer function ring_of(h, i) result(q)
+   !> The ring holding node i inside (0: a junction node), or with cell, cell i (0: a lattice
+   !> cell): ring q holds cells c0..c0+m-1 and, inside, nodes c0..c0+m-2.
+   pure integer function ring_of(h, i, cell) result(q)
       type(ring_hybrid_t), intent(in) :: h   !! the hybrid state
-      integer, intent(in) :: i             !! the node
+      integer, intent(in) :: i             !! the node (the cell)
+      logical, intent(in), optional :: cell   !! i is a cell
+      integer :: last
+      last = 2
+      if (present(cell)) then
+         if (cell) last = 1
+      end if
       do q = 1, size(h%r)
-         if (i >= h%r(q)%c0 .and. i <= h%r(q)%c0 + h%r(q)%n - 2) return
+         if (i >= h%r(q)%c0 .and. i <= h%r(q)%c0 + h%r(q)%n - last) return
       end do
       q = 0
    end function ring_of
@@ -570,8 +578,8 @@ contains
    !> of the lattice arrays they read that a ring holds (u, du and the section of a node
    !> inside it, the stress of a cell of it) made as end_rings would make them at this step,
    !> read, and put back: until end_rings, st%ua and ub of a ring's inside hold u at its
-   !> conversion, to which from_ring adds (O(1) a gauge; which entries, found at the first
-   !> call of a span, gauge_entries).
+   !> conversion, to which from_ring adds (O(1) a gauge; which entries: gauge_entries, made
+   !> before).
    pure subroutine read_ring_gauges(mesh, load, g, st, h, gauges, stress, velocity, u)
       type(mesh_t), intent(in) :: mesh     !! the mesh
       type(load_t), intent(in) :: load     !! the end load
@@ -582,11 +590,9 @@ contains
       real(wp), intent(out) :: stress(:)   !! stress of each gauge [Pa]
       real(wp), intent(out) :: velocity(:) !! velocity of each gauge [m/s]
       real(wp), intent(out) :: u(:)        !! displacement of each gauge [m]
-      real(wp), allocatable :: saved(:, :), saved_s(:)
-      integer :: k, q, j, n
-      if (.not. h%g_ready) call gauge_entries(h, gauges)
+      real(wp) :: saved(5, size(h%g_node, 2)), saved_s(size(h%g_cell, 2))
+      integer :: k, q, n
       n = st%step
-      allocate(saved(5, size(h%g_node, 2)), saved_s(size(h%g_cell, 2)))
       do k = 1, size(h%g_node, 2)
          associate (i => h%g_node(1, k), r => h%r(h%g_node(2, k)))
             saved(:, k) = [st%ua(i), st%ub(i), st%dua(i), st%dub(i), st%section(i)]
@@ -599,9 +605,7 @@ contains
          q = h%g_cell(2, k)
          associate (c => h%g_cell(1, k))
             saved_s(k) = st%s(c)
-            j = c - (h%r(q)%c0 - 1)
-            ! (from_ring's expression)
-            st%s(c) = h%r(q)%k * (h%r(q)%f%v(n - j + 1) - h%r(q)%g%v(n + j))
+            st%s(c) = cell_stress(h%r(q), n, c - (h%r(q)%c0 - 1))
          end associate
       end do
       call read_gauges(mesh, load, st, gauges, stress, velocity, u)
@@ -640,10 +644,8 @@ contains
          end if
          want(nw + 1:nw + 2) = [c - 1, c]
          nw = nw + 2
-         do q = 1, size(h%r)
-            if (c >= h%r(q)%c0 .and. c <= h%r(q)%c0 + h%r(q)%n - 1) exit
-         end do
-         if (q > size(h%r)) cycle
+         q = ring_of(h, c, cell=.true.)
+         if (q == 0) cycle
          if (any(cells(1, 1:nc) == c)) cycle
          nc = nc + 1
          cells(:, nc) = [c, q]
@@ -684,6 +686,15 @@ contains
       st%dub(i) = st%dua(i)
       if (r%sections) st%section(i) = r%ra%v(n - 1 - j) + r%rb%v(n + j) + sign_of(n - 1) * r%c(j)
    end subroutine node_now
+
+   !> The stress s_k^n of ring r's cell k (1..m, local): K (F(n - k + 1) - G(n + k)), as
+   !> from_ring's loop makes every cell's.
+   pure real(wp) function cell_stress(r, n, k) result(s)
+      type(ring_t), intent(in) :: r        !! the ring
+      integer, intent(in) :: n             !! the step
+      integer, intent(in) :: k             !! the cell, 1..m of the ring
+      s = r%k * (r%f%v(n - k + 1) - r%g%v(n + k))
+   end function cell_stress
 
    !> The sequences Ra, Rb of a ring one value on, with what S^{n+1/2} needs: Ra(n - 1),
    !> Rb(n + m).
@@ -878,6 +889,7 @@ contains
             st%dub(b + i) = st%dua(b + i)
          end do
       end associate
+      ! (cell_stress of every cell, written out: the loop vectorises)
       do i = 1, m
          st%s(b + i) = r%k * (r%f%v(n - i + 1) - r%g%v(n + i))
       end do
